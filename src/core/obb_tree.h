@@ -1,0 +1,53 @@
+// The OBB tree (paper sections 2-3): built top-down, nodes in one contiguous array.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/obb.h"
+
+namespace graspcd {
+
+// A node in depth-first order: the first child of an internal node is the next node in the array,
+// `right` indexes the second child; a leaf has right == -1 and owns triangles
+// [first, first + count) of ObbTree::triangles().
+struct ObbNode {
+  Obb box;
+  std::int32_t right = -1;
+  std::int32_t first = 0;
+  std::int32_t count = 0;
+  bool is_leaf() const { return right < 0; }
+};
+
+struct ObbTreeOptions {
+  int leaf_size = 1;                 // at most this many triangles per leaf (>= 1)
+  ObbFit fit = ObbFit::kCovariance;  // how each node's box is fitted
+};
+
+class ObbTree {
+ public:
+  ObbTree() = default;
+
+  // Top-down build: fit a box to the node's triangles, split them by centroid at the mean centroid
+  // along the box's longest axis (the other axes in decreasing length when one side would be
+  // empty; a median split when all centroids coincide), recurse until a node holds at most
+  // leaf_size triangles. O(n log n) expected. Throws std::invalid_argument on an empty input or
+  // leaf_size < 1.
+  static ObbTree build(std::vector<Triangle> triangles, const ObbTreeOptions& options = {});
+  static ObbTree build(const TriangleMesh& mesh, const ObbTreeOptions& options = {});
+
+  const std::vector<ObbNode>& nodes() const { return nodes_; }
+  // Triangles in leaf order; face_ids()[i] is the index of triangles()[i] in the input.
+  const std::vector<Triangle>& triangles() const { return triangles_; }
+  const std::vector<std::int32_t>& face_ids() const { return face_ids_; }
+  int depth() const { return depth_; }
+  const ObbNode& root() const { return nodes_.front(); }
+
+ private:
+  std::vector<ObbNode> nodes_;
+  std::vector<Triangle> triangles_;
+  std::vector<std::int32_t> face_ids_;
+  int depth_ = 0;
+};
+
+}  // namespace graspcd

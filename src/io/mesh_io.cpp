@@ -1,0 +1,235 @@
+#include "io/mesh_io.h"
+
+#include <sys/stat.h>
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include "core/predicates.h"
+#include "core/tolerances.h"
+
+namespace graspcd::io {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& message, std::size_t line = 0) {
+  throw InputError(path, line, message);
+}
+
+// Fails unless `path` names a readable regular file (a directory opens but cannot be read).
+void require_readable(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) fail(path, std::string("cannot open: ") + std::strerror(errno));
+  struct stat info {};
+  const bool is_dir = ::fstat(::fileno(file), &info) == 0 && S_ISDIR(info.st_mode);
+  std::fclose(file);
+  if (is_dir) fail(path, std::string("cannot open: ") + std::strerror(EISDIR));
+}
+
+bool in_exact_range(double x) {
+  const double m = std::fabs(x);
+  return x == 0.0 || (m >= tol::kMinCoordinate && m <= tol::kMaxCoordinate);
+}
+
+// Checks that a vertex is finite and inside the exact-arithmetic range of tolerances.h.
+void check_vertex(const std::string& path, const std::string& which, const Vec3& p) {
+  for (int i = 0; i < 3; ++i) {
+    if (in_exact_range(p[i])) continue;
+    std::ostringstream out;
+    out << which << " has coordinate " << p[i];
+    if (std::isfinite(p[i])) {
+      out << ", outside the exact-arithmetic range (0 or " << tol::kMinCoordinate
+          << " <= |x| <= " << tol::kMaxCoordinate << ")";
+    } else {
+      out << " (coordinates must be finite)";
+    }
+    fail(path, out.str());
+  }
+}
+
+// True when the face spans no area: every component of (b-a) x (c-a) is exactly zero.
+bool zero_area(const TriangleMesh& mesh, std::size_t face) {
+  const Triangle t = mesh.triangle(face);
+  for (int drop = 0; drop < 3; ++drop) {
+    if (predicates::orient2d(t.v[0], t.v[1], t.v[2], drop) != 0) return false;
+  }
+  return true;
+}
+
+std::string lower_extension(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  const std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+// The first line of a tinyobjloader message, without its trailing newline.
+std::string first_line(const std::string& text) {
+  std::string line = text.substr(0, text.find('\n'));
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  return line;
+}
+
+TriangleMesh load_obj(const std::string& path) {
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config)) {
+    // tinyobjloader names the line inside its message, as "line N".
+    const std::string message = first_line(reader.Error());
+    std::smatch match;
+    std::size_t line = 0;
+    if (std::regex_search(message, match, std::regex("line (\\d+)"))) {
+      line = static_cast<std::size_t>(std::stoul(match[1].str()));
+    }
+    fail(path, "OBJ parse error: " + message, line);
+  }
+  // tinyobjloader only warns when it drops a face; here that is bad input.
+  const std::string& warning = reader.Warning();
+  if (warning.find("Degenerated face") != std::string::npos) {
+    fail(path, "a face has fewer than 3 vertices");
+  }
+  if (warning.find("invalid vertex index") != std::string::npos) {
+    fail(path, "a face references a vertex index out of range");
+  }
+
+  TriangleMesh mesh;
+  const auto& v = reader.GetAttrib().vertices;
+  const std::size_t vertex_count = v.size() / 3;
+  if (vertex_count > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+    fail(path, "too many vertices");
+  }
+  mesh.vertices.reserve(vertex_count);
+  for (std::size_t i = 0; i < vertex_count; ++i) {
+    mesh.vertices.emplace_back(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+    check_vertex(path, "vertex " + std::to_string(i + 1), mesh.vertices.back());
+  }
+
+  // Concatenate every shape's triangles.
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const auto& indices = shape.mesh.indices;
+    std::size_t offset = 0;
+    for (const unsigned char arity : shape.mesh.num_face_vertices) {
+      if (arity != 3 || offset + 3 > indices.size()) {
+        fail(path, "tinyobjloader returned a face that is not a triangle");
+      }
+      std::array<std::int32_t, 3> face{};
+      for (std::size_t k = 0; k < 3; ++k) {
+        const int index = indices[offset + k].vertex_index;
+        if (index < 0 || static_cast<std::size_t>(index) >= vertex_count) {
+          std::ostringstream out;
+          out << "face " << mesh.faces.size() + 1
+              << " references a vertex out of range (the file has " << vertex_count << " vertices)";
+          fail(path, out.str());
+        }
+        face[k] = static_cast<std::int32_t>(index);
+      }
+      mesh.faces.push_back(face);
+      offset += 3;
+    }
+  }
+  return mesh;
+}
+
+std::uint32_t read_u32_le(const unsigned char* p) {
+  return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
+         static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
+}
+
+double read_f32_le(const unsigned char* p) {
+  const std::uint32_t bits = read_u32_le(p);
+  float value = 0.0f;
+  static_assert(sizeof(value) == sizeof(bits), "IEEE single precision float expected");
+  std::memcpy(&value, &bits, sizeof(value));
+  return static_cast<double>(value);
+}
+
+TriangleMesh load_stl(const std::string& path) {
+  constexpr std::uint64_t kHeaderBytes = 84;  // 80-byte header + uint32 triangle count
+  constexpr std::uint64_t kRecordBytes = 50;  // normal, 3 vertices (12 floats), uint16 attribute
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open");
+  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                         std::istreambuf_iterator<char>());
+  if (in.bad()) fail(path, "read error");
+
+  // Size check; an ASCII STL begins with "solid" and (almost surely) fails it.
+  const bool starts_solid = bytes.size() >= 5 && std::memcmp(bytes.data(), "solid", 5) == 0;
+  const char* const ascii = "ASCII STL is not supported; convert it to binary STL";
+  if (bytes.size() < kHeaderBytes) {
+    if (starts_solid) fail(path, ascii);
+    fail(path, "too short for a binary STL (" + std::to_string(bytes.size()) +
+                   " bytes; header and count take 84)");
+  }
+  const std::uint64_t count = read_u32_le(bytes.data() + 80);
+  const std::uint64_t expected = kHeaderBytes + kRecordBytes * count;
+  if (bytes.size() != expected) {
+    if (starts_solid) fail(path, ascii);
+    std::ostringstream out;
+    out << "binary STL size mismatch: the header says " << count << " triangles (" << expected
+        << " bytes) but the file has " << bytes.size() << " bytes";
+    fail(path, out.str());
+  }
+
+  // Read the triangles, sharing bit-identical vertices.
+  TriangleMesh mesh;
+  std::map<std::array<double, 3>, std::int32_t> index_of;
+  mesh.faces.reserve(count);
+  for (std::uint64_t t = 0; t < count; ++t) {
+    const unsigned char* record = bytes.data() + kHeaderBytes + kRecordBytes * t;
+    std::array<std::int32_t, 3> face{};
+    for (int k = 0; k < 3; ++k) {
+      const unsigned char* p = record + 12 + 12 * k;  // skip the facet normal
+      const Vec3 vertex(read_f32_le(p), read_f32_le(p + 4), read_f32_le(p + 8));
+      check_vertex(path, "triangle " + std::to_string(t + 1) + " vertex " + std::to_string(k + 1),
+                   vertex);
+      const auto [it, inserted] = index_of.try_emplace(
+          {vertex[0], vertex[1], vertex[2]}, static_cast<std::int32_t>(mesh.vertices.size()));
+      if (inserted) mesh.vertices.push_back(vertex);
+      face[k] = it->second;
+    }
+    mesh.faces.push_back(face);
+  }
+  return mesh;
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const std::string& path, MeshStats* stats) {
+  require_readable(path);
+  const std::string ext = lower_extension(path);
+  TriangleMesh mesh;
+  if (ext == "obj") {
+    mesh = load_obj(path);
+  } else if (ext == "stl") {
+    mesh = load_stl(path);
+  } else {
+    fail(path, "unknown mesh format (expected a .obj or .stl file)");
+  }
+  if (mesh.faces.empty()) fail(path, "the mesh has no faces");
+  if (stats != nullptr) {
+    *stats = MeshStats{};
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+      if (zero_area(mesh, f)) ++stats->zero_area_faces;
+    }
+  }
+  return mesh;
+}
+
+}  // namespace graspcd::io

@@ -1,0 +1,255 @@
+#include "io/mesh_io.h"
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace graspcd::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh temporary folder per test, removed afterwards.
+class MeshIoTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "graspcd_mesh_XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    dir_ = pattern;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& content) {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary) << content;
+    return path;
+  }
+
+  // A binary STL of the given triangles (9 floats each), with the given header text.
+  std::string write_stl(const std::string& name, const std::vector<std::array<float, 9>>& tris,
+                        const std::string& header = "graspcd test") {
+    std::string bytes(80, '\0');
+    bytes.replace(0, header.size(), header);
+    const auto append_u32 = [&](std::uint32_t x) {
+      for (int i = 0; i < 4; ++i) bytes += static_cast<char>((x >> (8 * i)) & 0xff);
+    };
+    const auto append_f32 = [&](float f) {
+      std::uint32_t bits = 0;
+      std::memcpy(&bits, &f, sizeof(bits));
+      append_u32(bits);
+    };
+    append_u32(static_cast<std::uint32_t>(tris.size()));
+    for (const auto& t : tris) {
+      for (int i = 0; i < 3; ++i) append_f32(0.0f);  // normal, ignored
+      for (float f : t) append_f32(f);
+      bytes += std::string(2, '\0');  // attribute byte count
+    }
+    return write(name, bytes);
+  }
+
+  fs::path dir_;
+};
+
+// The message of the InputError load_mesh throws, or "" if it loads.
+std::string load_error(const std::string& path) {
+  try {
+    load_mesh(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const char* const kTetrahedron =
+    "# a tetrahedron\n"
+    "v 0 0 0\n"
+    "v 1 0 0\n"
+    "v 0 0.5 0\n"
+    "v 0 0 -2.25\n"
+    "f 1 3 2\n"
+    "f 1 2 4\n"
+    "f 1 4 3\n"
+    "f 2 3 4\n";
+
+TEST_F(MeshIoTest, LoadsAnObjTetrahedron) {
+  const TriangleMesh mesh = load_mesh(write("tet.obj", kTetrahedron));
+  ASSERT_EQ(mesh.vertices.size(), 4u);
+  ASSERT_EQ(mesh.faces.size(), 4u);
+  EXPECT_EQ(mesh.vertices[2], Vec3(0, 0.5, 0));
+  EXPECT_EQ(mesh.vertices[3], Vec3(0, 0, -2.25));
+  EXPECT_EQ(mesh.faces[0], (std::array<std::int32_t, 3>{0, 2, 1}));
+  EXPECT_EQ(mesh.faces[3], (std::array<std::int32_t, 3>{1, 2, 3}));
+}
+
+TEST_F(MeshIoTest, ObjExtensionIsCaseInsensitive) {
+  EXPECT_EQ(load_mesh(write("TET.OBJ", kTetrahedron)).faces.size(), 4u);
+}
+
+TEST_F(MeshIoTest, ObjPolygonsAreTriangulatedAndObjectsConcatenated) {
+  const std::string obj =
+      "o square\n"
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+      "f 1/1/1 2/2/1 3/3/1 4/4/1\n"
+      "o triangle\n"
+      "v 5 5 5\nv 6 5 5\nv 5 6 5\n"
+      "f -3 -2 -1\n";  // relative indices: the last three vertices
+  const TriangleMesh mesh = load_mesh(write("two.obj", obj));
+  ASSERT_EQ(mesh.vertices.size(), 7u);
+  ASSERT_EQ(mesh.faces.size(), 3u);  // the square as 2 triangles, then the triangle
+  EXPECT_EQ(mesh.faces[2], (std::array<std::int32_t, 3>{4, 5, 6}));
+  for (int f = 0; f < 2; ++f) {
+    for (int k = 0; k < 3; ++k) EXPECT_LT(mesh.faces[f][k], 4);
+  }
+}
+
+TEST_F(MeshIoTest, ObjCoordinatesAreDoubles) {
+  // A float build would give 123456792 and 1e-20 * (1 +- 6e-8). tinyobjloader's own number parser
+  // is not correctly rounded (it is off from strtod by a few ulps on many decimals), so the check
+  // is to well within float precision, not to the last bit.
+  const TriangleMesh mesh = load_mesh(write("d.obj",
+                                            "v 1e-20 0 0\nv 0 1 0\nv 0 0 123456789.125\n"
+                                            "f 1 2 3\n"));
+  EXPECT_NEAR(mesh.vertices[2][2], 123456789.125, 1e-6);
+  EXPECT_NEAR(mesh.vertices[0][0], 1e-20, 1e-33);
+}
+
+TEST_F(MeshIoTest, ZeroAreaFacesAreKeptAndCounted) {
+  const std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\n"
+      "f 1 2 4\n"
+      "f 1 2 3\n"   // collinear
+      "f 1 1 1\n";  // a point
+  MeshStats stats;
+  const TriangleMesh mesh = load_mesh(write("flat.obj", obj), &stats);
+  EXPECT_EQ(mesh.faces.size(), 3u);
+  EXPECT_EQ(stats.zero_area_faces, 2u);
+}
+
+TEST_F(MeshIoTest, ObjErrors) {
+  const std::string bad_index = write("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+  EXPECT_EQ(load_error(bad_index),
+            bad_index + ": face 1 references a vertex out of range (the file has 3 vertices)");
+
+  const std::string bad_quad = write("quad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 7\n");
+  EXPECT_EQ(load_error(bad_quad), bad_quad + ": a face references a vertex index out of range");
+
+  const std::string zero = write("zero.obj", "v 0 0 0\nv 1 0 0\nf 0 1 2\n");
+  EXPECT_EQ(load_error(zero).rfind(zero + ":3: OBJ parse error: ", 0), 0u) << load_error(zero);
+
+  const std::string no_faces = write("nofaces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  EXPECT_EQ(load_error(no_faces), no_faces + ": the mesh has no faces");
+
+  const std::string empty = write("empty.obj", "");
+  EXPECT_EQ(load_error(empty), empty + ": the mesh has no faces");
+
+  const std::string two = write("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n");
+  EXPECT_EQ(load_error(two), two + ": a face has fewer than 3 vertices");
+
+  const std::string huge = write("huge.obj", "v 0 0 0\nv 1e400 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_EQ(load_error(huge), huge + ": vertex 2 has coordinate inf (coordinates must be finite)");
+
+  const std::string tiny = write("tiny.obj", "v 0 0 0\nv 1 0 0\nv 0 1e-60 0\nf 1 2 3\n");
+  EXPECT_EQ(load_error(tiny).rfind(tiny + ": vertex 3 has coordinate 1e-60, outside the "
+                                          "exact-arithmetic range",
+                                   0),
+            0u)
+      << load_error(tiny);
+
+  const std::string big = write("big.obj", "v 0 0 0\nv 1 0 0\nv 0 1 -3e55\nf 1 2 3\n");
+  EXPECT_NE(load_error(big).find("vertex 3 has coordinate -3e+55, outside"), std::string::npos)
+      << load_error(big);
+}
+
+TEST_F(MeshIoTest, FileErrors) {
+  const std::string missing = (dir_ / "missing.obj").string();
+  EXPECT_EQ(load_error(missing), missing + ": cannot open: No such file or directory");
+  const std::string folder = (dir_ / "folder.obj").string();
+  fs::create_directory(folder);
+  EXPECT_EQ(load_error(folder), folder + ": cannot open: Is a directory");
+  const std::string ply = write("mesh.ply", "ply\n");
+  EXPECT_EQ(load_error(ply), ply + ": unknown mesh format (expected a .obj or .stl file)");
+  const std::string none = write("mesh", kTetrahedron);
+  EXPECT_EQ(load_error(none), none + ": unknown mesh format (expected a .obj or .stl file)");
+}
+
+TEST_F(MeshIoTest, LoadsABinaryStlSharingVertices) {
+  // A unit square as two triangles sharing an edge; the header even begins with "solid".
+  const std::string path =
+      write_stl("square.stl", {{0, 0, 0, 1, 0, 0, 1, 1, 0.5f}, {0, 0, 0, 1, 1, 0.5f, 0, 1, 0}},
+                "solid but binary");
+  MeshStats stats;
+  const TriangleMesh mesh = load_mesh(path, &stats);
+  ASSERT_EQ(mesh.faces.size(), 2u);
+  ASSERT_EQ(mesh.vertices.size(), 4u);
+  EXPECT_EQ(mesh.faces[0], (std::array<std::int32_t, 3>{0, 1, 2}));
+  EXPECT_EQ(mesh.faces[1], (std::array<std::int32_t, 3>{0, 2, 3}));
+  EXPECT_EQ(mesh.vertices[2], Vec3(1, 1, 0.5));
+  EXPECT_EQ(stats.zero_area_faces, 0u);
+  // Floats widen to doubles exactly.
+  const std::string fine = write_stl("fine.STL", {{0.1f, 0, 0, 1, 0, 0, 0, 1, 0}});
+  EXPECT_EQ(load_mesh(fine).vertices[0][0], static_cast<double>(0.1f));
+}
+
+TEST_F(MeshIoTest, StlErrors) {
+  const std::string ascii = write("ascii.stl",
+                                  "solid cube\n  facet normal 0 0 1\n    outer loop\n"
+                                  "      vertex 0 0 0\n      vertex 1 0 0\n      vertex 0 1 0\n"
+                                  "    endloop\n  endfacet\nendsolid cube\n");
+  EXPECT_EQ(load_error(ascii), ascii + ": ASCII STL is not supported; convert it to binary STL");
+  const std::string short_ascii = write("short.stl", "solid x\nendsolid x\n");
+  EXPECT_EQ(load_error(short_ascii),
+            short_ascii + ": ASCII STL is not supported; convert it to binary STL");
+
+  const std::string tiny = write("tiny.stl", std::string(40, 'x'));
+  EXPECT_EQ(load_error(tiny),
+            tiny + ": too short for a binary STL (40 bytes; header and count take 84)");
+
+  // One triangle, with a byte cut off the end.
+  const std::string good = write_stl("good.stl", {{0, 0, 0, 1, 0, 0, 0, 1, 0}});
+  std::string bytes;
+  {
+    std::ifstream in(good, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::string cut = write("cut.stl", bytes.substr(0, bytes.size() - 1));
+  EXPECT_EQ(load_error(cut), cut +
+                                 ": binary STL size mismatch: the header says 1 triangles (134 "
+                                 "bytes) but the file has 133 bytes");
+
+  EXPECT_EQ(load_error(write_stl("empty.stl", {})),
+            (dir_ / "empty.stl").string() + ": the mesh has no faces");
+
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::string bad =
+      write_stl("nan.stl", {{0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 0, 0, 1, nan, 0, 0, 1, 0}});
+  EXPECT_EQ(load_error(bad),
+            bad + ": triangle 2 vertex 2 has coordinate nan (coordinates must be finite)");
+}
+
+TEST(MeshIoModels, LoadsTheCubeCup) {
+  const fs::path path = fs::path(GRASPCD_MODELS_DIR) / "objects" / "mujoco" / "cube_cup.obj";
+  if (!fs::exists(path)) GTEST_SKIP() << "model not found: " << path;
+  MeshStats stats;
+  const TriangleMesh mesh = load_mesh(path.string(), &stats);
+  EXPECT_EQ(mesh.vertices.size(), 48u);
+  EXPECT_EQ(mesh.faces.size(), 28u);
+  EXPECT_EQ(stats.zero_area_faces, 0u);
+  Vec3 lo = mesh.vertices[0];
+  Vec3 hi = mesh.vertices[0];
+  for (const Vec3& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  EXPECT_EQ(lo, Vec3(-0.05, -0.05, 0.0));
+  EXPECT_EQ(hi, Vec3(0.05, 0.05, 0.1));
+}
+
+}  // namespace
+}  // namespace graspcd::io
