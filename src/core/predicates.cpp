@@ -74,25 +74,36 @@ Expansion difference(double a, double b) {
   return e;
 }
 
-// h = e + b (Shewchuk's Grow-Expansion with zero elimination).
-void grow(Expansion& e, double b) {
+// x + y == a + b exactly, given |a| >= |b| or a == 0.
+inline void fast_two_sum(double a, double b, double& x, double& y) {
+  x = a + b;
+  y = b - (x - a);
+}
+
+// e + f (Shewchuk's Fast-Expansion-Sum with zero elimination): merge the components by magnitude,
+// then one chain of Two-Sums. Linear in the lengths; valid under round-to-nearest-even.
+Expansion sum(const Expansion& e, const Expansion& f) {
+  if (e.n == 0) return f;
+  if (f.n == 0) return e;
   Expansion h;
-  double q = b;
-  for (int i = 0; i < e.n; ++i) {
-    double sum, err;
-    two_sum(q, e.c[i], sum, err);
-    q = sum;
-    if (err != 0.0) h.c[h.n++] = err;
+  int i = 0, j = 0;
+  // The next component in order of increasing magnitude.
+  const auto next = [&]() {
+    if (j >= f.n || (i < e.n && (f.c[j] > e.c[i]) == (f.c[j] > -e.c[i]))) return e.c[i++];
+    return f.c[j++];
+  };
+  double q = next();
+  double q_new, hh;
+  fast_two_sum(next(), q, q_new, hh);
+  q = q_new;
+  if (hh != 0.0) h.c[h.n++] = hh;
+  while (i < e.n || j < f.n) {
+    two_sum(q, next(), q_new, hh);
+    q = q_new;
+    if (hh != 0.0) h.c[h.n++] = hh;
   }
   if (q != 0.0 || h.n == 0) h.c[h.n++] = q;
   if (h.n == 1 && h.c[0] == 0.0) h.n = 0;
-  e = h;
-}
-
-// e + f, by growing e with each component of f.
-Expansion sum(const Expansion& e, const Expansion& f) {
-  Expansion h = e;
-  for (int i = 0; i < f.n; ++i) grow(h, f.c[i]);
   return h;
 }
 
@@ -173,6 +184,10 @@ int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const double bound = kOrient3dErrBound * permanent;
   if (det > bound) return 1;
   if (-det > bound) return -1;
+  // A zero permanent means every product has an exactly zero factor (differences of doubles are
+  // zero only for equal doubles, and products cannot underflow in tol's coordinate range), so the
+  // determinant is exactly zero: the common case of shared vertices, answered without expansions.
+  if (permanent == 0.0) return 0;
   return orient3d_exact(a, b, c, d);
 }
 
@@ -190,9 +205,11 @@ int orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int drop) {
   const double left = (b[i] - a[i]) * (c[j] - a[j]);
   const double right = (b[j] - a[j]) * (c[i] - a[i]);
   const double det = left - right;
-  const double bound = kOrient2dErrBound * (std::fabs(left) + std::fabs(right));
+  const double permanent = std::fabs(left) + std::fabs(right);
+  const double bound = kOrient2dErrBound * permanent;
   if (det > bound) return 1;
   if (-det > bound) return -1;
+  if (permanent == 0.0) return 0;  // exactly zero, as in orient3d
   return orient2d_exact(a, b, c, drop);
 }
 

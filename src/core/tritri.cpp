@@ -75,16 +75,34 @@ bool segment_triangle_2d(const Vec3& s0, const Vec3& s1, const Triangle& t, int 
          segments_meet_2d(s0, s1, c, a, k);
 }
 
-// Closed segment [s0, s1] (non-degenerate) against closed non-degenerate triangle t.
-bool segment_triangle(const Vec3& s0, const Vec3& s1, const Triangle& t) {
+// Closed segment [s0, s1] (non-degenerate) against closed non-degenerate triangle t, given the
+// exact sides o0, o1 of s0 and s1 relative to t's plane (orient3d(a, b, c, s)).
+bool segment_triangle(const Vec3& s0, const Vec3& s1, int o0, int o1, const Triangle& t) {
   const auto& [a, b, c] = t.v;
-  const int o0 = orient3d(a, b, c, s0), o1 = orient3d(a, b, c, s1);
   if (o0 * o1 > 0) return false;  // both strictly on one side
   if (o0 == 0 && o1 == 0) return segment_triangle_2d(s0, s1, t, projection_axis(a, b, c));
   // The segment meets the plane in exactly one point; it is in the closed triangle iff the line
   // s0 s1 passes on the same side (or on) each directed edge (Plucker side tests as orient3d).
   const int e0 = orient3d(s0, s1, a, b), e1 = orient3d(s0, s1, b, c), e2 = orient3d(s0, s1, c, a);
   return (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
+}
+
+bool segment_triangle(const Vec3& s0, const Vec3& s1, const Triangle& t) {
+  const auto& [a, b, c] = t.v;
+  return segment_triangle(s0, s1, orient3d(a, b, c, s0), orient3d(a, b, c, s1), t);
+}
+
+// Two non-degenerate, non-coplanar triangles with the exact sides o1 of T1's vertices relative to
+// T2's plane and o2 of T2's relative to T1's: T1 ∩ T2 lies on the planes' common line; its ends are
+// ends of T1 ∩ L or of T2 ∩ L, which lie on the triangles' edges. So they meet iff some edge of
+// one meets the other.
+bool edges_meet(const Triangle& t1, const Triangle& t2, const int o1[3], const int o2[3]) {
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    if (segment_triangle(t1.v[i], t1.v[j], o1[i], o1[j], t2)) return true;
+    if (segment_triangle(t2.v[i], t2.v[j], o2[i], o2[j], t1)) return true;
+  }
+  return false;
 }
 
 bool point_triangle(const Vec3& p, const Triangle& t) {
@@ -339,13 +357,7 @@ bool tri_tri_intersect_exact(const Triangle& t1, const Triangle& t2) {
   };
   if (one_side(o1) || one_side(o2)) return false;
   if (o1[0] == 0 && o1[1] == 0 && o1[2] == 0) return coplanar_triangles(t1, t2);
-  // Non-coplanar: T1 ∩ T2 lies on the planes' common line; its ends are ends of T1 ∩ L or of
-  // T2 ∩ L, which lie on the triangles' edges. So they meet iff some edge meets the other.
-  for (int i = 0; i < 3; ++i) {
-    if (segment_triangle(t1.v[i], t1.v[(i + 1) % 3], t2)) return true;
-    if (segment_triangle(t2.v[i], t2.v[(i + 1) % 3], t1)) return true;
-  }
-  return false;
+  return edges_meet(t1, t2, o1, o2);
 }
 
 // Moller 1997, eq. (6)-(9), with every floating-point decision certified by an error bound.
@@ -355,13 +367,11 @@ bool tri_tri_intersect(const Triangle& t1, const Triangle& t2) {
   if (!non_degenerate(t2, p2)) return tri_tri_intersect_exact(t1, t2);
   Distance d1[3];
   for (int i = 0; i < 3; ++i) d1[i] = plane_distance(t2, p2, t1.v[i]);
-  if (d1[0].sign == d1[1].sign && d1[1].sign == d1[2].sign) {
-    if (d1[0].sign != 0) return false;
-    return tri_tri_intersect_exact(t1, t2);  // coplanar
-  }
-  // The same for T2's vertices against T1's plane.
+  if (d1[0].sign == d1[1].sign && d1[1].sign == d1[2].sign && d1[0].sign != 0) return false;
+  // The same for T2's vertices against T1's plane; coplanar pairs are decided exactly in 2D.
   const Plane p1 = plane_of(t1);
   if (!non_degenerate(t1, p1)) return tri_tri_intersect_exact(t1, t2);
+  if (d1[0].sign == 0 && d1[1].sign == 0 && d1[2].sign == 0) return coplanar_triangles(t1, t2);
   Distance d2[3];
   for (int i = 0; i < 3; ++i) d2[i] = plane_distance(t1, p1, t2.v[i]);
   if (d2[0].sign == d2[1].sign && d2[1].sign == d2[2].sign && d2[0].sign != 0) return false;
@@ -370,9 +380,12 @@ bool tri_tri_intersect(const Triangle& t1, const Triangle& t2) {
   // near-degenerate axis only makes the bound fail and the exact test decide.
   const Vec3 dir = p1.n.cross(p2.n);
   const int k = argmax_abs(dir);
+  // Inside the error bounds, the exact decision from the (exact) signs already known.
+  const int o1[3] = {d1[0].sign, d1[1].sign, d1[2].sign};
+  const int o2[3] = {d2[0].sign, d2[1].sign, d2[2].sign};
   Interval i1, i2;
   if (!crossing_interval(t1, d1, k, i1) || !crossing_interval(t2, d2, k, i2)) {
-    return tri_tri_intersect_exact(t1, t2);
+    return edges_meet(t1, t2, o1, o2);
   }
   // Certain when the overlap or the gap exceeds both ends' errors (with the subtraction's own
   // rounding, relative u, absorbed by the factor).
@@ -380,7 +393,7 @@ bool tri_tri_intersect(const Triangle& t1, const Triangle& t2) {
   const double overlap = std::min(i1.hi, i2.hi) - std::max(i1.lo, i2.lo);
   if (overlap > err) return true;
   if (-overlap > err) return false;
-  return tri_tri_intersect_exact(t1, t2);
+  return edges_meet(t1, t2, o1, o2);
 }
 
 bool tri_tri_moller_naive(const Triangle& t1, const Triangle& t2) {
