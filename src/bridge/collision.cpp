@@ -1,0 +1,216 @@
+#include "bridge/collision.h"
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <stdexcept>
+#include <vector>
+
+#include "bridge/contact.h"
+
+namespace graspcd::bridge {
+namespace {
+
+// The process-wide model -> registry table. Writers hold g_mutex; readers (every collision call)
+// scan the slots up to g_used without locking. A slot is published registry first, model second
+// (release), and read model first, registry second (acquire); detaching clears the model first,
+// so a reader sees either a consistent pair or a null registry, which delegates.
+struct Slot {
+  std::atomic<const mjModel*> model{nullptr};
+  std::atomic<Registry*> registry{nullptr};
+};
+std::array<Slot, kMaxAttachedModels> g_slots;
+std::atomic<int> g_used{0};  // high-water mark of used slots
+std::mutex g_mutex;
+
+// The saved original entry; g_installed guards install/uninstall.
+std::atomic<mjfCollision> g_original{nullptr};
+bool g_installed = false;
+
+using Clock = std::chrono::steady_clock;
+
+std::uint64_t elapsed_ns(Clock::time_point from, Clock::time_point to) {
+  return static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(to - from).count());
+}
+
+// A row-major 3x3 of MuJoCo as an Eigen matrix.
+Mat3 from_row_major(const mjtNum* x) {
+  Mat3 r;
+  r << x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], x[8];
+  return r;
+}
+
+// Writes one contact in the world frame: frame[0..2] the normal, frame[3..5] and [6..8] a
+// right-handed tangent basis (the axis least aligned with the normal, crossed with it).
+void write_contact(const TriContact& c, const Mat3& R1, const Vec3& p1, mjContact& out) {
+  const Vec3 pos = R1 * c.pos + p1;
+  const Vec3 n = (R1 * c.normal).normalized();
+  Vec3 axis = Vec3::Zero();
+  axis[static_cast<Eigen::Index>(std::abs(n[0]) <= std::abs(n[1])
+                                     ? (std::abs(n[0]) <= std::abs(n[2]) ? 0 : 2)
+                                     : (std::abs(n[1]) <= std::abs(n[2]) ? 1 : 2))] = 1;
+  const Vec3 t1 = n.cross(axis).normalized();
+  const Vec3 t2 = n.cross(t1);
+  out.dist = -c.depth;
+  for (int k = 0; k < 3; ++k) {
+    out.pos[k] = pos[k];
+    out.frame[k] = n[k];
+    out.frame[3 + k] = t1[k];
+    out.frame[6 + k] = t2[k];
+  }
+}
+
+}  // namespace
+
+bool install() {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  if (g_installed) return false;
+  g_original.store(mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH]);
+  mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH] = &collide_mesh_mesh;
+  g_installed = true;
+  return true;
+}
+
+bool uninstall() {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  if (!g_installed) return false;
+  mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH] = g_original.load();
+  g_original.store(nullptr);
+  g_installed = false;
+  return true;
+}
+
+bool installed() {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  return g_installed;
+}
+
+mjfCollision original_mesh_mesh() {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  return g_original.load();
+}
+
+void attach(Registry& registry) {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  const mjModel* m = registry.model();
+  int free_slot = -1;
+  const int used = g_used.load(std::memory_order_relaxed);
+  for (int i = 0; i < used; ++i) {
+    Slot& s = g_slots[static_cast<std::size_t>(i)];
+    const mjModel* sm = s.model.load(std::memory_order_relaxed);
+    if (sm == m) {
+      s.registry.store(&registry, std::memory_order_release);
+      return;
+    }
+    if (!sm && free_slot < 0) free_slot = i;
+  }
+  if (free_slot < 0) {
+    if (used == kMaxAttachedModels) {
+      throw std::runtime_error("graspcd bridge: more than " + std::to_string(kMaxAttachedModels) +
+                               " models attached at once");
+    }
+    free_slot = used;
+    g_used.store(used + 1, std::memory_order_release);
+  }
+  Slot& s = g_slots[static_cast<std::size_t>(free_slot)];
+  s.registry.store(&registry, std::memory_order_release);
+  s.model.store(m, std::memory_order_release);
+}
+
+void detach(const Registry& registry) {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  const int used = g_used.load(std::memory_order_relaxed);
+  for (int i = 0; i < used; ++i) {
+    Slot& s = g_slots[static_cast<std::size_t>(i)];
+    if (s.model.load(std::memory_order_relaxed) == registry.model() &&
+        s.registry.load(std::memory_order_relaxed) == &registry) {
+      s.model.store(nullptr, std::memory_order_release);
+      s.registry.store(nullptr, std::memory_order_release);
+    }
+  }
+}
+
+Registry* find_registry(const mjModel* m) {
+  const int used = g_used.load(std::memory_order_acquire);
+  for (int i = 0; i < used; ++i) {
+    const Slot& s = g_slots[static_cast<std::size_t>(i)];
+    if (s.model.load(std::memory_order_acquire) == m) {
+      return s.registry.load(std::memory_order_acquire);
+    }
+  }
+  return nullptr;
+}
+
+Pose relative_pose(const mjData* d, int g1, int g2) {
+  const Mat3 R1 = from_row_major(d->geom_xmat + 9 * g1);
+  const Mat3 R2 = from_row_major(d->geom_xmat + 9 * g2);
+  const Vec3 p1(d->geom_xpos[3 * g1], d->geom_xpos[3 * g1 + 1], d->geom_xpos[3 * g1 + 2]);
+  const Vec3 p2(d->geom_xpos[3 * g2], d->geom_xpos[3 * g2 + 1], d->geom_xpos[3 * g2 + 2]);
+  Pose pose;
+  pose.R = R1.transpose() * R2;
+  pose.t = R1.transpose() * (p2 - p1);
+  return pose;
+}
+
+// Served pair: tree query (paper sections 2-6 through core's Detector, all contacts), one contact
+// per intersecting triangle pair (contact.h, after Bullet's GImpact clip method), reduction to
+// mjMAXCONPAIR by deepest-then-farthest-point sampling, written in the world frame.
+int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
+                        int g2) {
+  thread_local std::vector<TrianglePair> tri_pairs;
+  thread_local std::vector<TriContact> candidates;
+  const mjModel* m = registry.model();
+  ServedPair& served = registry.pair(pair_index);
+  const MeshTree* t1 = registry.tree(m->geom_dataid[g1]);
+  const MeshTree* t2 = registry.tree(m->geom_dataid[g2]);
+  BridgeStats& stats = registry.stats();
+  ++stats.calls;
+  if (!t1 || !t2) return 0;
+
+  // The tree query with geom2 placed in geom1's frame.
+  const Pose pose = relative_pose(d, g1, g2);
+  tri_pairs.clear();
+  const Clock::time_point start = Clock::now();
+  served.detector->collide(t1->tree, t2->tree, pose, QueryMode::kAllContacts, stats.counters,
+                           &tri_pairs);
+  const Clock::time_point queried = Clock::now();
+  stats.detection_ns += elapsed_ns(start, queried);
+  if (tri_pairs.empty()) return 0;
+
+  // One contact per intersecting triangle pair, in geom1's frame.
+  const double tn = pose.t.norm();
+  const Vec3 fallback = tn > 0 ? Vec3(pose.t / tn) : Vec3(Vec3::UnitZ());
+  candidates.clear();
+  for (const TrianglePair& tp : tri_pairs) {
+    const Triangle& a = t1->face(tp.a);
+    const Triangle b = apply_pose(pose, t2->face(tp.b));
+    candidates.push_back(triangle_pair_contact(a, b, registry.config().max_depth, fallback,
+                                               t1->sharp(tp.a), t2->sharp(tp.b)));
+  }
+
+  // At most mjMAXCONPAIR: the deepest and a spread.
+  const std::vector<std::size_t> keep = select_contacts(candidates, mjMAXCONPAIR);
+  if (candidates.size() > static_cast<std::size_t>(mjMAXCONPAIR)) ++stats.capped_pairs;
+  const Mat3 R1 = from_row_major(d->geom_xmat + 9 * g1);
+  const Vec3 p1(d->geom_xpos[3 * g1], d->geom_xpos[3 * g1 + 1], d->geom_xpos[3 * g1 + 2]);
+  int n = 0;
+  for (std::size_t i : keep) write_contact(candidates[i], R1, p1, con[n++]);
+  stats.contacts += static_cast<std::uint64_t>(n);
+  stats.contact_ns += elapsed_ns(queried, Clock::now());
+  return n;
+}
+
+// The table entry: served pairs to the registry, everything else to the saved original.
+int collide_mesh_mesh(const mjModel* m, const mjData* d, mjContact* con, int g1, int g2,
+                      mjtNum margin) {
+  if (Registry* r = find_registry(m)) {
+    const int index = r->find_pair(g1, g2);
+    if (index >= 0) return collide_served_pair(*r, index, d, con, g1, g2);
+  }
+  const mjfCollision original = g_original.load(std::memory_order_acquire);
+  return original ? original(m, d, con, g1, g2, margin) : 0;
+}
+
+}  // namespace graspcd::bridge

@@ -1,0 +1,160 @@
+// The pair registry of one mjModel: which geom pairs graspcd serves, the detector options, and one
+// OBB tree per mesh that appears in a served pair (DESIGN.md, "The seam with MuJoCo").
+//
+// Config (JSON, nlohmann-json), every field optional except "pairs":
+//   {
+//     "method": "sat",         // any name of parse_method (core/separators.h); default "sat"
+//     "cap": 1500,             // perceptron pass cap (>= 1)
+//     "switch": 300,           // Neuro-SAT switch (>= 1)
+//     "cache_slots": 4096,     // per-pair temporal-coherence cache slots (>= 1)
+//     "max_depth": 0.01,       // contact penetration cap in metres (> 0), see contact.h
+//     "pairs": [ {"a": "finger*", "b": "body:object"} , ... ]
+//   }
+// A pattern is a glob where '*' matches any run of characters (possibly empty) and every other
+// character matches itself. "geom:GLOB" matches geom names, "body:GLOB" the name of the geom's
+// body, and a bare "GLOB" either. Each pair entry registers every (geom of a, geom of b) pair of
+// distinct geoms; duplicates and both orders collapse into one unordered pair. Geoms with
+// contype == conaffinity == 0 (visual only) are skipped silently. Errors, each a
+// std::runtime_error with a one-line message that starts with the config's name: bad JSON, an
+// unknown field or method, a pattern that matches no collidable geom, a matched collidable geom
+// that is not a mesh (primitives are not served yet), a pair with no geom pair left.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "core/obb_tree.h"
+#include "core/separators.h"
+
+namespace graspcd::bridge {
+
+struct PairPattern {
+  std::string a;
+  std::string b;
+};
+
+struct RegistryConfig {
+  Method method = Method::kSat;
+  DetectorOptions detector{tol::kPerceptronDefaultCap, tol::kNeuroSatDefaultSwitch, 1u << 12};
+  // Penetration depths reported to MuJoCo are clipped to this (metres): a triangle pair far
+  // inside the other geom says little about the local penetration, and MuJoCo's soft contacts keep
+  // true penetrations at millimetres.
+  double max_depth = 0.01;
+  std::vector<PairPattern> patterns;
+  // Geom id pairs registered directly (programmatic use), in addition to the patterns.
+  std::vector<std::pair<int, int>> geom_pairs;
+};
+
+// Parses the JSON text of a config; `source` (a file name) starts every error message.
+RegistryConfig parse_registry_config(const std::string& json_text, const std::string& source);
+// Reads and parses a config file; errors name the file.
+RegistryConfig load_registry_config(const std::string& path);
+
+// True when `name` matches the glob `pattern` ('*' only).
+bool glob_match(const std::string& pattern, const std::string& name);
+
+// Work and output of the served pairs, summed over callback calls until reset_stats().
+struct BridgeStats {
+  std::uint64_t calls = 0;         // served pair calls (after MuJoCo's bounding-sphere test)
+  std::uint64_t detection_ns = 0;  // tree query time (steady clock), summed
+  std::uint64_t contact_ns = 0;    // contact generation and reduction time, summed
+  QueryCounters counters;          // box tests, triangle tests, intersecting triangle pairs
+  std::uint64_t contacts = 0;      // contacts handed to MuJoCo
+  std::uint64_t capped_pairs = 0;  // calls whose candidates exceeded mjMAXCONPAIR
+};
+
+// The tree of one mesh and, for each face id, the face's slot in the tree's leaf-ordered triangles.
+// Also the sharp-edge masks of the faces (contact.h), by face id.
+struct MeshTree {
+  ObbTree tree;
+  std::vector<std::int32_t> slot_of_face;
+  std::vector<std::uint8_t> sharp_masks;
+  std::uint8_t sharp(std::int32_t f) const { return sharp_masks[static_cast<std::size_t>(f)]; }
+  const Triangle& face(std::int32_t f) const {
+    return tree.triangles()[static_cast<std::size_t>(slot_of_face[static_cast<std::size_t>(f)])];
+  }
+};
+
+// A served geom pair: its detector carries the method's state from step to step.
+struct ServedPair {
+  int geom_lo = 0;  // smaller geom id
+  int geom_hi = 0;  // larger geom id
+  std::unique_ptr<Detector> detector;
+};
+
+// The registry of one model. Build it after mj_loadXML (e.g. Registry r(m,
+// load_registry_config(path), path); attach(r); see collision.h), keep it alive while the model
+// steps with the bridge attached, and destroy it before the model (it detaches itself).
+// Not thread-safe: one thread steps a model at a time (the detectors and statistics mutate).
+class Registry {
+ public:
+  // Resolves patterns and geom pairs against `m`, builds the trees. `source` names the config in
+  // error messages (e.g. its file name, or "<program>").
+  Registry(const mjModel* m, const RegistryConfig& config, const std::string& source = "<program>");
+  ~Registry();
+  Registry(const Registry&) = delete;
+  Registry& operator=(const Registry&) = delete;
+
+  const mjModel* model() const { return model_; }
+  const RegistryConfig& config() const { return config_; }
+
+  // Index into pairs() of the unordered pair (g1, g2), or -1 when not served.
+  int find_pair(int g1, int g2) const {
+    const auto it = pair_index_.find(key(g1, g2));
+    return it == pair_index_.end() ? -1 : it->second;
+  }
+  const std::vector<ServedPair>& pairs() const { return pairs_; }
+  ServedPair& pair(int index) { return pairs_[static_cast<std::size_t>(index)]; }
+
+  // The tree of a mesh id (in the mesh frame, which is the geom frame), or nullptr when the mesh
+  // is in no served pair.
+  const MeshTree* tree(int mesh_id) const {
+    const auto it = trees_.find(mesh_id);
+    return it == trees_.end() ? nullptr : &it->second;
+  }
+  std::size_t tree_count() const { return trees_.size(); }
+
+  // Non-fatal findings of the construction, one line each (e.g. a served geom with a non-zero
+  // margin: served pairs report intersecting surfaces only, DESIGN.md "The seam with MuJoCo").
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+  BridgeStats& stats() { return stats_; }
+  const BridgeStats& stats() const { return stats_; }
+  void reset_stats() { stats_ = BridgeStats{}; }
+  // The statistics since the last reset, then a reset: once per physics step or grasp step.
+  BridgeStats take_stats() {
+    const BridgeStats s = stats_;
+    stats_ = BridgeStats{};
+    return s;
+  }
+  // Forgets every detector's cached state (warm planes, cached axes, switches).
+  void reset_detectors();
+
+  // The mesh's faces in the mesh frame, as doubles converted from MuJoCo's floats (what the tree
+  // holds, in face order): for tests and the exact check.
+  static std::vector<Triangle> mesh_triangles(const mjModel* m, int mesh_id);
+
+ private:
+  static std::uint64_t key(int g1, int g2) {
+    const auto lo = static_cast<std::uint32_t>(g1 < g2 ? g1 : g2);
+    const auto hi = static_cast<std::uint32_t>(g1 < g2 ? g2 : g1);
+    return (static_cast<std::uint64_t>(lo) << 32) | hi;
+  }
+  void add_pair(int g1, int g2);
+
+  const mjModel* model_;
+  RegistryConfig config_;
+  std::vector<ServedPair> pairs_;
+  std::unordered_map<std::uint64_t, int> pair_index_;
+  std::unordered_map<int, MeshTree> trees_;
+  BridgeStats stats_;
+  std::vector<std::string> warnings_;
+};
+
+}  // namespace graspcd::bridge
