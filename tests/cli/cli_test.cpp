@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_dir.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -34,21 +36,8 @@ std::vector<std::string> lines(const std::string& text) {
   return out;
 }
 
-class CliTest : public ::testing::Test {
+class CliTest : public graspcd::testing::TempDirTest {
  protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "graspcd_cli_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string write(const std::string& name, const std::string& content) {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << content;
-    return path;
-  }
-
   // Runs `graspcd ARGS` with `stdin_text` on standard input. ARGS is passed to the shell as is.
   Result run(const std::string& args, const std::string& stdin_text = "") {
     const std::string in = write("stdin.txt", stdin_text);
@@ -63,8 +52,6 @@ class CliTest : public ::testing::Test {
     r.err = read_file(err);
     return r;
   }
-
-  fs::path dir_;
 };
 
 // Triangle pairs: T1 in the plane z = 0, T2 sharing its vertex at the origin / lifted by 1.

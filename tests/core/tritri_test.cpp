@@ -21,20 +21,12 @@
 
 #include "exact/exact.h"
 #include "support/random_geometry.h"
+#include "support/test_scale.h"
 
 namespace graspcd {
 namespace {
 
-double test_scale() {
-  const char* s = std::getenv("GRASPCD_TEST_SCALE");
-  if (s == nullptr) return 1.0;
-  const double v = std::strtod(s, nullptr);
-  return v > 0 && std::isfinite(v) ? v : 1.0;
-}
-
-std::int64_t scaled_count(std::int64_t n) {
-  return std::max<std::int64_t>(1000, std::llround(static_cast<double>(n) * test_scale()));
-}
+std::int64_t scaled_count(int n) { return testing::scaled(n, 1000); }
 
 // The 18 doubles of a pair, as the `tritri` command reads them.
 std::string format_pair(const Triangle& t1, const Triangle& t2) {

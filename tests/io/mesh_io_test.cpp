@@ -11,27 +11,16 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_dir.h"
+
 namespace graspcd::io {
 namespace {
 
 namespace fs = std::filesystem;
 
 // A fresh temporary folder per test, removed afterwards.
-class MeshIoTest : public ::testing::Test {
+class MeshIoTest : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "graspcd_mesh_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string write(const std::string& name, const std::string& content) {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << content;
-    return path;
-  }
-
   // A binary STL of the given triangles (9 floats each), with the given header text.
   std::string write_stl(const std::string& name, const std::vector<std::array<float, 9>>& tris,
                         const std::string& header = "graspcd test") {
@@ -53,8 +42,6 @@ class MeshIoTest : public ::testing::Test {
     }
     return write(name, bytes);
   }
-
-  fs::path dir_;
 };
 
 // The message of the InputError load_mesh throws, or "" if it loads.

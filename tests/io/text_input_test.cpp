@@ -8,28 +8,16 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_dir.h"
+
 namespace graspcd::io {
 namespace {
 
 namespace fs = std::filesystem;
 
 // A fresh temporary folder per test, removed afterwards.
-class TextInputTest : public ::testing::Test {
+class TextInputTest : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "graspcd_text_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string write(const std::string& name, const std::string& content) {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << content;
-    return path;
-  }
-
-  fs::path dir_;
 };
 
 // The message of the ValueError that parse_number throws, or "" if it accepts the token.

@@ -6,23 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <random>
 
 #include "core/separators.h"
 #include "exact/exact.h"
 #include "support/meshes.h"
 #include "support/random_geometry.h"
+#include "support/test_scale.h"
 
 namespace graspcd::testing {
-
-// GRASPCD_TEST_SCALE (default 1) scales the number of random cases; the sanitizer build runs a
-// documented fraction of them.
-inline int scaled(int n) {
-  const char* s = std::getenv("GRASPCD_TEST_SCALE");
-  const double scale = s ? std::atof(s) : 1.0;
-  return std::max(8, static_cast<int>(n * scale));
-}
 
 struct Agreement {
   int poses = 0, intersecting = 0;
