@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -413,6 +414,91 @@ TEST_F(CliTest, ExampleInputsRun) {
   r = run("boxbox " + (data / "boxbox.txt").string());
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_FALSE(r.out.empty());
+}
+
+// --- grasp --------------------------------------------------------------------------------------
+
+// The shipped scenes (mjcf/ beside data/).
+std::string shipped_scene(const std::string& name) {
+  return (fs::path(GRASPCD_DATA_DIR).parent_path() / "mjcf" / (name + ".xml")).string();
+}
+
+TEST_F(CliTest, GraspPrintsAHeaderOneLinePerGraspStepAndASummary) {
+  const Result r = run("grasp " + shipped_scene("example2") + " --max-steps 8");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const std::vector<std::string> out = lines(r.out);
+  ASSERT_EQ(out.size(), 1u + 8u + 3u) << r.out;
+  EXPECT_EQ(out[0], "step contacts detection_ns box_tests triangle_tests object_z segments");
+  const std::regex step_line(R"(^(\d+) \d+ \d+ \d+ \d+ -?\d+\.\d{6} \S+$)");
+  for (int k = 1; k <= 8; ++k) {
+    std::smatch match;
+    ASSERT_TRUE(std::regex_match(out[static_cast<std::size_t>(k)], match, step_line))
+        << out[static_cast<std::size_t>(k)];
+    EXPECT_EQ(std::stoi(match[1]), k);
+  }
+  // Eight grasp steps of 0.003 rad do not reach the object: no grip, nothing lifted.
+  EXPECT_EQ(out[9].rfind("# method sat; first contact (grasp step): finger1_A=-", 0), 0u) << out[9];
+  EXPECT_EQ(out[10].rfind("# gripped no; held no;", 0), 0u) << out[10];
+  EXPECT_EQ(out[11].rfind("# detection ns ", 0), 0u) << out[11];
+}
+
+TEST_F(CliTest, GraspJsonIsOneDocumentWithTheSameRecords) {
+  const Result r = run("grasp " + shipped_scene("example1") +
+                       " --max-steps 5 --json --method perceptron --cap 20");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc.at("method"), "perceptron");
+  EXPECT_EQ(doc.at("native"), false);
+  ASSERT_EQ(doc.at("steps").size(), 5u);
+  EXPECT_EQ(doc.at("steps")[4].at("step"), 5);
+  EXPECT_TRUE(doc.at("steps")[0].contains("detection_ns"));
+  EXPECT_EQ(doc.at("first_contact").size(), 12u);
+  EXPECT_TRUE(doc.at("first_contact").at("finger2_C").is_null());
+  EXPECT_EQ(doc.at("held"), false);
+}
+
+TEST_F(CliTest, GraspNativeHasNoDetectionTime) {
+  const Result r = run("grasp " + shipped_scene("example3") + " --max-steps 5 --json --native");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc.at("method"), "native");
+  EXPECT_EQ(doc.at("detection_ns_total"), 0);
+  EXPECT_GT(doc.at("physics_steps").get<long>(), 0);
+}
+
+TEST_F(CliTest, GraspBadMjcfIsOneLineWithTheFileAndExitTwo) {
+  const std::string path =
+      write("bad.xml", "<mujoco>\n  <worldbody>\n    <bogus/>\n  </worldbody>\n</mujoco>\n");
+  const Result r = run("grasp " + path);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  const std::vector<std::string> err = lines(r.err);
+  ASSERT_EQ(err.size(), 1u) << r.err;
+  EXPECT_EQ(err[0].rfind(path + ": ", 0), 0u) << err[0];
+  EXPECT_NE(err[0].find("bogus"), std::string::npos) << err[0];
+}
+
+TEST_F(CliTest, GraspMissingSceneOrConfigIsOneLineAndExitTwo) {
+  const std::string missing = (dir_ / "nowhere.xml").string();
+  Result r = run("grasp " + missing);
+  EXPECT_EQ(r.exit_code, 2);
+  ASSERT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind(missing + ": ", 0), 0u) << r.err;
+  const std::string config = (dir_ / "nowhere.pairs.json").string();
+  r = run("grasp " + shipped_scene("example1") + " --config " + config);
+  EXPECT_EQ(r.exit_code, 2);
+  ASSERT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind(config + ": ", 0), 0u) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
+TEST_F(CliTest, GraspHelpDocumentsTheOutput) {
+  const Result r = run("grasp --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("step contacts detection_ns"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--json"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--native"), std::string::npos) << r.out;
 }
 
 }  // namespace

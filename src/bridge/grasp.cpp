@@ -1,0 +1,400 @@
+#include "bridge/grasp.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <utility>
+
+#include "bridge/collision.h"
+#include "bridge/controllers.h"
+#include "bridge/registry.h"
+
+namespace graspcd::bridge {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct ModelDeleter {
+  void operator()(mjModel* m) const { mj_deleteModel(m); }
+};
+struct DataDeleter {
+  void operator()(mjData* d) const { mj_deleteData(d); }
+};
+
+constexpr int kArmJoints = 3;
+constexpr int kFingers = 4;
+constexpr int kSegmentsPerFinger = 3;
+constexpr double kHeldRise = 0.03;   // m above the initial height
+constexpr double kHeldDrift = 0.01;  // m, largest move relative to the palm during the hold
+
+int require_id(const mjModel* m, mjtObj type, const std::string& name, const std::string& scene,
+               const char* what) {
+  const int id = mj_name2id(m, type, name.c_str());
+  if (id < 0) throw std::runtime_error(scene + ": no " + what + " named " + name);
+  return id;
+}
+
+// Loads the MJCF; a missing file or MuJoCo's error become one-line GraspInputErrors (file first,
+// mujoco-2.2-notes.md "Errors").
+std::unique_ptr<mjModel, ModelDeleter> load_model(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec) || !std::ifstream(path).good())
+    throw GraspInputError(path, "cannot open the scene file");
+  char error[2048] = "";
+  std::unique_ptr<mjModel, ModelDeleter> m(mj_loadXML(path.c_str(), nullptr, error, sizeof(error)));
+  if (!m) {
+    const std::string message = join_lines(error);
+    throw GraspInputError(path, message.empty() ? "MuJoCo could not load it" : message);
+  }
+  return m;
+}
+
+// The state the phases share: the model, the controller's targets, the contact scan and the
+// accumulated statistics.
+class GraspRun {
+ public:
+  GraspRun(const mjModel* m, mjData* d, Registry* registry, const GraspOptions& options,
+           const std::string& scene)
+      : m_(m),
+        d_(d),
+        registry_(registry),
+        controller_(m, joint_names(), PdGains::critically_damped(options.omega)) {
+    const std::size_t n = controller_.size();
+    q_d_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) q_d_[i] = m->qpos0[controller_.drives()[i].qpos_adr];
+    qd_d_.assign(n, 0);
+    qdd_d_.assign(n, 0);
+    segment_of_geom_.assign(static_cast<std::size_t>(m->ngeom), -1);
+    for (int s = 0; s < kFingerSegments; ++s) {
+      const std::string& name = finger_segment_names()[static_cast<std::size_t>(s)];
+      segment_of_geom_[static_cast<std::size_t>(require_id(m, mjOBJ_GEOM, name, scene, "geom"))] =
+          s;
+      const int joint = require_id(m, mjOBJ_JOINT, name, scene, "joint");
+      upper_[static_cast<std::size_t>(s)] =
+          m->jnt_limited[joint] ? m->jnt_range[2 * joint + 1] : 10;
+    }
+    object_ = require_id(m, mjOBJ_BODY, "object", scene, "body");
+    palm_ = require_id(m, mjOBJ_BODY, "palm", scene, "body");
+    is_object_geom_.assign(static_cast<std::size_t>(m->ngeom), 0);
+    for (int g = 0; g < m->ngeom; ++g) {
+      is_object_geom_[static_cast<std::size_t>(g)] = m->body_rootid[m->geom_bodyid[g]] == object_;
+    }
+  }
+
+  static std::vector<std::string> joint_names() {
+    std::vector<std::string> names = {"arm1", "arm2", "arm3"};
+    for (const std::string& s : finger_segment_names()) names.push_back(s);
+    return names;
+  }
+
+  double object_z() const { return d_->xpos[3 * object_ + 2]; }
+  std::array<double, 3> object_in_palm() const {
+    return {d_->xpos[3 * object_] - d_->xpos[3 * palm_],
+            d_->xpos[3 * object_ + 1] - d_->xpos[3 * palm_ + 1],
+            d_->xpos[3 * object_ + 2] - d_->xpos[3 * palm_ + 2]};
+  }
+
+  // One physics step: mj_step1 -> computed torque -> mj_step2 (controllers.h), then the scan of
+  // the finger-object contacts.
+  void physics_step() {
+    controller_.set_target(q_d_, qd_d_, qdd_d_);
+    const Clock::time_point start = Clock::now();
+    mj_step1(m_, d_);
+    controller_.apply(m_, d_);
+    mj_step2(m_, d_);
+    wall_ns_ += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count();
+    ++physics_steps_;
+    touching_.fill(false);
+    contacts_ = 0;
+    for (int i = 0; i < d_->ncon; ++i) {
+      const int g1 = d_->contact[i].geom1;
+      const int g2 = d_->contact[i].geom2;
+      int s = -1;
+      if (is_object_geom_[static_cast<std::size_t>(g2)])
+        s = segment_of_geom_[static_cast<std::size_t>(g1)];
+      if (s < 0 && is_object_geom_[static_cast<std::size_t>(g1)])
+        s = segment_of_geom_[static_cast<std::size_t>(g2)];
+      if (s < 0) continue;
+      touching_[static_cast<std::size_t>(s)] = true;
+      ++contacts_;
+    }
+    max_contacts_ = std::max(max_contacts_, contacts_);
+  }
+
+  // The bridge's statistics since the last call (zero with native collision).
+  BridgeStats take_stats() {
+    if (!registry_) return BridgeStats{};
+    BridgeStats s = registry_->take_stats();
+    detection_ns_total_ += s.detection_ns;
+    return s;
+  }
+
+  // Runs `seconds` of physics steps with targets from `at(t)` (t from 0 to seconds); `observe`
+  // sees the state after each step.
+  template <class Targets, class Observe>
+  void run_phase(double seconds, Targets at, Observe observe) {
+    const double dt = m_->opt.timestep;
+    const long steps = std::max(1L, std::lround(seconds / dt));
+    for (long i = 1; i <= steps; ++i) {
+      at(static_cast<double>(i) * dt);
+      physics_step();
+      observe();
+    }
+  }
+
+  const mjModel* m_;
+  mjData* d_;
+  Registry* registry_;
+  ComputedTorqueController controller_;
+  std::vector<double> q_d_, qd_d_, qdd_d_;
+  std::vector<int> segment_of_geom_;
+  std::vector<char> is_object_geom_;
+  std::array<double, kFingerSegments> upper_{};
+  int object_ = -1;
+  int palm_ = -1;
+  std::array<bool, kFingerSegments> touching_{};
+  int contacts_ = 0;
+  int max_contacts_ = 0;
+  long physics_steps_ = 0;
+  std::int64_t wall_ns_ = 0;
+  std::uint64_t detection_ns_total_ = 0;
+};
+
+// Phase 1, paper section 9 (DESIGN.md "Semantics"): grasp steps of 0.003 rad until each finger
+// has a segment in contact; a segment stops at its first contact.
+void close_fingers(GraspRun& run, const GraspOptions& options, GraspResult& result) {
+  const int n = std::max(1, options.physics_steps_per_grasp_step);
+  const double dt = run.m_->opt.timestep;
+  std::array<bool, kFingerSegments> stopped{};
+  result.first_contact.fill(-1);
+  for (int k = 1; k <= options.max_steps; ++k) {
+    std::array<double, kFingerSegments> start{};
+    std::array<double, kFingerSegments> end{};
+    for (int s = 0; s < kFingerSegments; ++s) {
+      const auto i = static_cast<std::size_t>(s);
+      start[i] = run.q_d_[kArmJoints + i];
+      end[i] = stopped[i] ? start[i] : std::min(start[i] + kGraspStepRad, run.upper_[i]);
+    }
+    std::array<bool, kFingerSegments> touched{};
+    for (int p = 1; p <= n; ++p) {
+      const double f = static_cast<double>(p) / n;
+      for (std::size_t i = 0; i < kFingerSegments; ++i) {
+        run.q_d_[kArmJoints + i] = start[i] + f * (end[i] - start[i]);
+        run.qd_d_[kArmJoints + i] = p < n ? (end[i] - start[i]) / (n * dt) : 0.0;
+      }
+      run.physics_step();
+      for (std::size_t i = 0; i < kFingerSegments; ++i) touched[i] = touched[i] || run.touching_[i];
+    }
+    const BridgeStats stats = run.take_stats();
+    GraspStepRecord record;
+    record.step = k;
+    record.contacts = run.contacts_;
+    record.touching = run.touching_;
+    record.detection_ns = stats.detection_ns;
+    record.box_tests = stats.counters.box_tests;
+    record.triangle_tests = stats.counters.tri_tests;
+    record.served_calls = stats.calls;
+    record.object_z = run.object_z();
+    result.steps.push_back(record);
+    result.detection_ns_close += stats.detection_ns;
+
+    bool every_finger = true;
+    bool all_stopped = true;
+    for (std::size_t i = 0; i < kFingerSegments; ++i) {
+      if (touched[i] && result.first_contact[i] < 0) {
+        result.first_contact[i] = k;
+        // The segment and the ones proximal to it on its finger stop (GraspIt's autoGrasp rule):
+        // a proximal joint that kept closing would push the object with the touching segment.
+        const std::size_t base = i - i % kSegmentsPerFinger;
+        for (std::size_t j = base; j <= i; ++j) stopped[j] = true;
+      }
+      if (run.q_d_[kArmJoints + i] >= run.upper_[i]) stopped[i] = true;
+    }
+    for (std::size_t i = 0; i < kFingerSegments; ++i) all_stopped = all_stopped && stopped[i];
+    for (int finger = 0; finger < kFingers; ++finger) {
+      bool any = false;
+      for (int seg = 0; seg < kSegmentsPerFinger; ++seg) {
+        any = any ||
+              result.first_contact[static_cast<std::size_t>(finger * kSegmentsPerFinger + seg)] > 0;
+      }
+      every_finger = every_finger && any;
+    }
+    if (every_finger) {
+      result.gripped = true;
+      break;
+    }
+    if (all_stopped) break;
+  }
+  for (std::size_t i = 0; i < kFingerSegments; ++i) run.qd_d_[kArmJoints + i] = 0;
+}
+
+}  // namespace
+
+const std::array<std::string, kFingerSegments>& finger_segment_names() {
+  static const std::array<std::string, kFingerSegments> names = [] {
+    std::array<std::string, kFingerSegments> out;
+    for (int f = 0; f < kFingers; ++f) {
+      for (int s = 0; s < kSegmentsPerFinger; ++s) {
+        out[static_cast<std::size_t>(f * kSegmentsPerFinger + s)] =
+            "finger" + std::to_string(f + 1) + "_" + static_cast<char>('A' + s);
+      }
+    }
+    return out;
+  }();
+  return names;
+}
+
+std::string join_lines(const std::string& text) {
+  std::string out;
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    std::size_t end = text.find_first_of("\r\n", pos);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(pos, end - pos);
+    const auto first = line.find_first_not_of(" \t");
+    const auto last = line.find_last_not_of(" \t");
+    if (first != std::string::npos) {
+      if (!out.empty()) out += "; ";
+      out += line.substr(first, last - first + 1);
+    }
+    pos = end + 1;
+  }
+  return out;
+}
+
+// Paper section 9 (the grasp) with the computed-torque law of section 7, eq. (12)-(16); the
+// phases are described in grasp.h.
+GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options) {
+  const auto model = load_model(scene_path);
+  const mjModel* m = model.get();
+
+  std::unique_ptr<ScopedInstall> install_guard;
+  std::unique_ptr<Registry> registry;
+  RegistryConfig config;
+  if (!options.native) {
+    std::string config_path = options.config_path;
+    if (config_path.empty()) {
+      std::filesystem::path p(scene_path);
+      p.replace_extension(".pairs.json");
+      config_path = p.string();
+    }
+    try {
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(config_path, ec))
+        throw GraspInputError(config_path, "cannot open the pair config");
+      config = load_registry_config(config_path);
+      if (options.method) config.method = *options.method;
+      if (options.cap) config.detector.cap = *options.cap;
+      if (options.switch_passes) config.detector.switch_passes = *options.switch_passes;
+      registry = std::make_unique<Registry>(m, config, config_path);
+    } catch (const GraspInputError&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      // The registry's messages start with the config's name (registry.h).
+      std::string message = join_lines(e.what());
+      const std::string prefix = config_path + ": ";
+      if (message.rfind(prefix, 0) == 0) message = message.substr(prefix.size());
+      throw GraspInputError(config_path, message);
+    }
+    install_guard = std::make_unique<ScopedInstall>();
+    attach(*registry);
+  }
+
+  std::unique_ptr<mjData, DataDeleter> data(mj_makeData(m));
+  mjData* d = data.get();
+  GraspResult result;
+  result.scene = scene_path;
+  result.native = options.native;
+  result.method = options.native ? "native" : method_name(config.method);
+
+  GraspRun run(m, d, registry.get(), options, scene_path);
+  mj_forward(m, d);
+  if (registry) registry->reset_stats();
+  result.object_z_initial = run.object_z();
+
+  close_fingers(run, options, result);
+
+  // Phase 2: squeeze, then settle.
+  std::vector<double> closed(run.q_d_.begin(), run.q_d_.end());
+  const auto observe_nothing = [] {};
+  run.run_phase(
+      options.squeeze_time,
+      [&](double t) {
+        const double f = std::min(1.0, t / options.squeeze_time);
+        for (std::size_t i = kArmJoints; i < closed.size(); ++i) {
+          const double hi = run.upper_[i - kArmJoints];
+          run.q_d_[i] = std::min(hi, closed[i] + f * options.squeeze);
+        }
+      },
+      observe_nothing);
+  run.run_phase(
+      options.settle_time, [](double) {}, observe_nothing);
+  result.object_z_gripped = run.object_z();
+
+  // Phase 3: lift along a cosine ramp, arm2 = -a s(t), arm3 = +a s(t).
+  const int arm2 = mj_name2id(m, mjOBJ_JOINT, "arm2");
+  const int arm3 = mj_name2id(m, mjOBJ_JOINT, "arm3");
+  if (arm2 < 0 || arm3 < 0) throw std::runtime_error(scene_path + ": no joints arm2 and arm3");
+  double link = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double dx = d->xanchor[3 * arm3 + k] - d->xanchor[3 * arm2 + k];
+    link += dx * dx;
+  }
+  link = std::sqrt(link);
+  const double a = std::asin(std::clamp(options.lift_height / std::max(link, 1e-9), 0.0, 0.9));
+  const double q2 = run.q_d_[1];
+  const double q3 = run.q_d_[2];
+  const double period = options.lift_time;
+  run.run_phase(
+      period,
+      [&](double t) {
+        const double w = M_PI / period;
+        const double s = 0.5 * (1 - std::cos(w * t));
+        const double sd = 0.5 * w * std::sin(w * t);
+        const double sdd = 0.5 * w * w * std::cos(w * t);
+        run.q_d_[1] = q2 - a * s;
+        run.q_d_[2] = q3 + a * s;
+        run.qd_d_[1] = -a * sd;
+        run.qd_d_[2] = a * sd;
+        run.qdd_d_[1] = -a * sdd;
+        run.qdd_d_[2] = a * sdd;
+      },
+      observe_nothing);
+  run.qd_d_[1] = run.qd_d_[2] = run.qdd_d_[1] = run.qdd_d_[2] = 0;
+
+  // Phase 4: hold, watching the object against the palm.
+  const std::array<double, 3> rel0 = run.object_in_palm();
+  result.hold_min_z = run.object_z();
+  result.hold_drift = 0;
+  run.run_phase(
+      options.hold_time, [](double) {},
+      [&] {
+        result.hold_min_z = std::min(result.hold_min_z, run.object_z());
+        const std::array<double, 3> rel = run.object_in_palm();
+        const double drift = std::sqrt((rel[0] - rel0[0]) * (rel[0] - rel0[0]) +
+                                       (rel[1] - rel0[1]) * (rel[1] - rel0[1]) +
+                                       (rel[2] - rel0[2]) * (rel[2] - rel0[2]));
+        result.hold_drift = std::max(result.hold_drift, drift);
+      });
+  run.take_stats();
+
+  result.object_z_final = run.object_z();
+  result.held = result.object_z_final >= result.object_z_initial + kHeldRise &&
+                result.hold_min_z >= result.object_z_initial + kHeldRise &&
+                result.hold_drift < kHeldDrift;
+  result.physics_steps = run.physics_steps_;
+  result.sim_time = d->time;
+  result.step_wall_ms = run.physics_steps_ > 0 ? static_cast<double>(run.wall_ns_) / 1e6 /
+                                                     static_cast<double>(run.physics_steps_)
+                                               : 0.0;
+  result.detection_ns_total = run.detection_ns_total_;
+  result.max_contacts = run.max_contacts_;
+  registry.reset();  // detaches before the model goes
+  return result;
+}
+
+}  // namespace graspcd::bridge
