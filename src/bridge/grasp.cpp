@@ -10,6 +10,7 @@
 
 #include "bridge/collision.h"
 #include "bridge/controllers.h"
+#include "bridge/mujoco_ptr.h"
 #include "bridge/registry.h"
 
 namespace graspcd::bridge {
@@ -17,13 +18,6 @@ namespace graspcd::bridge {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
 
 constexpr int kArmJoints = 3;
 constexpr int kFingers = 4;
@@ -40,12 +34,12 @@ int require_id(const mjModel* m, mjtObj type, const std::string& name, const std
 
 // Loads the MJCF; a missing file or MuJoCo's error become one-line GraspInputErrors (file first,
 // mujoco-2.2-notes.md "Errors").
-std::unique_ptr<mjModel, ModelDeleter> load_model(const std::string& path) {
+ModelPtr load_model(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec) || !std::ifstream(path).good())
     throw GraspInputError(path, "cannot open the scene file");
   char error[2048] = "";
-  std::unique_ptr<mjModel, ModelDeleter> m(mj_loadXML(path.c_str(), nullptr, error, sizeof(error)));
+  ModelPtr m(mj_loadXML(path.c_str(), nullptr, error, sizeof(error)));
   if (!m) {
     const std::string message = join_lines(error);
     throw GraspInputError(path, message.empty() ? "MuJoCo could not load it" : message);
@@ -304,7 +298,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
     attach(*registry);
   }
 
-  std::unique_ptr<mjData, DataDeleter> data(mj_makeData(m));
+  DataPtr data(mj_makeData(m));
   mjData* d = data.get();
   GraspResult result;
   result.scene = scene_path;

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "bridge/mujoco_ptr.h"
 #include "core/geometry.h"
 #include "support/meshes.h"
 
@@ -90,14 +91,8 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
-using DataPtr = std::unique_ptr<mjData, DataDeleter>;
+using bridge::DataPtr;
+using bridge::ModelPtr;
 
 // Writes `meshes` (name -> mesh, as NAME.obj) and `xml` (as scene.xml) into `dir`, loads the
 // scene. Fails the test with MuJoCo's message on a load error.

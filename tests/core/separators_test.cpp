@@ -6,10 +6,11 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
+#include <optional>
 #include <random>
+#include <string>
 
-#include "io/mesh_io.h"
+#include "support/real_models.h"
 #include "support/tree_agreement.h"
 
 namespace graspcd {
@@ -105,13 +106,11 @@ TEST(Separators, DefaultCapsGiveTheSameAnswers) {
 // 15k x 25k-triangle meshes descends towards every leaf pair; it is checked on the generated
 // meshes above.
 TEST(Separators, EveryMethodMatchesBruteForceOnRealMeshes) {
-  const std::filesystem::path dir = std::filesystem::path(GRASPCD_MODELS_DIR) / "objects/mujoco";
-  if (!std::filesystem::exists(dir / "mug.obj")) {
-    GTEST_SKIP() << "real models not found at " << dir << " (../shared/models is absent)";
-  }
-  const TriangleMesh cup = io::load_mesh((dir / "cube_cup_hi.obj").string());
-  TriangleMesh mug = io::load_mesh((dir / "mug.obj").string());
-  for (Vec3& v : mug.vertices) v *= 0.01;
+  std::string why_not;
+  const std::optional<testing::CupAndMug> real = testing::load_cup_and_mug(why_not);
+  if (!real) GTEST_SKIP() << why_not;
+  const TriangleMesh& cup = real->cup;
+  const TriangleMesh& mug = real->mug;
   const ObbTree ta = ObbTree::build(cup), tb = ObbTree::build(mug);
   const std::vector<testing::PoseCase> cases = testing::cases_around(cup, mug, scaled(40), 2);
   DetectorOptions tiny_caps;

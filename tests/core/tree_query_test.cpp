@@ -6,10 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <filesystem>
+#include <optional>
 #include <random>
+#include <string>
 
-#include "io/mesh_io.h"
+#include "support/real_models.h"
 #include "support/tree_agreement.h"
 
 namespace graspcd {
@@ -72,16 +73,14 @@ TEST(TreeQuery, LeafSizeAndHullFitDoNotChangeAnswers) {
   }
 }
 
-// Real non-convex meshes from ../shared/models: cube_cup_hi (14,876 faces) against the mug
-// (24,544 faces, scaled by 0.01 to metres as its README says).
+// Real non-convex meshes from ../shared/models (support/real_models.h): cube_cup_hi against the
+// mug.
 TEST(TreeQuery, RealCupAgainstMugMatchesBruteForce) {
-  const std::filesystem::path dir = std::filesystem::path(GRASPCD_MODELS_DIR) / "objects/mujoco";
-  if (!std::filesystem::exists(dir / "mug.obj")) {
-    GTEST_SKIP() << "real models not found at " << dir << " (../shared/models is absent)";
-  }
-  const TriangleMesh cup = io::load_mesh((dir / "cube_cup_hi.obj").string());
-  TriangleMesh mug = io::load_mesh((dir / "mug.obj").string());
-  for (Vec3& v : mug.vertices) v *= 0.01;
+  std::string why_not;
+  const std::optional<testing::CupAndMug> real = testing::load_cup_and_mug(why_not);
+  if (!real) GTEST_SKIP() << why_not;
+  const TriangleMesh& cup = real->cup;
+  const TriangleMesh& mug = real->mug;
   Agreement agreement;
   Detector sat(Method::kSat);
   testing::check_cases(sat, ObbTree::build(cup), ObbTree::build(mug),

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "bridge/collision.h"
+#include "bridge/mujoco_ptr.h"
 #include "bridge/registry.h"
 
 namespace graspcd::bridge {
@@ -32,15 +33,6 @@ const std::vector<std::string> kAllScenes = {"hand_boxes", "hand_triangles", "ex
                                              "example3"};
 constexpr double kGraspStep = 0.003;  // rad, the paper's grasp step
 constexpr int kSegments = 12;
-
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
-using DataPtr = std::unique_ptr<mjData, DataDeleter>;
 
 ModelPtr load(const std::string& scene) {
   const std::string file = kMjcf + "/" + scene + ".xml";
