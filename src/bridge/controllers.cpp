@@ -125,13 +125,8 @@ int apply_inverse_dynamics(const mjModel* m, mjData* d, const std::vector<JointD
   return clamps;
 }
 
-ComputedTorqueController::ComputedTorqueController(const mjModel* m,
-                                                   const std::vector<std::string>& joint_names,
-                                                   PdGains gains)
-    : drives_(resolve_joint_drives(m, joint_names)), gains_(gains) {
-  if (!finite_positive(gains.kp) || !finite_positive(gains.kv))
-    fail("computed-torque controller: gains kp and kv must be finite and positive (got kp = " +
-         std::to_string(gains.kp) + ", kv = " + std::to_string(gains.kv) + ")");
+JointController::JointController(const mjModel* m, const std::vector<std::string>& joint_names)
+    : drives_(resolve_joint_drives(m, joint_names)) {
   const std::size_t n = drives_.size();
   q_d_.resize(n);
   for (std::size_t i = 0; i < n; ++i) q_d_[i] = m->qpos0[drives_[i].qpos_adr];
@@ -140,9 +135,8 @@ ComputedTorqueController::ComputedTorqueController(const mjModel* m,
   v_.assign(n, 0);
 }
 
-void ComputedTorqueController::set_target(const std::vector<double>& q_d,
-                                          const std::vector<double>& qd_d,
-                                          const std::vector<double>& qdd_d) {
+void JointController::set_target(const std::vector<double>& q_d, const std::vector<double>& qd_d,
+                                 const std::vector<double>& qdd_d) {
   check_size(q_d, size(), "q_d");
   check_size(qd_d, size(), "qd_d");
   check_size(qdd_d, size(), "qdd_d");
@@ -151,8 +145,26 @@ void ComputedTorqueController::set_target(const std::vector<double>& q_d,
   qdd_d_ = qdd_d;
 }
 
-void ComputedTorqueController::set_target(const std::vector<double>& q_d) {
+void JointController::set_target(const std::vector<double>& q_d) {
   set_target(q_d, std::vector<double>(size(), 0), std::vector<double>(size(), 0));
+}
+
+std::vector<double> JointController::error(const mjData* d) const {
+  return joint_errors(d, drives_, q_d_);
+}
+
+void JointController::write_torques(const mjModel* m, mjData* d) {
+  last_clamps_ = apply_inverse_dynamics(m, d, drives_, v_, scratch_);
+  total_clamps_ += static_cast<std::uint64_t>(last_clamps_);
+}
+
+ComputedTorqueController::ComputedTorqueController(const mjModel* m,
+                                                   const std::vector<std::string>& joint_names,
+                                                   PdGains gains)
+    : JointController(m, joint_names), gains_(gains) {
+  if (!finite_positive(gains.kp) || !finite_positive(gains.kv))
+    fail("computed-torque controller: gains kp and kv must be finite and positive (got kp = " +
+         std::to_string(gains.kp) + ", kv = " + std::to_string(gains.kv) + ")");
 }
 
 // Eq. (13): v = qdd_d + Kv (qd_d - qd) + Kp (q_d - q); then eq. (12). Substituted in eq. (10) this
@@ -163,43 +175,18 @@ void ComputedTorqueController::apply(const mjModel* m, mjData* d) {
     v_[i] = qdd_d_[i] + gains_.kv * (qd_d_[i] - d->qvel[drive.dof_adr]) +
             gains_.kp * (q_d_[i] - d->qpos[drive.qpos_adr]);
   }
-  last_clamps_ = apply_inverse_dynamics(m, d, drives_, v_, scratch_);
-  total_clamps_ += static_cast<std::uint64_t>(last_clamps_);
-}
-
-std::vector<double> ComputedTorqueController::error(const mjData* d) const {
-  return joint_errors(d, drives_, q_d_);
+  write_torques(m, d);
 }
 
 FuzzyController::FuzzyController(const mjModel* m, const std::vector<std::string>& joint_names,
                                  const FuzzyParams& params)
-    : drives_(resolve_joint_drives(m, joint_names)), params_(params), timestep_(m->opt.timestep) {
+    : JointController(m, joint_names), params_(params), timestep_(m->opt.timestep) {
   if (!finite_positive(params.e_max) || !finite_positive(params.de_max) ||
       !finite_positive(params.u_max) || !finite_positive(params.period))
     fail("fuzzy controller: e_max, de_max, u_max and period must be finite and positive");
   period_steps_ = std::max(1L, std::lround(params.period / timestep_));
-  const std::size_t n = drives_.size();
-  q_d_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) q_d_[i] = m->qpos0[drives_[i].qpos_adr];
-  qd_d_.assign(n, 0);
-  qdd_d_.assign(n, 0);
-  e_previous_.assign(n, 0);
-  du_.assign(n, 0);
-  v_.assign(n, 0);
-}
-
-void FuzzyController::set_target(const std::vector<double>& q_d, const std::vector<double>& qd_d,
-                                 const std::vector<double>& qdd_d) {
-  check_size(q_d, size(), "q_d");
-  check_size(qd_d, size(), "qd_d");
-  check_size(qdd_d, size(), "qdd_d");
-  q_d_ = q_d;
-  qd_d_ = qd_d;
-  qdd_d_ = qdd_d;
-}
-
-void FuzzyController::set_target(const std::vector<double>& q_d) {
-  set_target(q_d, std::vector<double>(size(), 0), std::vector<double>(size(), 0));
+  e_previous_.assign(size(), 0);
+  du_.assign(size(), 0);
 }
 
 // Section 8: normalisation and saturation, memberships N/P of e and de, the four rules with min as
@@ -235,12 +222,7 @@ void FuzzyController::apply(const mjModel* m, mjData* d) {
     have_previous_ = true;
   }
   for (std::size_t i = 0; i < size(); ++i) v_[i] = qdd_d_[i] + params_.u_max * du_[i];
-  last_clamps_ = apply_inverse_dynamics(m, d, drives_, v_, scratch_);
-  total_clamps_ += static_cast<std::uint64_t>(last_clamps_);
-}
-
-std::vector<double> FuzzyController::error(const mjData* d) const {
-  return joint_errors(d, drives_, q_d_);
+  write_torques(m, d);
 }
 
 }  // namespace graspcd::bridge

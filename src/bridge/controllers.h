@@ -67,18 +67,14 @@ struct PdGains {
   static PdGains critically_damped(double omega) { return {omega * omega, 2 * omega}; }
 };
 
-// Computed-torque control (inverse dynamics), eq. (12)-(16). Targets default to the joints'
-// positions in the model's reference configuration (qpos0), with zero velocity and acceleration.
-class ComputedTorqueController {
+// What both controllers share: the drives, the desired trajectory (targets default to the
+// joints' positions in the model's reference configuration, qpos0, with zero velocity and
+// acceleration), the error of eq. (16), and eq. (12) written through the motors with the clamps
+// counted. A controller fills the commanded accelerations v_ and calls write_torques().
+class JointController {
  public:
-  // Throws std::invalid_argument (see resolve_joint_drives) and for gains that are not finite and
-  // positive (eq. (15) is stable exactly when kp > 0 and kv > 0).
-  ComputedTorqueController(const mjModel* m, const std::vector<std::string>& joint_names,
-                           PdGains gains);
-
   std::size_t size() const { return drives_.size(); }
   const std::vector<JointDrive>& drives() const { return drives_; }
-  const PdGains& gains() const { return gains_; }
 
   // The desired trajectory at the current time: q_d, qd_d, qdd_d, each of size(); throws
   // std::invalid_argument on a size mismatch.
@@ -87,22 +83,42 @@ class ComputedTorqueController {
   // Position target only, with zero desired velocity and acceleration (a set point).
   void set_target(const std::vector<double>& q_d);
 
-  // Eq. (13) and (12): computes v and writes d->ctrl for the drives.
-  void apply(const mjModel* m, mjData* d);
-
   // Eq. (16): e_q = q_d - q of each drive, in the state of d.
   std::vector<double> error(const mjData* d) const;
   // Commands clamped by the last apply() and since construction.
   int last_clamps() const { return last_clamps_; }
   std::uint64_t total_clamps() const { return total_clamps_; }
 
- private:
+ protected:
+  // Throws std::invalid_argument (see resolve_joint_drives).
+  JointController(const mjModel* m, const std::vector<std::string>& joint_names);
+  // Eq. (12) with the commanded accelerations v_, written to d->ctrl (apply_inverse_dynamics).
+  void write_torques(const mjModel* m, mjData* d);
+
   std::vector<JointDrive> drives_;
-  PdGains gains_;
   std::vector<double> q_d_, qd_d_, qdd_d_, v_;
+
+ private:
   std::vector<mjtNum> scratch_;
   int last_clamps_ = 0;
   std::uint64_t total_clamps_ = 0;
+};
+
+// Computed-torque control (inverse dynamics), eq. (12)-(16).
+class ComputedTorqueController : public JointController {
+ public:
+  // Throws std::invalid_argument (see resolve_joint_drives) and for gains that are not finite and
+  // positive (eq. (15) is stable exactly when kp > 0 and kv > 0).
+  ComputedTorqueController(const mjModel* m, const std::vector<std::string>& joint_names,
+                           PdGains gains);
+
+  const PdGains& gains() const { return gains_; }
+
+  // Eq. (13) and (12): computes v and writes d->ctrl for the drives.
+  void apply(const mjModel* m, mjData* d);
+
+ private:
+  PdGains gains_;
 };
 
 // Parameters of the fuzzy controller. Inputs are normalised by their range and saturated to
@@ -145,15 +161,13 @@ struct FuzzyParams {
 // integrator: with inputs e and de it is a PI law on a double integrator, J s^3 + Kp s + Ki, whose
 // missing s^2 term makes it unstable without damping in the plant; on the test arm it diverged
 // for every output scale tried, 0.05 to 5 N m per sample.)
-class FuzzyController {
+class FuzzyController : public JointController {
  public:
   // Throws std::invalid_argument (see resolve_joint_drives) and for parameters that are not finite
   // and positive.
   FuzzyController(const mjModel* m, const std::vector<std::string>& joint_names,
                   const FuzzyParams& params);
 
-  std::size_t size() const { return drives_.size(); }
-  const std::vector<JointDrive>& drives() const { return drives_; }
   const FuzzyParams& params() const { return params_; }
   // T as used: a whole number of physics steps (at least one).
   double period() const { return static_cast<double>(period_steps_) * timestep_; }
@@ -162,29 +176,17 @@ class FuzzyController {
   // normalisation, memberships, rule base and defuzzification above.
   double infer(double e, double de) const;
 
-  void set_target(const std::vector<double>& q_d, const std::vector<double>& qd_d,
-                  const std::vector<double>& qdd_d);
-  void set_target(const std::vector<double>& q_d);
-
   // Call once per physics step: on every T-th call samples e and de and runs the fuzzy systems;
   // on every call writes eq. (12) with the held command to d->ctrl.
   void apply(const mjModel* m, mjData* d);
 
-  std::vector<double> error(const mjData* d) const;
-  int last_clamps() const { return last_clamps_; }
-  std::uint64_t total_clamps() const { return total_clamps_; }
-
  private:
-  std::vector<JointDrive> drives_;
   FuzzyParams params_;
   double timestep_;
   long period_steps_;
   long calls_ = 0;
   bool have_previous_ = false;
-  std::vector<double> q_d_, qd_d_, qdd_d_, e_previous_, du_, v_;
-  std::vector<mjtNum> scratch_;
-  int last_clamps_ = 0;
-  std::uint64_t total_clamps_ = 0;
+  std::vector<double> e_previous_, du_;
 };
 
 }  // namespace graspcd::bridge
