@@ -7,6 +7,10 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
 #include <CGAL/Interval_nt.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
 #include <CGAL/version.h>
@@ -16,6 +20,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 namespace graspcd::exact {
@@ -298,5 +303,56 @@ bool plane_separates_boxes(const Vec3& w, double d, const Obb& a, const Obb& b) 
 }
 
 const char* cgal_version() { return CGAL_VERSION_STR; }
+
+// The soup welded by exact coordinates (std::map on CGAL's lexicographic order of the points),
+// oriented and converted by CGAL's polygon-soup routines (orient_polygon_soup duplicates the
+// vertices where the surface is not a manifold, so the conversion succeeds for every edge-manifold
+// soup), then CGAL::Side_of_triangle_mesh, whose predicates (Epick) are exact.
+std::vector<int> side_of_closed_mesh(const std::vector<Triangle>& triangles,
+                                     const std::vector<Vec3>& points) {
+  using Mesh = CGAL::Surface_mesh<Point>;
+  std::vector<Point> vertices;
+  std::vector<std::array<std::size_t, 3>> polygons;
+  std::map<Point, std::size_t> index;
+  const auto id = [&](const Vec3& v) {
+    const Point p = to_point(v);
+    const auto [it, added] = index.emplace(p, vertices.size());
+    if (added) vertices.push_back(p);
+    return it->second;
+  };
+  for (const Triangle& t : triangles) {
+    const std::array<std::size_t, 3> f{id(t.v[0]), id(t.v[1]), id(t.v[2])};
+    if (f[0] == f[1] || f[1] == f[2] || f[2] == f[0]) continue;
+    polygons.push_back(f);
+  }
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  PMP::orient_polygon_soup(vertices, polygons);
+  Mesh mesh;
+  PMP::polygon_soup_to_polygon_mesh(vertices, polygons, mesh);
+  if (mesh.is_empty() || !CGAL::is_closed(mesh) || !CGAL::is_triangle_mesh(mesh)) {
+    throw std::invalid_argument("exact::side_of_closed_mesh: not a closed triangle mesh");
+  }
+  const CGAL::Side_of_triangle_mesh<Mesh, Kernel> side(mesh);
+  std::vector<int> sides;
+  sides.reserve(points.size());
+  for (const Vec3& p : points) {
+    switch (side(to_point(p))) {
+      case CGAL::ON_BOUNDED_SIDE:
+        sides.push_back(1);
+        break;
+      case CGAL::ON_BOUNDARY:
+        sides.push_back(0);
+        break;
+      case CGAL::ON_UNBOUNDED_SIDE:
+        sides.push_back(-1);
+        break;
+    }
+  }
+  return sides;
+}
+
+bool point_inside_closed_mesh(const std::vector<Triangle>& triangles, const Vec3& point) {
+  return side_of_closed_mesh(triangles, {point}).front() >= 0;
+}
 
 }  // namespace graspcd::exact

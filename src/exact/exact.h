@@ -51,4 +51,18 @@ bool plane_separates_boxes(const Vec3& w, double d, const Obb& a, const Obb& b);
 // The CGAL version this module was compiled against, e.g. "5.5.1".
 const char* cgal_version();
 
+// Where each point lies relative to the solid bounded by the closed triangle soup `triangles`:
+// +1 inside (CGAL::ON_BOUNDED_SIDE), 0 on the surface (ON_BOUNDARY), -1 outside. The judge of
+// core/containment.h's point_side: CGAL::Side_of_triangle_mesh (ray shooting on an AABB tree with
+// Epick's exact predicates; a ray through an edge or a vertex is replaced by a random one) on a
+// Surface_mesh built from the soup with vertices welded by exact coordinates; faces with two equal
+// vertices are dropped. Inside means an odd number of crossings, as in the core. Throws
+// std::invalid_argument when the welded soup is not a closed triangle mesh for CGAL.
+std::vector<int> side_of_closed_mesh(const std::vector<Triangle>& triangles,
+                                     const std::vector<Vec3>& points);
+
+// side_of_closed_mesh(triangles, {point})[0] >= 0: inside or on the surface (the solid is closed).
+// Builds CGAL's mesh and tree per call: use side_of_closed_mesh for many points.
+bool point_inside_closed_mesh(const std::vector<Triangle>& triangles, const Vec3& point);
+
 }  // namespace graspcd::exact
