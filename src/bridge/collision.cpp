@@ -5,9 +5,11 @@
 #include <chrono>
 #include <mutex>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "bridge/contact.h"
+#include "bridge/primitives.h"
 
 namespace graspcd::bridge {
 namespace {
@@ -24,9 +26,20 @@ std::array<Slot, kMaxAttachedModels> g_slots;
 std::atomic<int> g_used{0};  // high-water mark of used slots
 std::mutex g_mutex;
 
-// The saved original entry; g_installed guards install/uninstall.
-std::atomic<mjfCollision> g_original{nullptr};
+// The saved original entries by [type1][type2] (type1 <= type2), read by every delegated call;
+// g_replaced marks the entries install() replaced (under g_mutex), g_installed guards
+// install/uninstall. Zero-initialised (static storage).
+std::array<std::array<std::atomic<mjfCollision>, mjNGEOMTYPES>, mjNGEOMTYPES> g_originals;
+bool g_replaced[mjNGEOMTYPES][mjNGEOMTYPES] = {};
 bool g_installed = false;
+
+// The saved original of a type pair, either order.
+mjfCollision saved_original(int t1, int t2) {
+  if (t1 > t2) std::swap(t1, t2);
+  if (t1 < 0 || t2 >= mjNGEOMTYPES) return nullptr;
+  return g_originals[static_cast<std::size_t>(t1)][static_cast<std::size_t>(t2)].load(
+      std::memory_order_acquire);
+}
 
 using Clock = std::chrono::steady_clock;
 
@@ -64,11 +77,20 @@ void write_contact(const TriContact& c, const Mat3& R1, const Vec3& p1, mjContac
 
 }  // namespace
 
+bool installable_type(int geom_type) { return geom_type == mjGEOM_MESH || is_primitive(geom_type); }
+
 bool install() {
   std::lock_guard<std::mutex> lock(g_mutex);
   if (g_installed) return false;
-  g_original.store(mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH]);
-  mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH] = &collide_mesh_mesh;
+  for (int t1 = 0; t1 < mjNGEOMTYPES; ++t1) {
+    for (int t2 = t1; t2 < mjNGEOMTYPES; ++t2) {
+      if (!installable_type(t1) || !installable_type(t2) || !mjCOLLISIONFUNC[t1][t2]) continue;
+      g_originals[static_cast<std::size_t>(t1)][static_cast<std::size_t>(t2)].store(
+          mjCOLLISIONFUNC[t1][t2], std::memory_order_release);
+      mjCOLLISIONFUNC[t1][t2] = &collide_geoms;
+      g_replaced[t1][t2] = true;
+    }
+  }
   g_installed = true;
   return true;
 }
@@ -76,8 +98,15 @@ bool install() {
 bool uninstall() {
   std::lock_guard<std::mutex> lock(g_mutex);
   if (!g_installed) return false;
-  mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH] = g_original.load();
-  g_original.store(nullptr);
+  for (int t1 = 0; t1 < mjNGEOMTYPES; ++t1) {
+    for (int t2 = t1; t2 < mjNGEOMTYPES; ++t2) {
+      if (!g_replaced[t1][t2]) continue;
+      auto& saved = g_originals[static_cast<std::size_t>(t1)][static_cast<std::size_t>(t2)];
+      mjCOLLISIONFUNC[t1][t2] = saved.load(std::memory_order_relaxed);
+      saved.store(nullptr, std::memory_order_release);
+      g_replaced[t1][t2] = false;
+    }
+  }
   g_installed = false;
   return true;
 }
@@ -87,9 +116,9 @@ bool installed() {
   return g_installed;
 }
 
-mjfCollision original_mesh_mesh() {
+mjfCollision original_collision(int type1, int type2) {
   std::lock_guard<std::mutex> lock(g_mutex);
-  return g_original.load();
+  return saved_original(type1, type2);
 }
 
 void attach(Registry& registry) {
@@ -154,19 +183,18 @@ Pose relative_pose(const mjData* d, int g1, int g2) {
   return pose;
 }
 
-// Served pair: tree query (paper sections 2-6 through core's Detector, all contacts), one contact
+namespace {
+
+// Tree path: tree query (paper sections 2-6 through core's Detector, all contacts), one contact
 // per intersecting triangle pair (contact.h, after Bullet's GImpact clip method), reduction to
 // mjMAXCONPAIR by deepest-then-farthest-point sampling, written in the world frame.
-int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
-                        int g2) {
+int collide_trees(Registry& registry, ServedPair& served, const mjData* d, mjContact* con, int g1,
+                  int g2) {
   thread_local std::vector<TrianglePair> tri_pairs;
   thread_local std::vector<TriContact> candidates;
-  const mjModel* m = registry.model();
-  ServedPair& served = registry.pair(pair_index);
-  const MeshTree* t1 = registry.tree(m->geom_dataid[g1]);
-  const MeshTree* t2 = registry.tree(m->geom_dataid[g2]);
+  const MeshTree* t1 = registry.geom_tree(g1);
+  const MeshTree* t2 = registry.geom_tree(g2);
   BridgeStats& stats = registry.stats();
-  ++stats.calls;
   if (!t1 || !t2) return 0;
 
   // The tree query with geom2 placed in geom1's frame.
@@ -202,14 +230,61 @@ int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjC
   return n;
 }
 
-// The table entry: served pairs to the registry, everything else to the saved original.
-int collide_mesh_mesh(const mjModel* m, const mjData* d, mjContact* con, int g1, int g2,
-                      mjtNum margin) {
+// Box-box path: the pair's box separator (core/separators.h: SAT after Gottschalk, Lin, Manocha
+// 1996, or the paper's perceptron / Neuro-SAT, each exact in its "disjoint" answer) on the two
+// geoms' boxes, geom2 placed in geom1's frame; when it cannot prove them disjoint, MuJoCo's own
+// box-box routine (mjc_BoxBox of engine_collision_box.c, the saved original entry) makes the
+// contacts with margin 0, and only touching or penetrating ones (dist <= 0) are kept.
+int collide_box_box(Registry& registry, ServedPair& served, const mjData* d, mjContact* con, int g1,
+                    int g2) {
+  const mjModel* m = registry.model();
+  BridgeStats& stats = registry.stats();
+  ++stats.box_box_calls;
+  const Pose pose = relative_pose(d, g1, g2);
+  Obb a;
+  a.half = Vec3(m->geom_size[3 * g1], m->geom_size[3 * g1 + 1], m->geom_size[3 * g1 + 2]);
+  Obb b_local;
+  b_local.half = Vec3(m->geom_size[3 * g2], m->geom_size[3 * g2 + 1], m->geom_size[3 * g2 + 2]);
+  const Clock::time_point start = Clock::now();
+  const bool disjoint = served.detector->box_disjoint(a, transform(pose, b_local), stats.counters);
+  const Clock::time_point tested = Clock::now();
+  stats.detection_ns += elapsed_ns(start, tested);
+  if (disjoint) return 0;
+
+  mjfCollision box_box = saved_original(mjGEOM_BOX, mjGEOM_BOX);
+  if (!box_box) box_box = mjCOLLISIONFUNC[mjGEOM_BOX][mjGEOM_BOX];  // not installed
+  if (!box_box || box_box == &collide_geoms) return 0;
+  const int found = box_box(m, d, con, g1, g2, 0);
+  int n = 0;
+  for (int i = 0; i < found && n < mjMAXCONPAIR; ++i) {
+    if (con[i].dist > 0) continue;
+    if (n != i) con[n] = con[i];
+    ++n;
+  }
+  stats.contacts += static_cast<std::uint64_t>(n);
+  stats.contact_ns += elapsed_ns(tested, Clock::now());
+  return n;
+}
+
+}  // namespace
+
+int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
+                        int g2) {
+  ServedPair& served = registry.pair(pair_index);
+  ++registry.stats().calls;
+  return served.path == PairPath::kBoxBox ? collide_box_box(registry, served, d, con, g1, g2)
+                                          : collide_trees(registry, served, d, con, g1, g2);
+}
+
+// The table entry: served pairs to the registry, everything else to the saved original of the
+// call's own type pair.
+int collide_geoms(const mjModel* m, const mjData* d, mjContact* con, int g1, int g2,
+                  mjtNum margin) {
   if (Registry* r = find_registry(m)) {
     const int index = r->find_pair(g1, g2);
     if (index >= 0) return collide_served_pair(*r, index, d, con, g1, g2);
   }
-  const mjfCollision original = g_original.load(std::memory_order_acquire);
+  const mjfCollision original = saved_original(m->geom_type[g1], m->geom_type[g2]);
   return original ? original(m, d, con, g1, g2, margin) : 0;
 }
 

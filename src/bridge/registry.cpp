@@ -8,6 +8,7 @@
 
 #include "bridge/collision.h"
 #include "bridge/contact.h"
+#include "bridge/primitives.h"
 
 namespace graspcd::bridge {
 namespace {
@@ -23,6 +24,42 @@ std::string name_of(const mjModel* m, int type, int id) {
 
 bool collidable(const mjModel* m, int g) {
   return m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0;
+}
+
+bool served_type(int type) { return type == mjGEOM_MESH || is_primitive(type); }
+
+// "geom 3 'floor' of type plane, which graspcd does not serve (...)": the tail of the error for
+// a geom whose type is not served.
+std::string unserved_geom(const mjModel* m, int g) {
+  const std::string gname = name_of(m, mjOBJ_GEOM, g);
+  return "geom " + std::to_string(g) + (gname.empty() ? "" : " '" + gname + "'") + " of type " +
+         geom_type_name(m->geom_type[g]) +
+         ", which graspcd does not serve (meshes, boxes, spheres, capsules, cylinders and "
+         "ellipsoids only; planes and height fields stay with MuJoCo)";
+}
+
+// The key of a primitive's tessellation: type and the sizes the type uses (others 0).
+std::array<double, 4> primitive_key(const mjModel* m, int g) {
+  const int type = m->geom_type[g];
+  const mjtNum* s = m->geom_size + 3 * g;
+  const int used = type == mjGEOM_SPHERE                               ? 1
+                   : type == mjGEOM_CAPSULE || type == mjGEOM_CYLINDER ? 2
+                                                                       : 3;
+  std::array<double, 4> key{static_cast<double>(type), 0, 0, 0};
+  for (int k = 0; k < used; ++k) key[static_cast<std::size_t>(k + 1)] = s[k];
+  return key;
+}
+
+MeshTree make_tree(const std::vector<Triangle>& tris) {
+  MeshTree mt;
+  mt.tree = ObbTree::build(tris);
+  mt.slot_of_face.assign(tris.size(), -1);
+  const auto& ids = mt.tree.face_ids();
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    mt.slot_of_face[static_cast<std::size_t>(ids[i])] = static_cast<std::int32_t>(i);
+  }
+  mt.sharp_masks = sharp_edge_masks(tris);
+  return mt;
 }
 
 // The collidable geoms a pattern selects (see registry.h for the pattern grammar).
@@ -41,11 +78,8 @@ std::vector<int> resolve(const mjModel* m, const std::string& pattern, const std
     const bool hit = (by_geom && glob_match(glob, name_of(m, mjOBJ_GEOM, g))) ||
                      (by_body && glob_match(glob, name_of(m, mjOBJ_BODY, m->geom_bodyid[g])));
     if (!hit || !collidable(m, g)) continue;
-    if (m->geom_type[g] != mjGEOM_MESH) {
-      const std::string gname = name_of(m, mjOBJ_GEOM, g);
-      fail(source, "pattern '" + pattern + "' matches geom " + std::to_string(g) +
-                       (gname.empty() ? "" : " '" + gname + "'") +
-                       ", which is not a mesh (only mesh geoms are served so far)");
+    if (!served_type(m->geom_type[g])) {
+      fail(source, "pattern '" + pattern + "' matches " + unserved_geom(m, g));
     }
     out.push_back(g);
   }
@@ -154,8 +188,10 @@ std::vector<Triangle> Registry::mesh_triangles(const mjModel* m, int mesh_id) {
   return out;
 }
 
-// Resolve every pattern pair and direct geom pair, then build one tree per mesh that a served
-// pair uses (DESIGN.md: trees once per mesh, in the geom frame, shared by the geoms of a mesh).
+// Resolve every pattern pair and direct geom pair, choose each pair's path, then build one tree per
+// mesh and per primitive (type, size) that a pair served by trees uses (DESIGN.md: trees once per
+// mesh, in the geom frame, shared by the geoms of a mesh; primitives through a tessellated mesh,
+// primitives.h).
 Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::string& source)
     : model_(m), config_(config) {
   if (!m) fail(source, "no model");
@@ -179,9 +215,7 @@ Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::st
       fail(source, "bad geom pair (" + std::to_string(a) + ", " + std::to_string(b) + ")");
     }
     for (int g : {a, b}) {
-      if (m->geom_type[g] != mjGEOM_MESH) {
-        fail(source, "geom " + std::to_string(g) + " is not a mesh (only meshes are served)");
-      }
+      if (!served_type(m->geom_type[g])) fail(source, "geom pair member " + unserved_geom(m, g));
     }
     add_pair(a, b);
   }
@@ -197,22 +231,44 @@ Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::st
                           "; served pairs report intersecting surfaces only (margin 0)");
     }
   }
-  // Trees for the meshes of served pairs only.
-  for (const ServedPair& p : pairs_) {
+  // The path of each pair; trees for the geoms of pairs served by trees only: one per mesh, one
+  // per primitive (type, size).
+  geom_trees_.assign(static_cast<std::size_t>(m->ngeom), nullptr);
+  for (ServedPair& p : pairs_) {
+    if (m->geom_type[p.geom_lo] == mjGEOM_BOX && m->geom_type[p.geom_hi] == mjGEOM_BOX) {
+      p.path = PairPath::kBoxBox;
+      continue;
+    }
+    p.path = PairPath::kTrees;
     for (int g : {p.geom_lo, p.geom_hi}) {
-      const int mesh = m->geom_dataid[g];
-      if (trees_.count(mesh)) continue;
-      const std::vector<Triangle> tris = mesh_triangles(m, mesh);
-      if (tris.empty()) fail(source, "mesh " + std::to_string(mesh) + " has no faces");
-      MeshTree mt;
-      mt.tree = ObbTree::build(tris);
-      mt.slot_of_face.assign(tris.size(), -1);
-      const auto& ids = mt.tree.face_ids();
-      for (std::size_t i = 0; i < ids.size(); ++i) {
-        mt.slot_of_face[static_cast<std::size_t>(ids[i])] = static_cast<std::int32_t>(i);
+      if (geom_trees_[static_cast<std::size_t>(g)]) continue;
+      const MeshTree* built = nullptr;
+      if (m->geom_type[g] == mjGEOM_MESH) {
+        const int mesh = m->geom_dataid[g];
+        auto it = trees_.find(mesh);
+        if (it == trees_.end()) {
+          const std::vector<Triangle> tris = mesh_triangles(m, mesh);
+          if (tris.empty()) fail(source, "mesh " + std::to_string(mesh) + " has no faces");
+          it = trees_.emplace(mesh, make_tree(tris)).first;
+        }
+        built = &it->second;
+      } else {
+        const std::array<double, 4> k = primitive_key(m, g);
+        auto it = primitive_trees_.find(k);
+        if (it == primitive_trees_.end()) {
+          TriangleMesh shape;
+          try {
+            shape = tessellate_primitive(m->geom_type[g], m->geom_size + 3 * g);
+          } catch (const std::invalid_argument& e) {
+            fail(source, "geom " + std::to_string(g) + ": " + e.what());
+          }
+          std::vector<Triangle> tris;
+          for (std::size_t f = 0; f < shape.faces.size(); ++f) tris.push_back(shape.triangle(f));
+          it = primitive_trees_.emplace(k, make_tree(tris)).first;
+        }
+        built = &it->second;
       }
-      mt.sharp_masks = sharp_edge_masks(tris);
-      trees_.emplace(mesh, std::move(mt));
+      geom_trees_[static_cast<std::size_t>(g)] = built;
     }
   }
 }

@@ -1,5 +1,6 @@
-// The pair registry of one mjModel: which geom pairs graspcd serves, the detector options, and one
-// OBB tree per mesh that appears in a served pair (DESIGN.md, "The seam with MuJoCo").
+// The pair registry of one mjModel: which geom pairs graspcd serves, the detector options, how
+// each pair is served, and one OBB tree per mesh and per primitive shape that appears in a pair
+// served by trees (DESIGN.md, "The seam with MuJoCo").
 //
 // Config (JSON, nlohmann-json), every field optional except "pairs":
 //   {
@@ -14,15 +15,31 @@
 // character matches itself. "geom:GLOB" matches geom names, "body:GLOB" the name of the geom's
 // body, and a bare "GLOB" either. Each pair entry registers every (geom of a, geom of b) pair of
 // distinct geoms; duplicates and both orders collapse into one unordered pair. Geoms with
-// contype == conaffinity == 0 (visual only) are skipped silently. Errors, each a
-// std::runtime_error with a one-line message that starts with the config's name: bad JSON, an
-// unknown field or method, a pattern that matches no collidable geom, a matched collidable geom
-// that is not a mesh (primitives are not served yet), a pair with no geom pair left.
+// contype == conaffinity == 0 (visual only) are skipped silently.
+//
+// Served geom types: mesh, box, sphere, capsule, cylinder, ellipsoid. A pair is served by one of
+// two paths (PairPath):
+// - kBoxBox, both geoms boxes: exact and without triangles. The pair's Detector tests the two
+//   boxes (geom frame: centre 0, axes identity, half-extents geom_size, geom2 placed in geom1's
+//   frame by relative_pose); proven disjoint gives 0 contacts, otherwise MuJoCo's own box-box
+//   function (the original entry saved by install(), called with margin 0) makes the contacts.
+// - kTrees, every other pair: the tree query of the two geoms' OBB trees and contacts from the
+//   intersecting triangle pairs (contact.h). A mesh's tree is built from MuJoCo's mesh (one per
+//   mesh); a primitive's from its tessellation (primitives.h: a box exactly, curved primitives
+//   circumscribed, with the documented tolerance), one per (type, size), in the geom frame.
+// Planes and height fields are not served (MuJoCo keeps them).
+//
+// Errors, each a std::runtime_error with a one-line message that starts with the config's name:
+// bad JSON, an unknown field or method, a pattern that matches no collidable geom, a matched
+// collidable geom of a type that is not served (naming the pattern, the geom and its type), a
+// pair with no geom pair left.
 #pragma once
 
 #include <mujoco/mujoco.h>
 
+#include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -61,16 +78,19 @@ bool glob_match(const std::string& pattern, const std::string& name);
 
 // Work and output of the served pairs, summed over callback calls until reset_stats().
 struct BridgeStats {
-  std::uint64_t calls = 0;         // served pair calls (after MuJoCo's bounding-sphere test)
-  std::uint64_t detection_ns = 0;  // tree query time (steady clock), summed
-  std::uint64_t contact_ns = 0;    // contact generation and reduction time, summed
-  QueryCounters counters;          // box tests, triangle tests, intersecting triangle pairs
-  std::uint64_t contacts = 0;      // contacts handed to MuJoCo
-  std::uint64_t capped_pairs = 0;  // calls whose candidates exceeded mjMAXCONPAIR
+  std::uint64_t calls = 0;          // served pair calls (after MuJoCo's bounding-sphere test)
+  std::uint64_t box_box_calls = 0;  // of those, calls served by the exact box-box path
+  std::uint64_t detection_ns = 0;   // tree query or box test time (steady clock), summed
+  std::uint64_t contact_ns = 0;     // contact generation and reduction time, summed (for box-box
+                                    // pairs: MuJoCo's box-box function)
+  QueryCounters counters;           // box tests, triangle tests, intersecting triangle pairs
+  std::uint64_t contacts = 0;       // contacts handed to MuJoCo
+  std::uint64_t capped_pairs = 0;   // calls whose candidates exceeded mjMAXCONPAIR
 };
 
-// The tree of one mesh and, for each face id, the face's slot in the tree's leaf-ordered triangles.
-// Also the sharp-edge masks of the faces (contact.h), by face id.
+// The tree of one mesh (or of one primitive's tessellation) and, for each face id, the face's slot
+// in the tree's leaf-ordered triangles. Also the sharp-edge masks of the faces (contact.h), by
+// face id.
 struct MeshTree {
   ObbTree tree;
   std::vector<std::int32_t> slot_of_face;
@@ -81,10 +101,17 @@ struct MeshTree {
   }
 };
 
+// How a served pair is answered (see the config doc above).
+enum class PairPath {
+  kTrees,   // tree query on meshes and tessellated primitives, contacts from triangles
+  kBoxBox,  // two boxes: the detector's box test, then MuJoCo's box-box contacts
+};
+
 // A served geom pair: its detector carries the method's state from step to step.
 struct ServedPair {
   int geom_lo = 0;  // smaller geom id
   int geom_hi = 0;  // larger geom id
+  PairPath path = PairPath::kTrees;
   std::unique_ptr<Detector> detector;
 };
 
@@ -113,12 +140,21 @@ class Registry {
   ServedPair& pair(int index) { return pairs_[static_cast<std::size_t>(index)]; }
 
   // The tree of a mesh id (in the mesh frame, which is the geom frame), or nullptr when the mesh
-  // is in no served pair.
+  // is in no pair served by trees.
   const MeshTree* tree(int mesh_id) const {
     const auto it = trees_.find(mesh_id);
     return it == trees_.end() ? nullptr : &it->second;
   }
-  std::size_t tree_count() const { return trees_.size(); }
+  // The tree of a geom (its mesh's, or its primitive shape's, in the geom frame), or nullptr when
+  // the geom is in no pair served by trees. O(1): what each collision call uses.
+  const MeshTree* geom_tree(int geom) const {
+    return geom >= 0 && static_cast<std::size_t>(geom) < geom_trees_.size()
+               ? geom_trees_[static_cast<std::size_t>(geom)]
+               : nullptr;
+  }
+  // Every tree built: one per mesh plus one per primitive (type, size).
+  std::size_t tree_count() const { return trees_.size() + primitive_trees_.size(); }
+  std::size_t primitive_tree_count() const { return primitive_trees_.size(); }
 
   // Non-fatal findings of the construction, one line each (e.g. a served geom with a non-zero
   // margin: served pairs report intersecting surfaces only, DESIGN.md "The seam with MuJoCo").
@@ -152,7 +188,11 @@ class Registry {
   RegistryConfig config_;
   std::vector<ServedPair> pairs_;
   std::unordered_map<std::uint64_t, int> pair_index_;
-  std::unordered_map<int, MeshTree> trees_;
+  std::unordered_map<int, MeshTree> trees_;  // by mesh id
+  // By (geom type, size[0..2]) with the sizes the type does not use set to 0. std::map: stable
+  // element addresses, which geom_trees_ holds.
+  std::map<std::array<double, 4>, MeshTree> primitive_trees_;
+  std::vector<const MeshTree*> geom_trees_;  // by geom id
   BridgeStats stats_;
   std::vector<std::string> warnings_;
 };

@@ -1,16 +1,19 @@
 // The collision function in mjCOLLISIONFUNC: served pairs get graspcd's contacts and none of
-// MuJoCo's, every other pair is untouched, uninstall restores the table, contacts follow MuJoCo's
-// contract, the contact answer agrees with CGAL, and a body inside a non-convex cavity gets no
-// contact from us while MuJoCo's convex hull reports one.
+// MuJoCo's, every other pair is untouched and goes to the original entry of its own type pair,
+// uninstall restores the table, contacts follow MuJoCo's contract, the contact answer agrees with
+// CGAL, and a body inside a non-convex cavity gets no contact from us while MuJoCo's convex hull
+// reports one. (Primitive pairs: primitives_test.cpp.)
 #include "bridge/collision.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <memory>
 #include <random>
+#include <set>
 
 #include "exact/exact.h"
 #include "scene_support.h"
@@ -170,34 +173,175 @@ TEST_F(StackScene, AttachedRegistryWithoutThisPairDelegates) {
   EXPECT_TRUE(contacts_between(ours.get(), a_, c_).empty());
 }
 
-// (c) install/uninstall: only the mesh-mesh entry changes, and uninstall restores it exactly.
-TEST(Install, UninstallRestoresTheOriginalEntry) {
+// (c) install/uninstall: every entry among the served types (sphere, capsule, ellipsoid,
+// cylinder, box, mesh; t1 <= t2) gets graspcd's function and its original is saved; every other
+// entry (plane and hfield rows, the unused lower triangle) is untouched; uninstall restores each.
+TEST(Install, UninstallRestoresEveryOriginalEntry) {
+  const int served[] = {mjGEOM_SPHERE,   mjGEOM_CAPSULE, mjGEOM_ELLIPSOID,
+                        mjGEOM_CYLINDER, mjGEOM_BOX,     mjGEOM_MESH};
+  const auto is_served = [&](int t) {
+    for (int s : served) {
+      if (s == t) return true;
+    }
+    return false;
+  };
   std::vector<mjfCollision> before(&mjCOLLISIONFUNC[0][0],
                                    &mjCOLLISIONFUNC[0][0] + mjNGEOMTYPES * mjNGEOMTYPES);
-  const mjfCollision original = table_entry();
-  ASSERT_NE(original, nullptr);
+  const auto was = [&](int i, int j) {
+    return before[static_cast<std::size_t>(i * mjNGEOMTYPES + j)];
+  };
+  ASSERT_NE(table_entry(), nullptr);
   ASSERT_FALSE(installed());
+  EXPECT_EQ(original_collision(mjGEOM_MESH, mjGEOM_MESH), nullptr);
   EXPECT_TRUE(install());
   EXPECT_TRUE(installed());
-  EXPECT_EQ(table_entry(), &collide_mesh_mesh);
-  EXPECT_EQ(original_mesh_mesh(), original);
-  EXPECT_FALSE(install());  // idempotent: the saved entry stays MuJoCo's
-  EXPECT_EQ(original_mesh_mesh(), original);
+  int replaced = 0;
   for (int i = 0; i < mjNGEOMTYPES; ++i) {
     for (int j = 0; j < mjNGEOMTYPES; ++j) {
-      if (i == mjGEOM_MESH && j == mjGEOM_MESH) continue;
-      EXPECT_EQ(mjCOLLISIONFUNC[i][j], before[static_cast<std::size_t>(i * mjNGEOMTYPES + j)]);
+      EXPECT_EQ(installable_type(i), is_served(i));
+      if (i <= j && is_served(i) && is_served(j) && was(i, j)) {
+        EXPECT_EQ(mjCOLLISIONFUNC[i][j], &collide_geoms) << i << " " << j;
+        EXPECT_EQ(original_collision(i, j), was(i, j)) << i << " " << j;
+        EXPECT_EQ(original_collision(j, i), was(i, j)) << i << " " << j;  // either order
+        ++replaced;
+      } else {
+        EXPECT_EQ(mjCOLLISIONFUNC[i][j], was(i, j)) << i << " " << j;
+      }
     }
   }
+  EXPECT_EQ(replaced, 21);  // MuJoCo 2.2.2 has all 21 entries among the six types
+  EXPECT_EQ(original_collision(mjGEOM_PLANE, mjGEOM_SPHERE), nullptr);
+  EXPECT_FALSE(install());  // idempotent: the saved entries stay MuJoCo's
+  EXPECT_EQ(original_collision(mjGEOM_MESH, mjGEOM_MESH), was(mjGEOM_MESH, mjGEOM_MESH));
   EXPECT_TRUE(uninstall());
   EXPECT_FALSE(uninstall());
-  EXPECT_EQ(table_entry(), original);
+  const auto table_unchanged = [&] {
+    for (int i = 0; i < mjNGEOMTYPES; ++i) {
+      for (int j = 0; j < mjNGEOMTYPES; ++j) EXPECT_EQ(mjCOLLISIONFUNC[i][j], was(i, j));
+    }
+  };
+  table_unchanged();
+  EXPECT_EQ(original_collision(mjGEOM_BOX, mjGEOM_BOX), nullptr);
   {
     ScopedInstall s;
-    EXPECT_EQ(table_entry(), &collide_mesh_mesh);
+    EXPECT_EQ(table_entry(), &collide_geoms);
+    EXPECT_EQ(mjCOLLISIONFUNC[mjGEOM_SPHERE][mjGEOM_BOX], &collide_geoms);
   }
-  EXPECT_EQ(table_entry(), original);
+  table_unchanged();
   EXPECT_FALSE(installed());
+}
+
+// Stand-ins for MuJoCo's entries that record (type pair, g1, g2, margin) and forward the call.
+struct TypedLog {
+  struct Call {
+    int t1, t2, g1, g2;
+    mjtNum margin;
+  };
+  static mjfCollision real[mjNGEOMTYPES][mjNGEOMTYPES];
+  static std::vector<Call> calls;
+  template <int T1, int T2>
+  static int collide(const mjModel* m, const mjData* d, mjContact* con, int g1, int g2,
+                     mjtNum margin) {
+    calls.push_back({T1, T2, g1, g2, margin});
+    return real[T1][T2](m, d, con, g1, g2, margin);
+  }
+};
+mjfCollision TypedLog::real[mjNGEOMTYPES][mjNGEOMTYPES] = {};
+std::vector<TypedLog::Call> TypedLog::calls;
+
+template <int T1, int T2>
+void wrap_entry() {
+  TypedLog::real[T1][T2] = mjCOLLISIONFUNC[T1][T2];
+  mjCOLLISIONFUNC[T1][T2] = &TypedLog::collide<T1, T2>;
+}
+
+// Unserved pairs of every installed type pair go to the saved original of THAT type pair, with
+// the same geoms and margin, and get MuJoCo's contacts bit for bit; the served pair gets ours.
+TEST(Install, UnservedPairsGoToTheOriginalOfTheirOwnTypePair) {
+  TempDir dir;
+  const ModelPtr m = load_scene(dir, R"(
+<mujoco>
+  <size nconmax="200" njmax="800"/>
+  <option gravity="0 0 0"/>
+  <asset><mesh name="cube" file="cube.obj"/></asset>
+  <worldbody>
+    <body pos="0 0 0"><freejoint/><geom name="ball" type="sphere" size="0.03" margin="0.001"/></body>
+    <body pos="0.04 0 0"><freejoint/><geom name="rod" type="capsule" size="0.02 0.03"/></body>
+    <body pos="0.02 0.045 0"><freejoint/><geom name="brick" type="box" size="0.02 0.02 0.02"/></body>
+    <body pos="-0.02 -0.04 0.01"><freejoint/><geom name="can" type="cylinder" size="0.02 0.02"/></body>
+    <body pos="0.03 -0.03 0.04"><freejoint/><geom name="egg" type="ellipsoid" size="0.02 0.015 0.025"/></body>
+    <body pos="-0.04 0.03 0"><freejoint/><geom name="cube" type="mesh" mesh="cube"/></body>
+    <body pos="-0.07 0.06 0.02"><freejoint/><geom name="cube2" type="mesh" mesh="cube"/></body>
+  </worldbody>
+</mujoco>)",
+                                {{"cube", testing::make_box_mesh(0.025, 0.025, 0.025)}});
+  ASSERT_TRUE(m);
+  const DataPtr native(mj_makeData(m.get()));
+  mj_forward(m.get(), native.get());
+
+  std::vector<mjfCollision> before(&mjCOLLISIONFUNC[0][0],
+                                   &mjCOLLISIONFUNC[0][0] + mjNGEOMTYPES * mjNGEOMTYPES);
+  wrap_entry<mjGEOM_SPHERE, mjGEOM_CAPSULE>();
+  wrap_entry<mjGEOM_SPHERE, mjGEOM_BOX>();
+  wrap_entry<mjGEOM_SPHERE, mjGEOM_MESH>();
+  wrap_entry<mjGEOM_SPHERE, mjGEOM_CYLINDER>();
+  wrap_entry<mjGEOM_CAPSULE, mjGEOM_BOX>();
+  wrap_entry<mjGEOM_CAPSULE, mjGEOM_ELLIPSOID>();
+  wrap_entry<mjGEOM_ELLIPSOID, mjGEOM_BOX>();
+  wrap_entry<mjGEOM_CYLINDER, mjGEOM_MESH>();
+  wrap_entry<mjGEOM_BOX, mjGEOM_MESH>();
+  wrap_entry<mjGEOM_MESH, mjGEOM_MESH>();
+  TypedLog::calls.clear();
+  const int cube = mj_name2id(m.get(), mjOBJ_GEOM, "cube");
+  const int cube2 = mj_name2id(m.get(), mjOBJ_GEOM, "cube2");
+  DataPtr ours;
+  {
+    ScopedInstall bridge;
+    RegistryConfig config;
+    config.patterns = {{"cube", "cube2"}};
+    Registry registry(m.get(), config);
+    attach(registry);
+    ours = DataPtr(mj_makeData(m.get()));
+    mj_forward(m.get(), ours.get());
+    EXPECT_EQ(registry.stats().calls, 1u);
+  }
+  // Every logged call was for its own type pair, never for the served pair.
+  std::set<std::pair<int, int>> logged_types;
+  for (const TypedLog::Call& c : TypedLog::calls) {
+    EXPECT_EQ(m->geom_type[c.g1], c.t1);
+    EXPECT_EQ(m->geom_type[c.g2], c.t2);
+    EXPECT_FALSE((c.g1 == cube && c.g2 == cube2) || (c.g1 == cube2 && c.g2 == cube));
+    const double expected_margin = std::max(m->geom_margin[c.g1], m->geom_margin[c.g2]);
+    EXPECT_EQ(c.margin, expected_margin);
+    logged_types.insert({c.t1, c.t2});
+  }
+  EXPECT_GE(logged_types.size(), 6u);
+  // Each native contact of an unserved pair is in ours, bit for bit, in the same order.
+  int compared = 0;
+  std::vector<const mjContact*> ours_unserved;
+  for (int i = 0; i < ours->ncon; ++i) {
+    const mjContact& c = ours->contact[i];
+    if (!((c.geom1 == cube && c.geom2 == cube2) || (c.geom1 == cube2 && c.geom2 == cube))) {
+      ours_unserved.push_back(&c);
+    }
+  }
+  std::vector<const mjContact*> native_unserved;
+  for (int i = 0; i < native->ncon; ++i) {
+    const mjContact& c = native->contact[i];
+    if (!((c.geom1 == cube && c.geom2 == cube2) || (c.geom1 == cube2 && c.geom2 == cube))) {
+      native_unserved.push_back(&c);
+    }
+  }
+  ASSERT_EQ(ours_unserved.size(), native_unserved.size());
+  for (std::size_t i = 0; i < ours_unserved.size(); ++i) {
+    expect_same_contact(*ours_unserved[i], *native_unserved[i]);
+    ++compared;
+  }
+  EXPECT_GE(compared, 5);
+  // Restore MuJoCo's entries.
+  std::copy(before.begin(), before.end(), &mjCOLLISIONFUNC[0][0]);
+  std::printf("delegation: %zu logged calls over %zu type pairs, %d native contacts compared\n",
+              TypedLog::calls.size(), logged_types.size(), compared);
 }
 
 // Many models come and go: each registry detaches itself, and a model without one collides

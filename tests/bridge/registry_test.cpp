@@ -6,6 +6,7 @@
 
 #include <fstream>
 
+#include "bridge/primitives.h"
 #include "scene_support.h"
 
 namespace graspcd::bridge {
@@ -171,9 +172,16 @@ TEST_F(RegistryTest, PatternErrorsNameTheConfig) {
   const std::string nothing = error_of(R"({"pairs": [{"a": "thumb*", "b": "cup"}]})");
   EXPECT_EQ(nothing.rfind("hand.json: pattern 'thumb*' matches no collidable geom", 0), 0u)
       << nothing;
-  const std::string prim = error_of(R"({"pairs": [{"a": "body:probe", "b": "cup"}]})");
-  EXPECT_EQ(prim.rfind("hand.json: pattern 'body:probe' matches geom", 0), 0u) << prim;
-  EXPECT_NE(prim.find("'prim', which is not a mesh"), std::string::npos) << prim;
+  // Planes (and height fields) are not served: one line naming the config, pattern and geom.
+  const std::string plane = error_of(R"({"pairs": [{"a": "floor", "b": "cup"}]})");
+  EXPECT_EQ(plane.rfind("hand.json: pattern 'floor' matches geom", 0), 0u) << plane;
+  EXPECT_NE(plane.find("'floor' of type plane, which graspcd does not serve"), std::string::npos)
+      << plane;
+  EXPECT_EQ(plane.find('\n'), std::string::npos) << plane;
+  const std::string everything = error_of(R"({"pairs": [{"a": "*", "b": "cup"}]})");
+  EXPECT_NE(everything.find("of type plane"), std::string::npos) << everything;
+  // A primitive is served now (through its tessellation).
+  EXPECT_EQ(error_of(R"({"pairs": [{"a": "body:probe", "b": "cup"}]})"), "");
   // The visual-only label alone is not collidable: nothing to serve.
   EXPECT_NE(error_of(R"({"pairs": [{"a": "label", "b": "cup"}]})").find("matches no collidable"),
             std::string::npos);
@@ -181,6 +189,85 @@ TEST_F(RegistryTest, PatternErrorsNameTheConfig) {
   EXPECT_NE(error_of(R"({"pairs": [{"a": "cup", "b": "geom:cup"}]})").find("no pair of distinct"),
             std::string::npos);
   EXPECT_EQ(error_of(R"({"pairs": [{"a": "f1_a", "b": "cup"}]})"), "");
+}
+
+// Primitives: box-box pairs take the exact path without trees; every other pair with a primitive
+// takes the tree path through one tessellation per (type, size), shared by the geoms of equal
+// shape; a box in a tree pair is its 12 triangles; the tessellation lives in the geom frame.
+TEST(RegistryPrimitives, PathsAndTreesPerTypeAndSize) {
+  TempDir dir;
+  const testing::ModelPtr m = load_scene(dir, R"(
+<mujoco>
+  <asset><mesh name="u" file="u.obj"/></asset>
+  <worldbody>
+    <geom name="floor" type="plane" size="1 1 0.1"/>
+    <body name="object" pos="0 0.3 0.5"><freejoint/><geom name="cup" type="mesh" mesh="u"/></body>
+    <body name="tips" pos="0 0 0.5"><freejoint/>
+      <geom name="tip1" type="sphere" size="0.008"/>
+      <geom name="tip2" type="sphere" size="0.008" pos="0.05 0 0"/>
+      <geom name="tip3" type="sphere" size="0.009" pos="0.1 0 0"/>
+      <geom name="pad1" type="box" size="0.01 0.01 0.02" pos="0 0.1 0"/>
+      <geom name="pad2" type="box" size="0.01 0.01 0.02" pos="0 0.2 0"/>
+      <geom name="rod" type="capsule" size="0.005 0.02" pos="0 0.3 0"/>
+    </body>
+    <body name="brick" pos="1 0 0.5"><freejoint/><geom name="brick" type="box" size="0.02 0.03 0.04"/></body>
+  </worldbody>
+</mujoco>)",
+                                         {{"u", testing::make_u_mesh(0.05, 0.06, 0.01, 0.03)}});
+  ASSERT_TRUE(m);
+  const auto id = [&](const char* name) { return mj_name2id(m.get(), mjOBJ_GEOM, name); };
+  RegistryConfig c;
+  c.patterns = {{"geom:tip*", "cup"}, {"geom:pad*", "brick"}, {"pad1", "rod"}};
+  const Registry r(m.get(), c, "prims.json");
+  ASSERT_EQ(r.pairs().size(), 6u);
+  const auto path_of = [&](const char* a, const char* b) {
+    const int i = r.find_pair(id(a), id(b));
+    EXPECT_GE(i, 0) << a << " " << b;
+    return r.pairs()[static_cast<std::size_t>(i)].path;
+  };
+  EXPECT_EQ(path_of("tip1", "cup"), PairPath::kTrees);
+  EXPECT_EQ(path_of("pad1", "brick"), PairPath::kBoxBox);
+  EXPECT_EQ(path_of("brick", "pad2"), PairPath::kBoxBox);
+  EXPECT_EQ(path_of("rod", "pad1"), PairPath::kTrees);
+  // Trees: the cup's mesh, sphere 0.008 (shared by tip1 and tip2), sphere 0.009, the capsule and
+  // pad1's box (for the capsule pair). pad2 and brick are only in box-box pairs: no tree.
+  EXPECT_EQ(r.tree_count(), 5u);
+  EXPECT_EQ(r.primitive_tree_count(), 4u);
+  ASSERT_NE(r.geom_tree(id("tip1")), nullptr);
+  EXPECT_EQ(r.geom_tree(id("tip1")), r.geom_tree(id("tip2")));
+  EXPECT_NE(r.geom_tree(id("tip1")), r.geom_tree(id("tip3")));
+  EXPECT_EQ(r.geom_tree(id("cup")), r.tree(m->geom_dataid[id("cup")]));
+  EXPECT_EQ(r.geom_tree(id("pad2")), nullptr);
+  EXPECT_EQ(r.geom_tree(id("brick")), nullptr);
+  EXPECT_EQ(r.geom_tree(id("floor")), nullptr);
+  ASSERT_NE(r.geom_tree(id("pad1")), nullptr);
+  EXPECT_EQ(r.geom_tree(id("pad1"))->tree.triangles().size(), 12u);
+  // In the geom frame: the box's tree spans exactly its half-extents.
+  Vec3 lo = Vec3::Constant(1e9), hi = Vec3::Constant(-1e9);
+  for (const Triangle& t : r.geom_tree(id("pad1"))->tree.triangles()) {
+    for (const Vec3& v : t.v) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+  }
+  EXPECT_EQ(hi, Vec3(0.01, 0.01, 0.02));
+  EXPECT_EQ(lo, Vec3(-0.01, -0.01, -0.02));
+  // A sphere's tree lies around the origin, within radius (1 + tolerance).
+  const double tip_reach = 0.008 * tess_round_factor();
+  for (const Triangle& t : r.geom_tree(id("tip1"))->tree.triangles()) {
+    for (const Vec3& v : t.v) EXPECT_LE(v.norm(), tip_reach);
+  }
+  // Direct geom pairs with a plane are refused too, naming the geom and its type.
+  RegistryConfig direct;
+  direct.geom_pairs = {{id("floor"), id("tip1")}};
+  try {
+    const Registry bad(m.get(), direct, "prims.json");
+    ADD_FAILURE() << "a plane was accepted";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("prims.json: ", 0), 0u) << what;
+    EXPECT_NE(what.find("'floor' of type plane"), std::string::npos) << what;
+  }
 }
 
 }  // namespace

@@ -1,0 +1,249 @@
+// mj_step on the triangle hand (mjcf/hand_triangles.xml) with the fingers closed a little, so
+// that they touch the cup:
+//   (a) Plain              MuJoCo alone, graspcd not installed;
+//   (b) InstalledNoRegistry   graspcd's function in the 21 entries, no registry attached: every
+//                             call delegated to MuJoCo's original;
+//       InstalledOtherModel   the same with a registry of another model (hand_boxes) attached, so
+//                             each call scans the attached models before delegating;
+//   (c) Served             the scene's pairs.json attached: finger-object pairs by graspcd.
+// (b)/(a) is the overhead of the seam on pairs graspcd does not serve. NoopDirect and
+// NoopDelegated measure that overhead per call without MuJoCo's work; start-up prints the calls
+// per step, so (b) - (a) can be predicted from them.
+//
+// Every iteration restores the same state (qpos, qvel, act, ctrl, warm start, time) and runs one
+// mj_step, so all variants step the same configuration. The closing angle is the first multiple
+// of 0.01 rad at which the served pairs report finger-cup contact (mj_forward, the bridge on),
+// plus 0.01 rad; it is found once, before the benchmarks.
+//
+// Run: build/study/graspcd_mujoco_bench --benchmark_repetitions=5
+#include <benchmark/benchmark.h>
+#include <mujoco/mujoco.h>
+
+#include <cstdio>
+#include <memory>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bridge/collision.h"
+#include "bridge/grasp.h"
+#include "bridge/mujoco_ptr.h"
+#include "bridge/registry.h"
+
+namespace {
+
+using graspcd::bridge::DataPtr;
+using graspcd::bridge::ModelPtr;
+using graspcd::bridge::Registry;
+
+const std::string kMjcf = GRASPCD_MJCF_DIR;
+
+ModelPtr load(const std::string& name) {
+  char error[1024] = "";
+  ModelPtr m(mj_loadXML((kMjcf + "/" + name).c_str(), nullptr, error, sizeof(error)));
+  if (!m) throw std::runtime_error(kMjcf + "/" + name + ": " + error);
+  return m;
+}
+
+long& call_count() {
+  static long n = 0;
+  return n;
+}
+int counting_collision(const mjModel* m, const mjData* d, mjContact* con, int g1, int g2,
+                       mjtNum margin) {
+  ++call_count();
+  return graspcd::bridge::collide_geoms(m, d, con, g1, g2, margin);
+}
+
+// The triangle hand, its closed state, and a model of another scene for variant (b).
+struct Bench {
+  ModelPtr model;
+  ModelPtr other;
+  std::string config_path = kMjcf + "/hand_triangles.pairs.json";
+  std::vector<mjtNum> qpos;
+  double angle = 0;
+  int finger_contacts = 0;  // finger-object contacts with the bridge at `angle`
+  int native_finger_contacts = 0;
+
+  static Bench& get() {
+    static Bench b;
+    return b;
+  }
+
+  // Finger-object contacts at the current state of d.
+  int finger_object_contacts(const mjData* d) const {
+    const mjModel* m = model.get();
+    std::set<int> fingers;
+    for (const std::string& s : graspcd::bridge::finger_segment_names()) {
+      fingers.insert(mj_name2id(m, mjOBJ_GEOM, s.c_str()));
+    }
+    int n = 0;
+    for (int i = 0; i < d->ncon; ++i) {
+      const mjContact& c = d->contact[i];
+      n += fingers.count(c.geom1) != fingers.count(c.geom2) && m->geom_bodyid[c.geom1] != 0 &&
+           m->geom_bodyid[c.geom2] != 0;
+    }
+    return n;
+  }
+
+  void set_fingers(mjData* d, double a) const {
+    const mjModel* m = model.get();
+    mj_resetData(m, d);
+    for (const std::string& s : graspcd::bridge::finger_segment_names()) {
+      d->qpos[m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, s.c_str())]] = a;
+    }
+  }
+
+ private:
+  Bench() : model(load("hand_triangles.xml")), other(load("hand_boxes.xml")) {
+    const mjModel* m = model.get();
+    DataPtr d(mj_makeData(m));
+    {
+      graspcd::bridge::ScopedInstall install;
+      Registry registry(m, graspcd::bridge::load_registry_config(config_path), config_path);
+      graspcd::bridge::attach(registry);
+      for (int k = 0; k <= 160 && finger_contacts == 0; ++k) {
+        angle = 0.01 * k + 0.01;
+        set_fingers(d.get(), 0.01 * k);
+        mj_forward(m, d.get());
+        if (finger_object_contacts(d.get()) == 0) continue;
+        set_fingers(d.get(), angle);
+        mj_forward(m, d.get());
+        finger_contacts = finger_object_contacts(d.get());
+      }
+    }
+    if (finger_contacts == 0) throw std::runtime_error("the fingers never touch the cup");
+    qpos.assign(d->qpos, d->qpos + m->nq);
+    mj_forward(m, d.get());
+    native_finger_contacts = finger_object_contacts(d.get());
+    std::printf("closing angle %.2f rad: %d finger-object contacts served, %d natively\n", angle,
+                finger_contacts, native_finger_contacts);
+    // Calls into graspcd's function per mj_step at this state (none served).
+    {
+      graspcd::bridge::ScopedInstall install;
+      std::vector<mjfCollision*> ours;
+      for (int t1 = 0; t1 < mjNGEOMTYPES; ++t1) {
+        for (int t2 = 0; t2 < mjNGEOMTYPES; ++t2) {
+          if (mjCOLLISIONFUNC[t1][t2] == &graspcd::bridge::collide_geoms) {
+            ours.push_back(&mjCOLLISIONFUNC[t1][t2]);
+          }
+        }
+      }
+      for (mjfCollision* e : ours) *e = &counting_collision;
+      set_fingers(d.get(), angle);
+      call_count() = 0;
+      mj_step(m, d.get());
+      for (mjfCollision* e : ours) *e = &graspcd::bridge::collide_geoms;
+      std::printf("calls into graspcd's function per mj_step (installed, nothing served): %ld\n",
+                  call_count());
+    }
+  }
+};
+
+// Steps from the same closed state every iteration.
+void step_loop(benchmark::State& state, const Registry* registry) {
+  Bench& b = Bench::get();
+  const mjModel* m = b.model.get();
+  DataPtr data(mj_makeData(m));
+  mjData* d = data.get();
+  b.set_fingers(d, b.angle);
+  mj_forward(m, d);
+  const std::vector<mjtNum> warm(d->qacc_warmstart, d->qacc_warmstart + m->nv);
+  long contacts = 0, steps = 0;
+  for (auto _ : state) {
+    mju_copy(d->qpos, b.qpos.data(), m->nq);
+    mju_zero(d->qvel, m->nv);
+    mju_zero(d->act, m->na);
+    mju_zero(d->ctrl, m->nu);
+    mju_copy(d->qacc_warmstart, warm.data(), m->nv);
+    d->time = 0;
+    mj_step(m, d);
+    contacts += d->ncon;
+    ++steps;
+  }
+  state.counters["contacts"] =
+      benchmark::Counter(static_cast<double>(contacts), benchmark::Counter::kAvgIterations);
+  if (registry) {
+    const auto per_step = [&](double x) {
+      return benchmark::Counter(x / static_cast<double>(steps));
+    };
+    const graspcd::bridge::BridgeStats& st = registry->stats();
+    state.counters["served_calls"] = per_step(static_cast<double>(st.calls));
+    state.counters["detect_us"] = per_step(static_cast<double>(st.detection_ns) / 1e3);
+    state.counters["contact_us"] = per_step(static_cast<double>(st.contact_ns) / 1e3);
+  }
+}
+
+void BM_StepPlain(benchmark::State& state) { step_loop(state, nullptr); }
+
+void BM_StepInstalledNoRegistry(benchmark::State& state) {
+  graspcd::bridge::ScopedInstall install;
+  step_loop(state, nullptr);
+}
+
+void BM_StepInstalledOtherModel(benchmark::State& state) {
+  Bench& b = Bench::get();
+  const std::string other_config = kMjcf + "/hand_boxes.pairs.json";
+  graspcd::bridge::ScopedInstall install;
+  Registry other(b.other.get(), graspcd::bridge::load_registry_config(other_config), other_config);
+  graspcd::bridge::attach(other);
+  step_loop(state, &other);
+}
+
+void BM_StepServed(benchmark::State& state) {
+  Bench& b = Bench::get();
+  graspcd::bridge::ScopedInstall install;
+  Registry registry(b.model.get(), graspcd::bridge::load_registry_config(b.config_path),
+                    b.config_path);
+  graspcd::bridge::attach(registry);
+  step_loop(state, &registry);
+}
+
+// The seam's cost per delegated call, without MuJoCo's work: the mesh-mesh original replaced by
+// a function that does nothing, called directly (NoopDirect) and through graspcd's function
+// with no registry for the model (NoopDelegated). Their difference times the delegated calls
+// per step (printed at start-up) is the expected (b) - (a).
+int noop_collision(const mjModel*, const mjData*, mjContact*, int, int, mjtNum) { return 0; }
+
+std::pair<int, int> finger_and_cup(const mjModel* m) {
+  return {mj_name2id(m, mjOBJ_GEOM, "finger1_C"), mj_name2id(m, mjOBJ_GEOM, "object")};
+}
+
+void BM_NoopDirect(benchmark::State& state) {
+  Bench& b = Bench::get();
+  const mjModel* m = b.model.get();
+  DataPtr d(mj_makeData(m));
+  mjContact con[mjMAXCONPAIR];
+  const auto [g1, g2] = finger_and_cup(m);
+  mjfCollision volatile f = &noop_collision;
+  for (auto _ : state) benchmark::DoNotOptimize(f(m, d.get(), con, g1, g2, 0));
+}
+
+void BM_NoopDelegated(benchmark::State& state) {
+  Bench& b = Bench::get();
+  const mjModel* m = b.model.get();
+  DataPtr d(mj_makeData(m));
+  mjContact con[mjMAXCONPAIR];
+  const auto [g1, g2] = finger_and_cup(m);
+  const mjfCollision saved = mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH];
+  mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH] = &noop_collision;
+  {
+    graspcd::bridge::ScopedInstall install;
+    mjfCollision volatile f = mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH];  // graspcd's
+    for (auto _ : state) benchmark::DoNotOptimize(f(m, d.get(), con, g1, g2, 0));
+  }
+  mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH] = saved;
+}
+
+BENCHMARK(BM_StepPlain)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepInstalledNoRegistry)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepInstalledOtherModel)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepServed)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_NoopDirect);
+BENCHMARK(BM_NoopDelegated);
+
+}  // namespace
+
+BENCHMARK_MAIN();
