@@ -205,7 +205,21 @@ int collide_trees(Registry& registry, ServedPair& served, const mjData* d, mjCon
                            &tri_pairs);
   const Clock::time_point queried = Clock::now();
   stats.detection_ns += elapsed_ns(start, queried);
-  if (tri_pairs.empty()) return 0;
+  served.contained = false;
+  if (tri_pairs.empty()) {
+    // The separate containment check: only closed solids contain, and only when the root boxes
+    // overlap can one lie inside the other.
+    if ((t1->closedness.closed() || t2->closedness.closed()) &&
+        sat_separating_axis(t1->tree.root().box, transform(pose, t2->tree.root().box)) ==
+            kSatNoAxis) {
+      const MeshContainment c = mesh_containment(t1->tree, t1->closedness, pose, t2->tree,
+                                                 t2->closedness, /*surfaces_intersect=*/false);
+      served.contained = c.a_inside_b || c.b_inside_a;
+      stats.contained += served.contained;
+      stats.containment_ns += elapsed_ns(queried, Clock::now());
+    }
+    return 0;
+  }
 
   // One contact per intersecting triangle pair, in geom1's frame.
   const double tn = pose.t.norm();

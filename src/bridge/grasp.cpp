@@ -32,21 +32,6 @@ int require_id(const mjModel* m, mjtObj type, const std::string& name, const std
   return id;
 }
 
-// Loads the MJCF; a missing file or MuJoCo's error become one-line GraspInputErrors (file first,
-// mujoco-2.2-notes.md "Errors").
-ModelPtr load_model(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec) || !std::ifstream(path).good())
-    throw GraspInputError(path, "cannot open the scene file");
-  char error[2048] = "";
-  ModelPtr m(mj_loadXML(path.c_str(), nullptr, error, sizeof(error)));
-  if (!m) {
-    const std::string message = join_lines(error);
-    throw GraspInputError(path, message.empty() ? "MuJoCo could not load it" : message);
-  }
-  return m;
-}
-
 // The state the phases share: the model, the controller's targets, the contact scan and the
 // accumulated statistics.
 class GraspRun {
@@ -124,6 +109,7 @@ class GraspRun {
     if (!registry_) return BridgeStats{};
     BridgeStats s = registry_->take_stats();
     detection_ns_total_ += s.detection_ns;
+    contained_total_ += s.contained;
     return s;
   }
 
@@ -156,6 +142,7 @@ class GraspRun {
   long physics_steps_ = 0;
   std::int64_t wall_ns_ = 0;
   std::uint64_t detection_ns_total_ = 0;
+  std::uint64_t contained_total_ = 0;
 };
 
 // Phase 1, paper section 9 (DESIGN.md "Semantics"): grasp steps of 0.003 rad until each finger
@@ -192,9 +179,11 @@ void close_fingers(GraspRun& run, const GraspOptions& options, GraspResult& resu
     record.box_tests = stats.counters.box_tests;
     record.triangle_tests = stats.counters.tri_tests;
     record.served_calls = stats.calls;
+    record.contained = stats.contained;
     record.object_z = run.object_z();
     result.steps.push_back(record);
     result.detection_ns_close += stats.detection_ns;
+    if (options.on_grasp_step) options.on_grasp_step(run.m_, run.d_, k);
 
     bool every_finger = true;
     bool all_stopped = true;
@@ -258,6 +247,19 @@ std::string join_lines(const std::string& text) {
     pos = end + 1;
   }
   return out;
+}
+
+ModelPtr load_model(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec) || !std::ifstream(path).good())
+    throw GraspInputError(path, "cannot open the scene file");
+  char error[2048] = "";
+  ModelPtr m(mj_loadXML(path.c_str(), nullptr, error, sizeof(error)));
+  if (!m) {
+    const std::string message = join_lines(error);
+    throw GraspInputError(path, message.empty() ? "MuJoCo could not load it" : message);
+  }
+  return m;
 }
 
 // Paper section 9 (the grasp) with the computed-torque law of section 7, eq. (12)-(16); the
@@ -386,6 +388,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
                                                      static_cast<double>(run.physics_steps_)
                                                : 0.0;
   result.detection_ns_total = run.detection_ns_total_;
+  result.contained_calls = run.contained_total_;
   result.max_contacts = run.max_contacts_;
   registry.reset();  // detaches before the model goes
   return result;

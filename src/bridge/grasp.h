@@ -33,11 +33,13 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "bridge/mujoco_ptr.h"
 #include "core/separators.h"
 
 namespace graspcd::bridge {
@@ -75,6 +77,9 @@ struct GraspOptions {
   double lift_height = 0.06;
   double lift_time = 1.0;
   double hold_time = 2.0;
+  // Called after each closing grasp step with the model, the state after the step's last physics
+  // step and the 1-based step number (the study records the poses it replays, study/driver).
+  std::function<void(const mjModel*, const mjData*, int)> on_grasp_step;
 };
 
 // One closing grasp step.
@@ -86,7 +91,8 @@ struct GraspStepRecord {
   std::uint64_t box_tests = 0;
   std::uint64_t triangle_tests = 0;
   std::uint64_t served_calls = 0;
-  double object_z = 0;  // object body height after the step, m
+  std::uint64_t contained = 0;  // served calls that found a segment wholly inside the object
+  double object_z = 0;          // object body height after the step, m
 };
 
 struct GraspResult {
@@ -108,6 +114,7 @@ struct GraspResult {
   std::uint64_t detection_ns_close = 0;  // summed over the closing grasp steps
   std::uint64_t detection_ns_total = 0;  // all phases
   int max_contacts = 0;                  // most finger-object contacts in one physics step
+  std::uint64_t contained_calls = 0;     // containment findings over all phases (registry.h)
 };
 
 // The segment names in record order: finger1_A, finger1_B, ..., finger4_C.
@@ -118,6 +125,10 @@ const std::array<std::string, kFingerSegments>& finger_segment_names();
 // registry's message, which starts with the config's name); std::runtime_error for a scene that
 // breaks the scene contract.
 GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options = {});
+
+// Loads an MJCF file. A missing file or MuJoCo's error become a GraspInputError whose message is
+// "FILE: <MuJoCo's message on one line>" (mujoco-2.2-notes.md "Errors").
+ModelPtr load_model(const std::string& path);
 
 // Joins MuJoCo's multi-line error text into one line (line breaks become "; ", blanks trimmed).
 std::string join_lines(const std::string& text);

@@ -59,6 +59,7 @@ MeshTree make_tree(const std::vector<Triangle>& tris) {
     mt.slot_of_face[static_cast<std::size_t>(ids[i])] = static_cast<std::int32_t>(i);
   }
   mt.sharp_masks = sharp_edge_masks(tris);
+  mt.closedness = closedness(mt.tree);
   return mt;
 }
 

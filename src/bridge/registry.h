@@ -46,6 +46,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/containment.h"
 #include "core/obb_tree.h"
 #include "core/separators.h"
 
@@ -86,6 +87,11 @@ struct BridgeStats {
   QueryCounters counters;           // box tests, triangle tests, intersecting triangle pairs
   std::uint64_t contacts = 0;       // contacts handed to MuJoCo
   std::uint64_t capped_pairs = 0;   // calls whose candidates exceeded mjMAXCONPAIR
+  // The separate containment check (DESIGN.md "Semantics"): tree-path calls whose surfaces did
+  // not intersect but one geom lay wholly inside the other's closed solid (core/containment.h),
+  // and the time that check took (not part of detection_ns).
+  std::uint64_t contained = 0;
+  std::uint64_t containment_ns = 0;
 };
 
 // The tree of one mesh (or of one primitive's tessellation) and, for each face id, the face's slot
@@ -93,6 +99,7 @@ struct BridgeStats {
 // face id.
 struct MeshTree {
   ObbTree tree;
+  Closedness closedness;  // of the tree's triangles: containment is decided for closed ones only
   std::vector<std::int32_t> slot_of_face;
   std::vector<std::uint8_t> sharp_masks;
   std::uint8_t sharp(std::int32_t f) const { return sharp_masks[static_cast<std::size_t>(f)]; }
@@ -113,6 +120,9 @@ struct ServedPair {
   int geom_hi = 0;  // larger geom id
   PairPath path = PairPath::kTrees;
   std::unique_ptr<Detector> detector;
+  // After the pair's last call: the surfaces did not intersect and one geom lay wholly inside the
+  // other's closed solid (the containment check; the pair then gets no contacts).
+  bool contained = false;
 };
 
 // The registry of one model. Build it after mj_loadXML (e.g. Registry r(m,

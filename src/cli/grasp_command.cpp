@@ -61,7 +61,8 @@ void print_text(const bridge::GraspResult& r) {
       << r.hold_min_z << " m and drift " << r.hold_drift << " m in the hold\n";
   out << "# detection ns " << r.detection_ns_close << " closing, " << r.detection_ns_total
       << " total; " << r.physics_steps << " physics steps, " << std::setprecision(2) << r.sim_time
-      << " s simulated, " << std::setprecision(4) << r.step_wall_ms << " ms per physics step\n";
+      << " s simulated, " << std::setprecision(4) << r.step_wall_ms << " ms per physics step; "
+      << r.contained_calls << " containment findings\n";
   std::cout << out.str();
 }
 
@@ -78,6 +79,7 @@ void print_json(const bridge::GraspResult& r) {
                      {"box_tests", s.box_tests},
                      {"triangle_tests", s.triangle_tests},
                      {"served_calls", s.served_calls},
+                     {"contained", s.contained},
                      {"object_z", s.object_z},
                      {"segments", segments}});
   }
@@ -107,7 +109,8 @@ void print_json(const bridge::GraspResult& r) {
                               {"physics_steps", r.physics_steps},
                               {"sim_time", r.sim_time},
                               {"ms_per_physics_step", r.step_wall_ms},
-                              {"max_contacts", r.max_contacts}};
+                              {"max_contacts", r.max_contacts},
+                              {"contained_calls", r.contained_calls}};
   std::cout << doc.dump(2) << '\n';
 }
 
@@ -163,12 +166,15 @@ Command add_grasp_command(CLI::App& parent) {
       "with '#': the first-contact grasp step of each segment ('-' for never); gripped and held "
       "(the object rose >= 3 cm and stayed within 1 cm of its place in the hand during the "
       "2 s hold) with its heights; the detection time of the closing steps and of the whole "
-      "run, the physics steps, simulated seconds and wall ms per physics step.\n"
+      "run, the physics steps, simulated seconds and wall ms per physics step, and the "
+      "containment findings (served calls whose surfaces did not meet but a segment lay wholly "
+      "inside the closed object: a contact the surface test cannot see).\n"
       "--json: one document with the same: scene, method, native, steps (step, contacts, "
-      "detection_ns, box_tests, triangle_tests, served_calls, object_z, segments), "
+      "detection_ns, box_tests, triangle_tests, served_calls, contained, object_z, segments), "
       "first_contact (segment -> step or null), gripped, held, object_z_initial, "
       "object_z_gripped, object_z_final, hold_min_z, hold_drift, detection_ns_close, "
-      "detection_ns_total, physics_steps, sim_time, ms_per_physics_step, max_contacts.\n"
+      "detection_ns_total, physics_steps, sim_time, ms_per_physics_step, max_contacts, "
+      "contained_calls.\n"
       "Errors: a missing or unreadable scene or config, or a bad MJCF (MuJoCo's message on one "
       "line), print one line 'FILE: message' on stderr and exit with code 2.\n"
       "Example:\n"

@@ -570,6 +570,61 @@ TEST(Contacts, BodyInsideANonConvexCavityGetsNoContactFromUs) {
   }
 }
 
+// The containment check (DESIGN.md "Semantics"): a small cube wholly inside a big closed cube
+// gets no contact (the surfaces do not meet, as CGAL would say) but is reported as contained;
+// moved through the big cube's wall it gets contacts and is not contained; moved outside, neither.
+const char* kNestedScene = R"(
+<mujoco>
+  <size nconmax="200" njmax="800"/>
+  <option gravity="0 0 0"/>
+  <asset><mesh name="big" file="big.obj"/><mesh name="small" file="small.obj"/></asset>
+  <worldbody>
+    <geom name="big" type="mesh" mesh="big"/>
+    <body name="probe"><freejoint/><geom name="small" type="mesh" mesh="small"/></body>
+  </worldbody>
+</mujoco>)";
+
+TEST(Containment, ASegmentWhollyInsideIsReportedNotContacted) {
+  TempDir dir;
+  const ModelPtr m = load_scene(dir, kNestedScene,
+                                {{"big", testing::make_box_mesh(0.05, 0.05, 0.05)},
+                                 {"small", testing::make_box_mesh(0.01, 0.01, 0.01)}});
+  ASSERT_TRUE(m);
+  const int gb = mj_name2id(m.get(), mjOBJ_GEOM, "big");
+  const int gs = mj_name2id(m.get(), mjOBJ_GEOM, "small");
+  ScopedInstall bridge;
+  RegistryConfig config;
+  config.patterns = {{"small", "big"}};
+  Registry registry(m.get(), config);
+  attach(registry);
+  ASSERT_EQ(registry.pairs().size(), 1u);
+  for (const auto& [mesh, tree] :
+       std::vector<std::pair<int, const MeshTree*>>{{m->geom_dataid[gb], registry.geom_tree(gb)},
+                                                    {m->geom_dataid[gs], registry.geom_tree(gs)}}) {
+    ASSERT_TRUE(tree) << mesh;
+    EXPECT_TRUE(tree->closedness.closed()) << tree->closedness.describe();
+  }
+  const DataPtr d(mj_makeData(m.get()));
+  const int q = m->jnt_qposadr[m->body_jntadr[m->geom_bodyid[gs]]];
+  struct Case {
+    double x;
+    bool contacts;
+    bool contained;
+  };
+  // Inside (centre, and 1 mm from the wall), through the wall, outside but within MuJoCo's
+  // bounding spheres, so that the pair is still served.
+  for (const Case c : {Case{0.0, false, true}, Case{0.039, false, true}, Case{0.045, true, false},
+                       Case{0.065, false, false}}) {
+    d->qpos[q] = c.x;
+    registry.reset_stats();
+    mj_forward(m.get(), d.get());
+    ASSERT_EQ(registry.stats().calls, 1u) << c.x;
+    EXPECT_EQ(!contacts_between(d.get(), gb, gs).empty(), c.contacts) << c.x;
+    EXPECT_EQ(registry.pair(0).contained, c.contained) << c.x;
+    EXPECT_EQ(registry.stats().contained, c.contained ? 1u : 0u) << c.x;
+  }
+}
+
 // The solver can use our contacts: under gravity along -y, a cube released in the U's cavity
 // falls onto the cavity floor (y = 0.01) and rests there, between the walls, for 1.5 s. With
 // MuJoCo's native collision the cube starts 5 cm deep inside the convex hull and is thrown out.
