@@ -1,6 +1,7 @@
 #include "core/obb_tree.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 
@@ -103,6 +104,32 @@ ObbTree ObbTree::build(const TriangleMesh& mesh, const ObbTreeOptions& options) 
   triangles.reserve(mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) triangles.push_back(mesh.triangle(f));
   return build(std::move(triangles), options);
+}
+
+ObbTree ObbTree::rounded_to_float(bool pad) const {
+  // A point c + A diag(h) u moves by at most |dc| + sum_i h_i |dA_i| + |dh| when c, A, h are
+  // rounded to float (relative error 2^-24 per component, |A_i| = 1): below 2^-21 (|c|_inf +
+  // sum h) per coordinate with room for the cast back and the products.
+  //
+  // The rounding goes through a volatile float: GCC 12 at -O2/-O3 compiled Eigen's
+  // half.cast<float>().cast<double>() into a no-op for the half-extents (the centre was rounded),
+  // which ObbTree.RoundedToFloatIsFloatAndPaddedStillContains caught; clang was right.
+  const auto to_float = [](double x) -> double {
+    volatile float f = static_cast<float>(x);
+    return f;
+  };
+  ObbTree out = *this;
+  for (ObbNode& node : out.nodes_) {
+    Obb& box = node.box;
+    const double bound = std::ldexp(box.center.cwiseAbs().maxCoeff() + box.half.sum(), -21);
+    for (int i = 0; i < 3; ++i) {
+      box.center[i] = to_float(box.center[i]);
+      box.half[i] = to_float(box.half[i]);
+      for (int j = 0; j < 3; ++j) box.axes(i, j) = to_float(box.axes(i, j));
+    }
+    if (pad) box.half.array() += bound;
+  }
+  return out;
 }
 
 }  // namespace graspcd

@@ -43,6 +43,13 @@ class ObbTree {
   int depth() const { return depth_; }
   const ObbNode& root() const { return nodes_.front(); }
 
+  // The same tree with every node box stored as floats would store it (centre, axes and
+  // half-extents each rounded to the nearest float), the triangles unchanged: the precision a
+  // float-node tree has, for the study's error sweep (the arithmetic stays double). With `pad`,
+  // each half-extent grows by a bound on what the rounding moved the box's points,
+  // 2^-21 (|c|_inf + sum of half-extents), so the rounded box still contains the exact one.
+  ObbTree rounded_to_float(bool pad) const;
+
  private:
   std::vector<ObbNode> nodes_;
   std::vector<Triangle> triangles_;

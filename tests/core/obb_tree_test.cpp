@@ -64,6 +64,34 @@ TEST(ObbTree, SphereTreeIsValidAndBalancedEnough) {
   }
 }
 
+// Float-node emulation (the study's sweep): every box component is a float; unpadded, each moved
+// by at most half a float ulp; padded, every box still contains its subtree's vertices, also for a
+// mesh far from the origin where the centre's rounding is largest.
+TEST(ObbTree, RoundedToFloatIsFloatAndPaddedStillContains) {
+  TriangleMesh sphere = testing::make_uv_sphere(0.05, 16, 32);
+  for (Vec3& v : sphere.vertices) v += Vec3(0.7, -0.3, 0.2);
+  const ObbTree tree = ObbTree::build(sphere);
+  const ObbTree rounded = tree.rounded_to_float(false);
+  const ObbTree padded = tree.rounded_to_float(true);
+  ASSERT_EQ(rounded.nodes().size(), tree.nodes().size());
+  const auto is_float = [](double x) { return static_cast<double>(static_cast<float>(x)) == x; };
+  std::size_t changed = 0;
+  for (std::size_t i = 0; i < tree.nodes().size(); ++i) {
+    const Obb& a = tree.nodes()[i].box;
+    const Obb& r = rounded.nodes()[i].box;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_TRUE(is_float(r.center[k]) && is_float(r.half[k]));
+      EXPECT_LE(std::fabs(r.center[k] - a.center[k]), std::ldexp(std::fabs(a.center[k]), -24));
+      EXPECT_LE(std::fabs(r.half[k] - a.half[k]), std::ldexp(a.half[k], -24));
+      changed += r.center[k] != a.center[k];
+      for (int j = 0; j < 3; ++j) EXPECT_TRUE(is_float(r.axes(k, j)));
+    }
+    EXPECT_GT(padded.nodes()[i].box.half.minCoeff(), r.half.minCoeff());
+  }
+  EXPECT_GT(changed, 0u) << "the rounding did something";
+  check_tree(padded, sphere, 1);
+}
+
 TEST(ObbTree, NonConvexTorus) {
   const TriangleMesh torus = testing::make_torus(0.04, 0.01, 48, 24);
   check_tree(ObbTree::build(torus, {1, ObbFit::kCovariance}), torus, 1);
