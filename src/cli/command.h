@@ -27,6 +27,7 @@ Command add_tritri_command(CLI::App& parent);
 Command add_boxbox_command(CLI::App& parent);
 Command add_meshpair_command(CLI::App& parent);
 Command add_grasp_command(CLI::App& parent);
+Command add_study_command(CLI::App& parent);
 
 // The paragraphs on the number grammar and the errors that every subcommand's help repeats.
 std::string number_grammar_help();

@@ -1,0 +1,237 @@
+// The study driver (issue 5): the quick study as a smoke test of the report's files and of the
+// answer hashes, the sweep's shards against one unsharded run, bad options, and the error counts
+// of replay.h on fabricated answers.
+#include "study/driver/study.h"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "study/driver/recording.h"
+#include "study/driver/replay.h"
+#include "support/temp_dir.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string err;
+};
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+class StudyTest : public graspcd::testing::TempDirTest {
+ protected:
+  Outcome run(const std::string& command_line) {
+    const fs::path err = dir_ / "stderr.txt";
+    const int status =
+        std::system((command_line + " > /dev/null 2> '" + err.string() + "'").c_str());
+    Outcome r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    r.err = read_file(err);
+    return r;
+  }
+  Outcome graspcd(const std::string& args) {
+    return run(std::string("'") + GRASPCD_EXE + "' " + args);
+  }
+  json load(const fs::path& p) {
+    std::ifstream in(p);
+    json j;
+    in >> j;
+    return j;
+  }
+};
+
+TEST_F(StudyTest, QuickStudyWritesTheReportAndEveryMethodAgreesWithCgal) {
+  const fs::path out = dir_ / "quick";
+  const Outcome r = graspcd("study --quick --out '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("[study] recorded example1"), std::string::npos) << "progress on stderr";
+  for (const char* f : {"study.json", "table1.csv", "box_hand.csv", "sweep.json", "sweep.csv"})
+    EXPECT_GT(fs::file_size(out / f), 100u) << f;
+
+  const json study = load(out / "study.json");
+  ASSERT_EQ(study["recordings"].size(), 1u);
+  const json& rec = study["recordings"][0];
+  EXPECT_TRUE(rec["held"].get<bool>()) << "the recorded grasp lifts and holds the cup";
+  const std::string truth = rec["truth_pairs_hash"];
+  ASSERT_GE(study["table1"]["methods"].size(), 3u);
+  for (const json& m : study["table1"]["methods"]) {
+    const json& x = m["examples"][0];
+    EXPECT_EQ(x["pairs_hash"].get<std::string>(), truth) << m["name"];
+    EXPECT_TRUE(x["agrees_with_cgal"].get<bool>()) << m["name"];
+    EXPECT_EQ(x["repeats_ms"].size(), 3u) << "--quick: 3 repeats";
+    EXPECT_LE(x["min_ms"].get<double>(), x["median_ms"].get<double>());
+    EXPECT_LE(x["median_ms"].get<double>(), x["max_ms"].get<double>());
+  }
+  // Contacts happen in the recording: the hash is not the hash of "no contact anywhere".
+  std::uint64_t tri_pairs = 0;
+  for (const json& m : study["table1"]["methods"])
+    tri_pairs += m["examples"][0]["counters"]["tri_pairs"].get<std::uint64_t>();
+  EXPECT_GT(tri_pairs, 0u);
+
+  const json& box = study["box_hand"];
+  EXPECT_TRUE(box["no_false_separated"].get<bool>());
+  EXPECT_GT(box["overlapping_exact"].get<std::uint64_t>(), 0u) << "the box hand touches";
+  for (const json& m : box["methods"]) {
+    EXPECT_EQ(m["false_separated"].get<std::uint64_t>(), 0u) << m["name"];
+    EXPECT_EQ(m["segments"]["B"]["passes"].size(), box["steps"].get<std::size_t>());
+  }
+
+  // The exact points of the sweep never miss or invent a contact.
+  const json sweep = load(out / "sweep.json");
+  for (const json& c : sweep["configs"]) {
+    const std::string name = c["name"];
+    if (name.find("naive") != std::string::npos || name.find("plain") != std::string::npos ||
+        name == "sat float nodes")
+      continue;
+    EXPECT_EQ(c["missed"].get<std::uint64_t>(), 0u) << name;
+    EXPECT_EQ(c["false_contacts"].get<std::uint64_t>(), 0u) << name;
+    EXPECT_EQ(c["false_tri_pairs"].get<std::uint64_t>(), 0u) << name;
+    if (!c["first_contact_mode"].get<bool>()) {
+      EXPECT_EQ(c["missed_tri_pairs"].get<std::uint64_t>(), 0u) << name;
+      EXPECT_EQ(c["position_error_max_mm"].get<double>(), 0.0) << name;
+    }
+  }
+
+  // The report: figures and REPORT.md from Debian's python3 with matplotlib.
+  const Outcome p =
+      run("/usr/bin/python3 '" GRASPCD_SOURCE_DIR "/report/make_report.py' '" + out.string() + "'");
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  const std::string report = read_file(out / "REPORT.md");
+  EXPECT_NE(report.find("## Table 1"), std::string::npos);
+  EXPECT_NE(report.find(truth), std::string::npos) << "the report quotes CGAL's hash";
+  for (const char* f : {"fig13_time_per_step.png", "fig14_passes.png", "fig15_time_saved.png",
+                        "table1_ratios.png", "sweep_pareto.png"}) {
+    const fs::path png = out / "figures" / f;
+    ASSERT_TRUE(fs::exists(png)) << f;
+    EXPECT_EQ(read_file(png).substr(1, 3), "PNG") << f;
+  }
+}
+
+TEST_F(StudyTest, MergedShardsGiveTheAnswersOfOneUnshardedSweep) {
+  const fs::path whole = dir_ / "whole";
+  const fs::path parts = dir_ / "parts";
+  ASSERT_EQ(
+      graspcd("study --quick --no-table --repeats 1 --out '" + whole.string() + "'").exit_code, 0);
+  for (int i = 0; i < 3; ++i) {
+    const Outcome r = graspcd("study --quick --repeats 1 --shard " + std::to_string(i) +
+                              "/3 --out '" + parts.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const auto shard = [&](int i) {
+    return "'" + (parts / ("sweep.shard-" + std::to_string(i) + "-of-3.json")).string() + "'";
+  };
+  const Outcome m = graspcd("study --merge " + shard(0) + " " + shard(1) + " " + shard(2) +
+                            " --out '" + (dir_ / "merged").string() + "'");
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  const json a = load(whole / "sweep.json");
+  const json b = load(dir_ / "merged" / "sweep.json");
+  ASSERT_EQ(a["configs"].size(), b["configs"].size());
+  ASSERT_GE(a["configs"].size(), 6u);
+  EXPECT_EQ(a["recordings"], b["recordings"]) << "the same recorded poses";
+  for (std::size_t i = 0; i < a["configs"].size(); ++i) {
+    const json& x = a["configs"][i];
+    const json& y = b["configs"][i];
+    EXPECT_EQ(x["name"], y["name"]);
+    for (const char* k : {"missed", "false_contacts", "missed_tri_pairs", "false_tri_pairs",
+                          "first_contact_step_error_sum", "counters"})
+      EXPECT_EQ(x[k], y[k]) << x["name"] << " " << k;
+    EXPECT_EQ(x["examples"][0]["pairs_hash"], y["examples"][0]["pairs_hash"]) << x["name"];
+  }
+  // A missing shard is an error that names the configuration, exit code 2.
+  const Outcome missing = graspcd("study --merge " + shard(0) + " " + shard(2) + " --out '" +
+                                  (dir_ / "bad").string() + "'");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("is in no shard given"), std::string::npos) << missing.err;
+  EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1);
+  // The same shard twice.
+  const Outcome twice = graspcd("study --merge " + shard(0) + " " + shard(0) + " --out '" +
+                                (dir_ / "bad").string() + "'");
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_NE(twice.err.find("appears twice"), std::string::npos) << twice.err;
+}
+
+TEST_F(StudyTest, BadOptionsAreOneLineErrorsWithExitCode2) {
+  for (const char* args :
+       {"study --shard 3/3", "study --shard 1", "study --shard a/b", "study --repeats 0",
+        "study --merge /nonexistent/shard.json", "study --no-table --no-sweep"}) {
+    const Outcome r = graspcd(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+  }
+  // A scene folder without the scenes: the error names the missing file.
+  const Outcome r =
+      graspcd("study --quick --mjcf '" + dir_.string() + "' --out '" + (dir_ / "o").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("example1.xml"), std::string::npos) << r.err;
+}
+
+TEST(ParseShard, AcceptsIOverNOnly) {
+  const graspcd::study::Shard s = graspcd::study::parse_shard("2/5");
+  EXPECT_EQ(s.index, 2);
+  EXPECT_EQ(s.count, 5);
+  for (const char* bad : {"5/5", "-1/2", "1/0", "1/2x", "x1/2", "12", ""})
+    EXPECT_THROW(graspcd::study::parse_shard(bad), std::invalid_argument) << bad;
+}
+
+// compare() on fabricated answers: one hidden hit is one missed contact, one invented triangle
+// pair one false pair.
+TEST(CompareAnswers, CountsWhatDiffersFromTheTruth) {
+  using namespace graspcd;
+  using namespace graspcd::study;
+  const std::string scene = std::string(GRASPCD_SOURCE_DIR) + "/mjcf/example1.xml";
+  const MeshScene ms(scene);
+  const bridge::ModelPtr model = bridge::load_model(scene);
+  mjData* d = mj_makeData(model.get());
+  mj_forward(model.get(), d);
+  Recording rec;
+  rec.scene = scene;
+  rec.ngeom = model->ngeom;
+  for (int s = 0; s < 2; ++s) {
+    rec.xpos.emplace_back(d->geom_xpos, d->geom_xpos + 3 * model->ngeom);
+    rec.xmat.emplace_back(d->geom_xmat, d->geom_xmat + 9 * model->ngeom);
+  }
+  mj_deleteData(d);
+  const Answers truth = exact_answers(ms, rec);
+  const auto querier = make_detector_querier(Method::kSat, {}, QueryMode::kAllContacts);
+  const ReplayStats st = replay(ms, rec, *querier, 2);
+  EXPECT_EQ(st.answers.pairs_hash, truth.pairs_hash);
+  EXPECT_EQ(st.total_ns.size(), 2u);
+  ErrorStats e = compare(ms, rec, st.answers, truth, false);
+  EXPECT_EQ(e.missed + e.false_contacts + e.missed_tri_pairs + e.false_tri_pairs, 0u);
+
+  Answers fake_truth = truth;
+  fake_truth.hit[1] = 1;  // step 0, pair 1 (open hand: no real contact)
+  ASSERT_EQ(truth.hit[1], 0);
+  fake_truth.tri_pairs[1] = {{0, 0}};
+  e = compare(ms, rec, st.answers, fake_truth, false);
+  EXPECT_EQ(e.missed, 1u);
+  EXPECT_EQ(e.false_contacts, 0u);
+  EXPECT_EQ(e.first_contact_error_max, 3 - 1) << "seen at step 1 instead of never (step 3)";
+
+  Answers extra = truth;
+  extra.hit[1] = 1;
+  extra.tri_pairs[1] = {{0, 0}, {1, 2}};
+  e = compare(ms, rec, extra, fake_truth, false);
+  EXPECT_EQ(e.missed, 0u);
+  EXPECT_EQ(e.false_tri_pairs, 1u);
+  EXPECT_EQ(e.missed_tri_pairs, 0u);
+  e = compare(ms, rec, fake_truth, extra, false);
+  EXPECT_EQ(e.missed_tri_pairs, 1u);
+  EXPECT_EQ(compare(ms, rec, fake_truth, extra, true).missed_tri_pairs, 0u)
+      << "first-contact mode finds one pair by design";
+}
+
+}  // namespace
