@@ -42,6 +42,7 @@
 #include "core/obb_tree.h"
 #include "core/tree_query.h"
 #include "io/mesh_io.h"
+#include "support/contact_rays.h"
 #include "support/random_geometry.h"
 #include "support/real_models.h"
 #include "support/test_scale.h"
@@ -78,11 +79,9 @@ std::vector<TrianglePair> our_pairs(const ObbTree& ta, const ObbTree& tb, const 
   return pairs;
 }
 
-// As tests/support/tree_agreement.h cases_around, without the CGAL truth: for each random
-// direction and rotation, b is moved from a's centre outward, the transition from "intersect" to
-// "not" (by our query) is bracketed by 60 bisections, and poses are taken at both sides of it
-// (touching to within rounding), just outside (1e-4 of the size), just inside (1e-3) and deep
-// inside (0.25).
+// As tests/support/tree_agreement.h cases_around, without the CGAL truth: on each contact ray
+// (bracketed by our query), poses at both sides of the transition (touching to within rounding),
+// just outside (1e-4 of the size), just inside (1e-3) and deep inside (0.25).
 std::vector<PoseCase> poses_around(const ObbTree& ta, const ObbTree& tb, double size,
                                    int directions, std::uint64_t seed) {
   testing::Rng rng(seed);
@@ -92,34 +91,13 @@ std::vector<PoseCase> poses_around(const ObbTree& ta, const ObbTree& tb, double 
     return collide(ta, tb, p, QueryMode::kFirstContact, sat, counters).intersect;
   };
   std::vector<PoseCase> cases;
-  int used = 0;
-  for (int attempt = 0; used < directions && attempt < 4 * directions; ++attempt) {
-    Pose pose;
-    pose.R = testing::random_rotation(rng);
-    const Vec3 dir = testing::random_unit_vector(rng);
-    const Vec3 base = ta.root().box.center - pose.R * tb.root().box.center;
-    const auto at = [&](double s) {
-      Pose p = pose;
-      p.t = base + s * dir;
-      return p;
-    };
-    double lo = -1, hi = 2 * size;
-    for (int i = 0; i < 16 && lo < 0; ++i) {
-      if (hits(at(size * i / 16.0))) lo = size * i / 16.0;
-    }
-    if (lo < 0 || hits(at(hi))) continue;
-    for (int i = 0; i < 60; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (hits(at(mid)) ? lo : hi) = mid;
-    }
-    ++used;
-    cases.push_back({at(lo), Kind::kTouchingIn});
-    cases.push_back({at(hi), Kind::kTouchingOut});
-    cases.push_back({at(hi + 1e-4 * size), Kind::kNearMiss});
-    cases.push_back({at(lo - 1e-3 * size), Kind::kShallow});
-    cases.push_back({at(lo - 0.25 * size), Kind::kDeep});
+  for (const testing::ContactRay& r : testing::contact_rays(ta, tb, size, directions, rng, hits)) {
+    cases.push_back({r.at(r.lo), Kind::kTouchingIn});
+    cases.push_back({r.at(r.hi), Kind::kTouchingOut});
+    cases.push_back({r.at(r.hi + 1e-4 * size), Kind::kNearMiss});
+    cases.push_back({r.at(r.lo - 1e-3 * size), Kind::kShallow});
+    cases.push_back({r.at(r.lo - 0.25 * size), Kind::kDeep});
   }
-  EXPECT_EQ(used, directions);
   return cases;
 }
 

@@ -10,6 +10,7 @@
 
 #include "core/separators.h"
 #include "exact/exact.h"
+#include "support/contact_rays.h"
 #include "support/meshes.h"
 #include "support/random_geometry.h"
 #include "support/test_scale.h"
@@ -51,48 +52,25 @@ inline void check_case(Detector& detector, const ObbTree& ta, const ObbTree& tb,
   agreement.pairs += c.truth.size();
 }
 
-// Poses of b around a with their truths: for each random direction and rotation, b is moved from
-// a's centre outward; the transition from "intersect" to "not" is bracketed by bisection (with
-// SAT's query: the truth is still CGAL's), then poses are taken at both sides of it (touching to
-// within 1e-12 of the size), just outside (near miss), just inside (shallow) and deep inside.
+// Poses of b around a with their truths: on each contact ray (bracketed with SAT's query: the
+// truth is still CGAL's), poses at both sides of the transition (touching to within 1e-12 of the
+// size), just outside (near miss), just inside (shallow) and deep inside.
 inline std::vector<PoseCase> cases_around(const TriangleMesh& a, const TriangleMesh& b,
                                           int directions, std::uint64_t seed) {
   const ObbTree ta = ObbTree::build(a), tb = ObbTree::build(b);
   const double size = ta.root().box.half.norm() + tb.root().box.half.norm();
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> gauss;
+  Rng rng(seed);
   Detector sat(Method::kSat);
   QueryCounters counters;
   const auto hits = [&](const Pose& p) {
     return sat.collide(ta, tb, p, QueryMode::kFirstContact, counters).intersect;
   };
   std::vector<PoseCase> cases;
-  int used = 0;
-  for (int attempt = 0; used < directions && attempt < 4 * directions; ++attempt) {
-    Pose pose;
-    pose.R = random_rotation(rng);
-    const Vec3 dir = Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
-    const Vec3 base = ta.root().box.center - pose.R * tb.root().box.center;
-    const auto at = [&](double s) {
-      Pose p = pose;
-      p.t = base + s * dir;
-      return p;
-    };
-    double lo = -1, hi = 2 * size;
-    for (int i = 0; i < 16 && lo < 0; ++i) {
-      if (hits(at(size * i / 16.0))) lo = size * i / 16.0;
-    }
-    if (lo < 0 || hits(at(hi))) continue;
-    for (int i = 0; i < 60; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (hits(at(mid)) ? lo : hi) = mid;
-    }
-    ++used;
-    for (double s : {lo, hi, hi + 1e-4 * size, lo - 1e-3 * size, lo - 0.25 * size}) {
-      cases.push_back(make_case(a, b, at(s)));
+  for (const ContactRay& r : contact_rays(ta, tb, size, directions, rng, hits)) {
+    for (double s : {r.lo, r.hi, r.hi + 1e-4 * size, r.lo - 1e-3 * size, r.lo - 0.25 * size}) {
+      cases.push_back(make_case(a, b, r.at(s)));
     }
   }
-  EXPECT_EQ(used, directions);
   return cases;
 }
 
