@@ -58,7 +58,7 @@ TriangleMesh revolve(const std::vector<ProfilePoint>& profile) {
   }
   mesh.vertices.emplace_back(0, 0, profile.back()[1]);
   const std::int32_t top = static_cast<std::int32_t>(mesh.vertices.size()) - 1;
-  const auto ring = [n](int i, int j) {
+  const auto ring = [&](int i, int j) {
     return static_cast<std::int32_t>(1 + (i - 1) * n + j % n);
   };
   for (int j = 0; j < n; ++j) {
