@@ -56,8 +56,8 @@ Command add_study_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "study", "The reproduction study: Table 1, Figures 13-15 and the run-time/error sweep");
   app->add_flag("--quick", o->study.quick,
-                "Smoke test (< 1 min): example 1, 3 repeats, no warm/scaled perceptron, a short "
-                "sweep");
+                "Smoke test (< 1 min): example 1, 3 repeats, no perceptron at cap 1,500 in "
+                "Table 1, a short sweep");
   app->add_flag("--full-sweep", o->study.full_sweep,
                 "The sweep on all three examples with every knob value (hours: use --shard)");
   app->add_option("--out", o->study.out_dir, "Output folder (JSON and CSV)")->capture_default_str();
