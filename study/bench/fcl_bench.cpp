@@ -12,6 +12,8 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -189,6 +191,50 @@ void BM_Build(benchmark::State& state, const TriangleMesh* mesh, int who) {
   state.counters["faces"] = static_cast<double>(mesh->faces.size());
 }
 
+// One OBB test, ours (SAT, core/sat.h) against FCL's fcl::obbDisjoint, on the same 65,536 random
+// box pairs: A at the identity, B rotated uniformly with its centre at a distance uniform in
+// [lo, hi] times the sum of the two boxes' half-diagonals (disjoint-heavy: [0.6, 1.2];
+// overlap-heavy: [0, 0.6]). Each iteration tests the next pair (cycling); "disjoint" counts the
+// answers, which must agree between the two (the pairs are random: no touching ones, where rounding
+// differs).
+struct BoxPairSet {
+  std::vector<Obb> a, b;
+  double disjoint_ours = 0, disjoint_fcl = 0;
+};
+
+BoxPairSet make_box_pairs(double lo, double hi, std::uint64_t seed) {
+  testing::Rng rng(seed);
+  BoxPairSet set;
+  for (int i = 0; i < 65536; ++i) {
+    Obb a = testing::random_box(rng, Vec3::Zero(), 0.2, 1.0);
+    a.axes = Mat3::Identity();
+    Obb b = testing::random_box(rng, Vec3::Zero(), 0.2, 1.0);
+    const double reach = a.half.norm() + b.half.norm();
+    b.center = testing::random_unit_vector(rng) * reach * testing::uniform(rng, lo, hi);
+    set.disjoint_ours += sat_separating_axis(a, b) != kSatNoAxis;
+    set.disjoint_fcl += peer::fcl_obb_disjoint(b.axes, b.center, a.half, b.half);
+    set.a.push_back(a);
+    set.b.push_back(b);
+  }
+  return set;
+}
+
+void BM_ObbTest(benchmark::State& state, const BoxPairSet* set, bool fcl) {
+  std::size_t i = 0;
+  const std::size_t n = set->a.size();
+  for (auto _ : state) {
+    const Obb& a = set->a[i];
+    const Obb& b = set->b[i];
+    const bool disjoint = fcl ? peer::fcl_obb_disjoint(b.axes, b.center, a.half, b.half)
+                              : sat_separating_axis(a, b) != kSatNoAxis;
+    benchmark::DoNotOptimize(disjoint);
+    i = i + 1 == n ? 0 : i + 1;
+  }
+  state.counters["disjoint_share"] =
+      (fcl ? set->disjoint_fcl : set->disjoint_ours) / static_cast<double>(n);
+  state.counters["answers_differ"] = std::fabs(set->disjoint_fcl - set->disjoint_ours);
+}
+
 // With --benchmark_repetitions, min and max over the repetitions beside Google Benchmark's mean,
 // median and stddev.
 double min_of(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
@@ -224,6 +270,16 @@ int main(int argc, char** argv) {
   using namespace graspcd;
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  const BoxPairSet disjoint_heavy = make_box_pairs(0.6, 1.2, 11);
+  const BoxPairSet overlap_heavy = make_box_pairs(0.0, 0.6, 12);
+  for (const auto& [label, set] :
+       {std::pair<const char*, const BoxPairSet*>{"disjoint-heavy", &disjoint_heavy},
+        {"overlap-heavy", &overlap_heavy}}) {
+    for (const bool fcl : {false, true}) {
+      const std::string name = std::string("BM_ObbTest/") + label + (fcl ? "/fcl" : "/ours");
+      add_min_max(benchmark::RegisterBenchmark(name.c_str(), BM_ObbTest, set, fcl));
+    }
+  }
   const std::vector<std::unique_ptr<Scene>> scenes = load_scenes();
   // Distance classes as a fraction of A's size, as BM_BoxPair in core_bench.cpp.
   const std::pair<const char*, double> gaps[] = {

@@ -121,4 +121,9 @@ FclQueryResult fcl_collide(const FclMesh& a, const FclMesh& b, const Pose& b_in_
   return out;
 }
 
+bool fcl_obb_disjoint(const Mat3& B, const Vec3& T, const Vec3& a, const Vec3& b) {
+  // fcl::Matrix3d and fcl::Vector3d are Eigen's Matrix3d and Vector3d: no conversion.
+  return fcl::obbDisjoint<double>(B, T, a, b);
+}
+
 }  // namespace graspcd::peer

@@ -76,4 +76,9 @@ class FclMesh {
 FclQueryResult fcl_collide(const FclMesh& a, const FclMesh& b, const Pose& b_in_a,
                            bool first_contact, std::vector<TrianglePair>* pairs = nullptr);
 
+// FCL's one OBB test, fcl::obbDisjoint (RAPID's 15-axis test with early exit, Gottschalk et al.
+// 1996) on box A at the identity with half-extents `a` and box B with rotation `B`, centre `T`
+// (both in A's frame) and half-extents `b`. True when FCL finds a separating axis.
+bool fcl_obb_disjoint(const Mat3& B, const Vec3& T, const Vec3& a, const Vec3& b);
+
 }  // namespace graspcd::peer
