@@ -67,6 +67,20 @@ def box_method(study, name):
     return None
 
 
+def finish_box_figure(fig, axes, ylabel, title, fig_dir, name, files):
+    """The shared frame of Figures 13-15: one panel per segment kind, saved as PNG."""
+    for ax, seg in zip(axes, ["B", "C"]):
+        ax.set_xlabel("grasp step")
+        ax.set_title(f"segments {seg}")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].set_ylabel(ylabel)
+    fig.suptitle(title)
+    fig.tight_layout()
+    files.append(name)
+    fig.savefig(os.path.join(fig_dir, name), dpi=110)
+    plt.close(fig)
+
+
 def figure_13_to_15(study, fig_dir):
     box = study["box_hand"]
     names = [m["name"] for m in box["methods"]]
@@ -79,16 +93,10 @@ def figure_13_to_15(study, fig_dir):
             y = [v / 1e3 for v in m["segments"][seg]["step_ns_median"]]
             ax.plot(steps, y, label=m["name"], color=METHOD_COLORS.get(m["name"]))
         ax.set_yscale("log")
-        ax.set_xlabel("grasp step")
-        ax.set_title(f"segments {seg}")
-        ax.grid(True, which="both", alpha=0.3)
-    axes[0].set_ylabel("detection time per grasp step (µs, median)")
     axes[0].legend()
-    fig.suptitle("Figure 13: detection time per grasp step, box hand")
-    fig.tight_layout()
-    files.append("fig13_time_per_step.png")
-    fig.savefig(os.path.join(fig_dir, files[-1]), dpi=110)
-    plt.close(fig)
+    finish_box_figure(fig, axes, "detection time per grasp step (µs, median)",
+                      "Figure 13: detection time per grasp step, box hand", fig_dir,
+                      "fig13_time_per_step.png", files)
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4), sharey=True)
     for ax, seg in zip(axes, ["B", "C"]):
@@ -100,16 +108,10 @@ def figure_13_to_15(study, fig_dir):
         bound = [b if b > 0 else float("nan") for b in box["bounds"][seg]["novikoff_max_finite"]]
         ax.plot(steps, bound, ":", color="gray", label="Novikoff bound (R/γ)², largest finite")
         ax.set_yscale("log")
-        ax.set_xlabel("grasp step")
-        ax.set_title(f"segments {seg}")
-        ax.grid(True, which="both", alpha=0.3)
-    axes[0].set_ylabel("perceptron passes per grasp step")
     axes[0].legend(fontsize=8)
-    fig.suptitle("Figure 14: perceptron passes per grasp step, box hand")
-    fig.tight_layout()
-    files.append("fig14_passes.png")
-    fig.savefig(os.path.join(fig_dir, files[-1]), dpi=110)
-    plt.close(fig)
+    finish_box_figure(fig, axes, "perceptron passes per grasp step",
+                      "Figure 14: perceptron passes per grasp step, box hand", fig_dir,
+                      "fig14_passes.png", files)
 
     sat = box_method(study, "sat")
     fig, axes = plt.subplots(1, 2, figsize=(11, 4), sharey=True)
@@ -123,16 +125,10 @@ def figure_13_to_15(study, fig_dir):
             ax.plot(steps, saved, label=m["name"], color=METHOD_COLORS.get(m["name"]))
         ax.axhline(0, color="black", lw=0.8)
         ax.set_yscale("symlog", linthresh=1)
-        ax.set_xlabel("grasp step")
-        ax.set_title(f"segments {seg}")
-        ax.grid(True, which="both", alpha=0.3)
-    axes[0].set_ylabel("cumulative time saved against SAT (µs)")
     axes[0].legend()
-    fig.suptitle("Figure 15: cumulative time saved against SAT (negative: lost), box hand")
-    fig.tight_layout()
-    files.append("fig15_time_saved.png")
-    fig.savefig(os.path.join(fig_dir, files[-1]), dpi=110)
-    plt.close(fig)
+    finish_box_figure(fig, axes, "cumulative time saved against SAT (µs)",
+                      "Figure 15: cumulative time saved against SAT (negative: lost), box hand",
+                      fig_dir, "fig15_time_saved.png", files)
     return names, files
 
 
