@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -17,10 +18,13 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// A subcommand: its CLI11 app, and what to run when it was the one given.
+// A subcommand: its CLI11 app, what to run when it was the one given, and for a command whose
+// findings decide the exit code (`stress`: 1 when a method broke its contract) where run() leaves
+// that code; main() returns it after flushing stdout.
 struct Command {
   CLI::App* app = nullptr;
   std::function<void()> run;
+  std::shared_ptr<int> exit_code = nullptr;
 };
 
 Command add_tritri_command(CLI::App& parent);
@@ -28,6 +32,7 @@ Command add_boxbox_command(CLI::App& parent);
 Command add_meshpair_command(CLI::App& parent);
 Command add_grasp_command(CLI::App& parent);
 Command add_study_command(CLI::App& parent);
+Command add_stress_command(CLI::App& parent);
 
 // The paragraphs on the number grammar and the errors that every subcommand's help repeats.
 std::string number_grammar_help();

@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
   const std::vector<graspcd::cli::Command> commands = {
       graspcd::cli::add_tritri_command(app),   graspcd::cli::add_boxbox_command(app),
       graspcd::cli::add_meshpair_command(app), graspcd::cli::add_grasp_command(app),
-      graspcd::cli::add_study_command(app),
+      graspcd::cli::add_study_command(app),    graspcd::cli::add_stress_command(app),
   };
 
   try {
@@ -64,11 +64,14 @@ int main(int argc, char** argv) {
   }
 
   try {
+    int exit_code = 0;
     for (const graspcd::cli::Command& command : commands) {
-      if (command.app->parsed()) command.run();
+      if (!command.app->parsed()) continue;
+      command.run();
+      if (command.exit_code) exit_code = *command.exit_code;
     }
     std::cout.flush();
-    return 0;
+    return exit_code;
   } catch (const graspcd::io::InputError& e) {
     return report_error(e.what());
   } catch (const graspcd::cli::UsageError& e) {
