@@ -109,6 +109,25 @@ TEST(StressTest, ShrunkBoxesAreCaughtAsFalseSeparations) {
   EXPECT_TRUE(report.contract_broken());
 }
 
+// The band check can fail: a "SAT" that never separates leaves gaps of up to a tenth of the size
+// unproven, far outside the slack.
+TEST(StressTest, FalseOverlapsFarOutsideTheSlackLeaveTheBand) {
+  BoxMethod lazy;
+  lazy.name = "never-separates";
+  lazy.test = [](const Obb&, const Obb&) { return BoxAnswer{false, false}; };
+  lazy.sat_band = true;
+  StressOptions options;
+  options.cases = testing::scaled(200, 50);
+  options.classes = {"box_scale"};
+  options.box_methods = {lazy};
+  const StressReport report = run_stress(options);
+  ASSERT_EQ(report.rows.size(), 1u);
+  EXPECT_EQ(report.rows[0].false_separated, 0);
+  EXPECT_GT(report.rows[0].outside_band, 0);
+  EXPECT_GT(report.rows[0].max_false_overlap_gap_rel, 1e-4);
+  EXPECT_TRUE(report.contract_broken());
+}
+
 TEST(StressTest, CasesDependOnTheSeedAlone) {
   for (std::size_t index = 0; index < stress_classes().size(); ++index) {
     SCOPED_TRACE(stress_classes()[index].name);
