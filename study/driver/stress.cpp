@@ -22,6 +22,10 @@ using Rng = std::mt19937_64;
 constexpr double kPi = 3.14159265358979323846;
 
 // ---- Seeded scalars (the standard's distributions are not specified bit for bit) --------------
+//
+// Every draw is its own statement (or an element of a braced list, which C++ evaluates in order):
+// two draws in one function call's arguments or one operator's operands would come in an
+// unspecified order, and the cases would differ between compilers.
 
 double uniform01(Rng& rng) { return static_cast<double>(rng() >> 11) * 0x1p-53; }
 double uniform(Rng& rng, double lo, double hi) { return lo + (hi - lo) * uniform01(rng); }
@@ -43,8 +47,12 @@ double normal(Rng& rng) {
 
 Vec3 random_unit(Rng& rng) {
   Vec3 v;
-  do v = Vec3(normal(rng), normal(rng), normal(rng));
-  while (v.norm() < 1e-6);
+  do {
+    const double x = normal(rng);
+    const double y = normal(rng);
+    const double z = normal(rng);
+    v = Vec3(x, y, z);
+  } while (v.norm() < 1e-6);
   return v.normalized();
 }
 
@@ -52,8 +60,13 @@ Vec3 random_unit(Rng& rng) {
 // quaternion is uniform on S^3, and its matrix uniform on SO(3).
 Mat3 random_rotation(Rng& rng) {
   Eigen::Quaterniond q;
-  do q = Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng));
-  while (q.norm() < 1e-6);
+  do {
+    const double w = normal(rng);
+    const double x = normal(rng);
+    const double y = normal(rng);
+    const double z = normal(rng);
+    q = Eigen::Quaterniond(w, x, y, z);
+  } while (q.norm() < 1e-6);
   return q.normalized().toRotationMatrix();
 }
 
@@ -69,7 +82,14 @@ Mat3 rotation_about(const Vec3& axis, double angle) {
 // +-10^[log10 lo, log10 hi], each sign half the time.
 double signed_gap(Rng& rng, double lo, double hi) {
   if (chance(rng, 0.125)) return 0.0;
-  return random_sign(rng) * log_uniform(rng, lo, hi);
+  const double sign = random_sign(rng);
+  return sign * log_uniform(rng, lo, hi);
+}
+
+// A signed angle, log-uniform in magnitude.
+double signed_log_uniform(Rng& rng, double lo, double hi) {
+  const double sign = random_sign(rng);
+  return sign * log_uniform(rng, lo, hi);
 }
 
 // ---- The classes ------------------------------------------------------------------------------
@@ -141,7 +161,9 @@ const std::vector<StressClass> kClasses = {
 // Half-extents of a box of size `size` (its largest half-extent): each 0.2..1 of it, or for a
 // sliver one or two of them 1e-6 of it (aspect 1e6) or zero (a flat box, a rectangle or a segment).
 Vec3 box_halves(Rng& rng, double size, bool sliver) {
-  Vec3 h(size * uniform(rng, 0.2, 1.0), size * uniform(rng, 0.2, 1.0), size);
+  const double h0 = size * uniform(rng, 0.2, 1.0);
+  const double h1 = size * uniform(rng, 0.2, 1.0);
+  Vec3 h(h0, h1, size);
   if (sliver) {
     const int thin = uniform_int(rng, 1, 2);
     for (int k = 0; k < thin; ++k) h[k] = chance(rng, 0.5) ? size * 1e-6 : 0.0;
@@ -189,7 +211,8 @@ BoxPair box_edge_across_edge(Rng& rng, const Obb& a, const Vec3& b_half, double 
   const Vec3 n = (si * a.axes.col(i) + sj * a.axes.col(j)).normalized();
   const Vec3 p = a.center + si * a.half[i] * a.axes.col(i) + sj * a.half[j] * a.axes.col(j) +
                  uniform(rng, -0.5, 0.5) * a.half[k] * a.axes.col(k);
-  const double phi = random_sign(rng) * uniform(rng, 0.15, 0.6);
+  const double phi_sign = random_sign(rng);
+  const double phi = phi_sign * uniform(rng, 0.15, 0.6);
   const Mat3 b_axes = rotation_about(n, theta) * rotation_about(a.axes.col(k), phi) * a.axes;
   BoxPair pair{a, Obb{Vec3::Zero(), b_axes, b_half}};
   pair.b.center = p + g * n - lowest_feature_offset(b_axes, b_half, n, k);
@@ -209,30 +232,34 @@ BoxPair make_box_case(ClassId id, Rng& rng) {
   switch (id) {
     case kBoxScale: {
       const double size = log_uniform(rng, 1e-4, 1e4);
-      return box_contact(rng, size * random_unit(rng), size, false, signed_gap(rng, 1e-9, 1e-1));
+      const Vec3 centre = size * random_unit(rng);
+      return box_contact(rng, centre, size, false, signed_gap(rng, 1e-9, 1e-1));
     }
     case kBoxFar: {
       const double size = log_uniform(rng, 1e-4, 1e4);
-      const Vec3 centre = log_uniform(rng, 1e-3, 1e5) * random_unit(rng);
+      const double distance = log_uniform(rng, 1e-3, 1e5);
+      const Vec3 centre = distance * random_unit(rng);
       return box_contact(rng, centre, size, false, signed_gap(rng, 1e-9, 1e-1));
     }
     case kBoxParallelFaces: {
       const double size = log_uniform(rng, 1e-2, 1e2);
       const Obb a{size * random_unit(rng), random_rotation(rng), box_halves(rng, size, false)};
-      const Mat3 b_axes = rotation_about(random_unit(rng), log_uniform(rng, 1e-12, 1e-3)) * a.axes;
-      return box_vertex_on_face(rng, a, b_axes, box_halves(rng, size, false),
-                                signed_gap(rng, 1e-9, 1e-1) * size);
+      const Vec3 turn_axis = random_unit(rng);
+      const Mat3 b_axes = rotation_about(turn_axis, log_uniform(rng, 1e-12, 1e-3)) * a.axes;
+      const Vec3 b_half = box_halves(rng, size, false);
+      return box_vertex_on_face(rng, a, b_axes, b_half, signed_gap(rng, 1e-9, 1e-1) * size);
     }
     case kBoxParallelEdges: {
       const double size = log_uniform(rng, 1e-2, 1e2);
       const Obb a{size * random_unit(rng), random_rotation(rng), box_halves(rng, size, false)};
-      return box_edge_across_edge(rng, a, box_halves(rng, size, false),
-                                  random_sign(rng) * log_uniform(rng, 1e-12, 1e-3),
-                                  signed_gap(rng, 1e-9, 1e-1) * size);
+      const Vec3 b_half = box_halves(rng, size, false);
+      const double theta = signed_log_uniform(rng, 1e-12, 1e-3);
+      return box_edge_across_edge(rng, a, b_half, theta, signed_gap(rng, 1e-9, 1e-1) * size);
     }
     case kBoxSliver: {
       const double size = log_uniform(rng, 1e-2, 1e2);
-      return box_contact(rng, size * random_unit(rng), size, true, signed_gap(rng, 1e-9, 1e-1));
+      const Vec3 centre = size * random_unit(rng);
+      return box_contact(rng, centre, size, true, signed_gap(rng, 1e-9, 1e-1));
     }
     case kBoxGap: {
       const double size = log_uniform(rng, 0.1, 10.0);
@@ -326,7 +353,10 @@ Vec3 inner_point(Rng& rng, const Triangle& t) {
 
 // A point above p (z 0.2..1 higher, up to 1 sideways).
 Vec3 above(Rng& rng, const Vec3& p) {
-  return p + Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, 0.2, 1.0));
+  const double x = uniform(rng, -1, 1);
+  const double y = uniform(rng, -1, 1);
+  const double z = uniform(rng, 0.2, 1.0);
+  return p + Vec3(x, y, z);
 }
 
 // Vertex on face: T1 in z = 0, T2's apex at p + g z for a point p inside T1, T2's other vertices
@@ -355,18 +385,23 @@ std::pair<Triangle, Triangle> tri_edge_across_edge(Rng& rng, double theta, doubl
 // T2 in x >= g with a vertex or an edge on x = g across from it. g > 0 disjoint; g < 0 T2's
 // vertex or edge enters T1 (a vertex: T1's wedge at (0, y0) opens to -x).
 std::pair<Triangle, Triangle> tri_coplanar_contact(Rng& rng, double g) {
+  // A point (x0 + dx, y) with dx and y drawn in this order.
+  const auto point = [&rng](double x0, double dx_lo, double dx_hi, double y_lo, double y_hi) {
+    const double dx = uniform(rng, dx_lo, dx_hi);
+    const double y = uniform(rng, y_lo, y_hi);
+    return Vec3(x0 + dx, y, 0.0);
+  };
   const double y0 = uniform(rng, -0.2, 0.2);
   Triangle t1, t2;
   if (chance(rng, 0.5)) {  // vertex against vertex (both wedges open away from x = 0)
-    t1 = Triangle{{Vec3(0, y0, 0), Vec3(-uniform(rng, 0.3, 1), y0 - uniform(rng, 0.3, 1), 0),
-                   Vec3(-uniform(rng, 0.3, 1), y0 + uniform(rng, 0.3, 1), 0)}};
-    t2 = Triangle{{Vec3(g, y0, 0), Vec3(g + uniform(rng, 0.3, 1), uniform(rng, -1, 1), 0),
-                   Vec3(g + uniform(rng, 0.3, 1), uniform(rng, -1, 1), 0)}};
+    t1 = Triangle{{Vec3(0, y0, 0), point(0, -1, -0.3, y0 - 1, y0 - 0.3),
+                   point(0, -1, -0.3, y0 + 0.3, y0 + 1)}};
+    t2 = Triangle{{Vec3(g, y0, 0), point(g, 0.3, 1, -1, 1), point(g, 0.3, 1, -1, 1)}};
   } else {  // edge against edge, overlapping along y
-    t1 = Triangle{{Vec3(0, y0 - uniform(rng, 0.2, 1), 0), Vec3(0, y0 + uniform(rng, 0.2, 1), 0),
-                   Vec3(-uniform(rng, 0.3, 1), uniform(rng, -1, 1), 0)}};
-    t2 = Triangle{{Vec3(g, y0 + uniform(rng, 0.1, 1), 0), Vec3(g, y0 - uniform(rng, 0.1, 1), 0),
-                   Vec3(g + uniform(rng, 0.3, 1), uniform(rng, -1, 1), 0)}};
+    t1 = Triangle{{point(0, 0, 0, y0 - 1, y0 - 0.2), point(0, 0, 0, y0 + 0.2, y0 + 1),
+                   point(0, -1, -0.3, -1, 1)}};
+    t2 = Triangle{{point(g, 0, 0, y0 + 0.1, y0 + 1), point(g, 0, 0, y0 - 1, y0 - 0.1),
+                   point(g, 0.3, 1, -1, 1)}};
   }
   return {t1, t2};
 }
@@ -396,8 +431,8 @@ TrianglePairCase make_triangle_case(ClassId id, Rng& rng) {
     }
     case kTriParallelEdges: {
       const double size = log_uniform(rng, 1e-2, 1e2);
-      const auto [t1, t2] = tri_edge_across_edge(
-          rng, random_sign(rng) * log_uniform(rng, 1e-12, 1e-3), signed_gap(rng, 1e-9, 1e-1));
+      const double theta = signed_log_uniform(rng, 1e-12, 1e-3);
+      const auto [t1, t2] = tri_edge_across_edge(rng, theta, signed_gap(rng, 1e-9, 1e-1));
       return place(random_placement(rng, size, size * uniform(rng, 0, 10)), t1, t2);
     }
     case kTriCoplanar: {
@@ -409,11 +444,12 @@ TrianglePairCase make_triangle_case(ClassId id, Rng& rng) {
       }
       // Parallel planes at a tiny distance (half the time none), overlapping in projection.
       const double dz = chance(rng, 0.5) ? 0.0 : signed_gap(rng, 1e-9, 1e-1);
-      return place(pl, fat_triangle(rng, 0, 0, 1), fat_triangle(rng, 0.1, 0.1, 1, dz));
+      const Triangle t1 = fat_triangle(rng, 0, 0, 1);
+      return place(pl, t1, fat_triangle(rng, 0.1, 0.1, 1, dz));
     }
     case kTriNearCoplanar: {
       const double size = log_uniform(rng, 1e-2, 1e2);
-      const double angle = random_sign(rng) * log_uniform(rng, 1e-12, 1e-3);
+      const double angle = signed_log_uniform(rng, 1e-12, 1e-3);
       const Placement pl = random_placement(rng, size, size * uniform(rng, 0, 10));
       if (chance(rng, 0.5)) {
         // The coplanar contact with T2 tilted about its own contact line x = g: T2 rises (or
@@ -425,7 +461,8 @@ TrianglePairCase make_triangle_case(ClassId id, Rng& rng) {
       // Two overlapping triangles, T2 tilted about a line through their common centre and shifted
       // by a fraction of what the tilt spans: the planes cross inside both, or just outside.
       const Triangle t1 = fat_triangle(rng, 0, 0, 1);
-      const double dz = random_sign(rng) * std::fabs(angle) * uniform(rng, 0.0, 2.0);
+      const double dz_sign = random_sign(rng);
+      const double dz = dz_sign * std::fabs(angle) * uniform(rng, 0.0, 2.0);
       const Triangle t2 = tilted_about_y(fat_triangle(rng, 0, 0, 1, dz), Vec3(0, 0, dz), angle);
       return place(pl, t1, t2);
     }
@@ -447,8 +484,9 @@ TrianglePairCase make_triangle_case(ClassId id, Rng& rng) {
           return place(pl, fat, Triangle{{tip, base, base + Vec3(1e-6, 0, 0)}});
         }
         default: {  // crossing sliver edges (heights 1e-6)
-          const auto [t1, t2] = tri_edge_across_edge(rng, uniform(rng, 0.05, kPi / 2), g, 1e-6,
-                                                     chance(rng, 0.5) ? 1e-6 : 0.0);
+          const double theta = uniform(rng, 0.05, kPi / 2);
+          const double h2 = chance(rng, 0.5) ? 1e-6 : 0.0;
+          const auto [t1, t2] = tri_edge_across_edge(rng, theta, g, 1e-6, h2);
           return place(pl, t1, t2);
         }
       }
@@ -477,7 +515,8 @@ TrianglePairCase make_triangle_case(ClassId id, Rng& rng) {
         default: {  // two segments (repeated vertices) crossing in the plane, or g apart
           const double a = uniform(rng, 0, kPi);
           const Vec3 d1(std::cos(a), std::sin(a), 0.0);
-          const Vec3 d2(-std::sin(a + uniform(rng, -1, 1)), std::cos(a + uniform(rng, -1, 1)), 0.0);
+          const double b = a + kPi / 2 + uniform(rng, -1, 1);  // 0.57..2.57 rad across d1
+          const Vec3 d2(std::cos(b), std::sin(b), 0.0);
           const Vec3 lift(0, 0, chance(rng, 0.5) ? 0.0 : g);
           const Triangle s1{{-d1, d1, d1}};
           const Triangle s2{{lift - 0.7 * d2, lift - 0.7 * d2, lift + d2}};
