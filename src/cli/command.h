@@ -18,9 +18,9 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// A subcommand: its CLI11 app, what to run when it was the one given, and for a command whose
-// findings decide the exit code (`stress`: 1 when a method broke its contract) where run() leaves
-// that code; main() returns it after flushing stdout.
+// A subcommand: its CLI11 app, what to run when it was the one given and, for a command whose
+// findings set the exit code (`stress`: 1 when a method broke its contract), where run() leaves
+// that code for main() to return.
 struct Command {
   CLI::App* app = nullptr;
   std::function<void()> run;
