@@ -19,8 +19,8 @@ class UsageError : public std::runtime_error {
 };
 
 // A subcommand: its CLI11 app, what to run when it was the one given and, for a command whose
-// findings set the exit code (`stress`: 1 when a method broke its contract), where run() leaves
-// that code for main() to return.
+// findings set the exit code (`stress`: 1 when a method broke its contract; `validate`: 1 on a
+// missed collision), where run() leaves that code for main() to return.
 struct Command {
   CLI::App* app = nullptr;
   std::function<void()> run;
@@ -33,6 +33,7 @@ Command add_meshpair_command(CLI::App& parent);
 Command add_grasp_command(CLI::App& parent);
 Command add_study_command(CLI::App& parent);
 Command add_stress_command(CLI::App& parent);
+Command add_validate_command(CLI::App& parent);
 
 // The paragraphs on the number grammar and the errors that every subcommand's help repeats.
 std::string number_grammar_help();

@@ -1,0 +1,311 @@
+// graspcd validate (issue 10): every method agrees with CGAL on the shipped scenes; a deliberately
+// broken detector is caught with its first step, and the files written for that step reproduce
+// both its answer and CGAL's through `graspcd meshpair`; the command line's table, JSON and errors.
+#include "study/driver/validate.h"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/obb_tree.h"
+#include "core/sat.h"
+#include "core/tree_query.h"
+#include "io/mesh_io.h"
+#include "support/temp_dir.h"
+#include "support/test_scale.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using graspcd::Method;
+using graspcd::study::PairRow;
+using graspcd::study::TesterSpec;
+using graspcd::study::ValidationReport;
+using nlohmann::json;
+
+const std::string kMjcf = GRASPCD_SOURCE_DIR "/mjcf/";
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// SAT on box b with every half-extent shrunk by `shrink` metres (not below 0): a tolerance with the
+// wrong sign, which proves boxes disjoint that touch or overlap by less than about the shrink.
+struct ShrunkSatSeparator {
+  double shrink = 1e-3;
+  bool disjoint(const graspcd::Obb& a, const graspcd::Obb& b, std::int32_t, std::int32_t,
+                graspcd::QueryCounters&) const {
+    graspcd::Obb smaller = b;
+    smaller.half = (smaller.half.array() - shrink).max(0.0);
+    return graspcd::sat_separating_axis(a, smaller) != graspcd::kSatNoAxis;
+  }
+};
+
+class BrokenTester : public graspcd::study::PairTester {
+ public:
+  bool tree_query(std::size_t, const graspcd::ObbTree& a, const graspcd::ObbTree& b,
+                  const graspcd::Pose& b_in_a,
+                  std::vector<graspcd::TrianglePair>& tri_pairs) override {
+    graspcd::QueryCounters counters;
+    tri_pairs.clear();
+    ShrunkSatSeparator separator;
+    return graspcd::collide(a, b, b_in_a, graspcd::QueryMode::kAllContacts, separator, counters,
+                            &tri_pairs)
+        .intersect;
+  }
+  bool box_disjoint(std::size_t, const graspcd::Obb& a, const graspcd::Obb& b) override {
+    graspcd::QueryCounters counters;
+    return ShrunkSatSeparator{}.disjoint(a, b, 0, 0, counters);
+  }
+};
+
+TesterSpec broken_tester() {
+  TesterSpec spec;
+  spec.name = "shrunk-sat";
+  spec.cli_args = "--method sat";
+  spec.make = [](std::size_t) { return std::make_unique<BrokenTester>(); };
+  return spec;
+}
+
+// The methods checked per scene, at their default settings, within the suite's time budget (the
+// closing note of issue 10 and the README give the full --all-methods tables):
+// - every method on the box hand (its box pairs are cheap);
+// - on the triangle scenes, every method but the perceptron-alone ones on every scene, and those
+//   (seconds to minutes per grasp at their cap of 1,500) on example 1, perceptron-scaled also on
+//   example 2 and the triangle hand; perceptron-nodisp proves almost no node pair of a mesh
+//   disjoint (its query tests nearly every triangle pair), so it runs on the box hand only;
+// - under the sanitizers (GRASPCD_TEST_SCALE < 1) the perceptron-alone methods run on the box hand
+//   only, Neuro-SAT (which runs the perceptron too) on example 1.
+std::vector<TesterSpec> methods_for(const std::string& scene) {
+  const bool reduced = graspcd::testing::test_scale() < 1;
+  std::vector<TesterSpec> specs;
+  for (Method m : graspcd::all_methods()) {
+    bool run = true;
+    if (scene != "hand_boxes") {
+      switch (m) {
+        case Method::kSat:
+        case Method::kSatCached:
+        case Method::kNeuroSatSticky:
+          break;
+        case Method::kNeuroSat:
+          run = !reduced || scene == "example1";
+          break;
+        case Method::kPerceptron:
+        case Method::kPerceptronWarm:
+          run = !reduced && scene == "example1";
+          break;
+        case Method::kPerceptronScaled:
+          run = !reduced && scene != "example3";
+          break;
+        case Method::kPerceptronNoDisp:
+          run = false;
+          break;
+      }
+    }
+    if (run) specs.push_back(graspcd::study::detector_tester(m, {}));
+  }
+  return specs;
+}
+
+int sum(const std::vector<PairRow>& rows, int PairRow::*field) {
+  int s = 0;
+  for (const PairRow& r : rows) s += r.*field;
+  return s;
+}
+
+// Every shipped scene, every method (methods_for): no disagreement at all on the tree pairs (their
+// answers are exact), no missed collision on the box pairs, and the grasps do touch (truth hits),
+// so the check could fail.
+class ShippedScene : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ShippedScene, EveryMethodAgreesWithCgalAtEveryStep) {
+  const std::string scene = kMjcf + GetParam() + ".xml";
+  const std::vector<TesterSpec> specs = methods_for(GetParam());
+  const ValidationReport report = graspcd::study::validate_scene(scene, specs);
+  ASSERT_EQ(report.methods.size(), specs.size());
+  EXPECT_GT(report.steps, 20);
+  EXPECT_TRUE(report.gripped) << "the grasp closes on every finger";
+  EXPECT_FALSE(report.missed_any());
+  for (const auto& table : report.methods) {
+    ASSERT_FALSE(table.rows.empty()) << table.method;
+    EXPECT_GT(sum(table.rows, &PairRow::truth_hits), 0) << "no contact to check";
+    EXPECT_EQ(sum(table.rows, &PairRow::missed), 0) << table.method;
+    for (const PairRow& row : table.rows) {
+      EXPECT_EQ(row.steps, report.steps) << table.method << ' ' << row.pair;
+      EXPECT_EQ(row.missed_tri_pairs, 0u) << table.method << ' ' << row.pair;
+      if (!row.box_box) {
+        // Tree pairs end in exact triangle tests: the perceptron's unproven boxes only cost
+        // time, never an answer.
+        EXPECT_EQ(row.agree, row.steps) << table.method << ' ' << row.pair;
+        EXPECT_FALSE(row.disagreed) << table.method << ' ' << row.pair;
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Mjcf, ShippedScene,
+                         ::testing::Values("example1", "example2", "example3", "hand_boxes",
+                                           "hand_triangles"));
+
+class ValidateTest : public graspcd::testing::TempDirTest {
+ protected:
+  struct Outcome {
+    int exit_code = -1;
+    std::string out;
+    std::string err;
+  };
+  Outcome graspcd(const std::string& args) {
+    const fs::path out = dir_ / "stdout.txt";
+    const fs::path err = dir_ / "stderr.txt";
+    const std::string line = std::string("'") + GRASPCD_EXE + "' " + args + " > '" + out.string() +
+                             "' 2> '" + err.string() + "'";
+    const int status = std::system(line.c_str());
+    Outcome r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    r.out = read_file(out);
+    r.err = read_file(err);
+    return r;
+  }
+};
+
+// The broken separator misses the first contacts. validate reports them with the first step, and
+// the files written for that step reproduce everything: the correct detector and CGAL (through
+// meshpair) give CGAL's count, the broken separator on the reloaded meshes gives its count again.
+TEST_F(ValidateTest, BrokenDetectorIsCaughtAndItsFirstDisagreementReproduces) {
+  graspcd::study::ValidateOptions options;
+  options.out_dir = (dir_ / "cases").string();
+  const ValidationReport report = graspcd::study::validate_scene(
+      kMjcf + "example1.xml", {graspcd::study::detector_tester(Method::kSat, {}), broken_tester()},
+      options);
+  ASSERT_EQ(report.methods.size(), 2u);
+  EXPECT_FALSE(report.methods[0].missed_any()) << "sat";
+  ASSERT_TRUE(report.methods[1].missed_any()) << "the broken separator is caught";
+  EXPECT_TRUE(report.missed_any());
+
+  int caught = 0;
+  for (std::size_t i = 0; i < report.methods[1].rows.size(); ++i) {
+    const PairRow& broken = report.methods[1].rows[i];
+    const PairRow& sat = report.methods[0].rows[i];
+    EXPECT_EQ(broken.truth_hits, sat.truth_hits) << "same truth for both methods";
+    EXPECT_EQ(broken.false_contacts, 0) << "shrinking only loses contacts";
+    EXPECT_EQ(broken.false_tri_pairs, 0u);
+    if (!broken.disagreed) {
+      EXPECT_EQ(broken.missed + broken.pair_mismatch, 0) << broken.pair;
+      continue;
+    }
+    ++caught;
+    const graspcd::study::Disagreement& d = broken.first;
+    EXPECT_TRUE(d.truth) << broken.pair;
+    EXPECT_LT(d.answer_pairs, d.truth_pairs) << broken.pair;
+    EXPECT_GE(d.step, 1);
+    EXPECT_LE(d.step, report.steps);
+    ASSERT_EQ(d.files.size(), 3u);
+    for (const std::string& f : d.files) ASSERT_TRUE(fs::exists(f)) << f;
+    EXPECT_NE(d.command.find("graspcd meshpair"), std::string::npos);
+
+    // meshpair on the written files: the exact answer and the correct detector's both give
+    // CGAL's count at that step.
+    const std::string files =
+        "'" + d.files[0] + "' '" + d.files[1] + "' --poses '" + d.files[2] + "'";
+    const std::string expected = "1 " + std::to_string(d.truth_pairs) + " ";
+    for (const char* mode : {"--exact", "--method sat", "--method perceptron"}) {
+      const Outcome r = graspcd("meshpair " + files + " " + mode);
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      EXPECT_EQ(r.out.substr(0, expected.size()), expected) << mode << ": " << r.out;
+    }
+    // The broken separator on the reloaded meshes and pose gives its own count again: the files
+    // hold the doubles the detector saw.
+    const graspcd::TriangleMesh a = graspcd::io::load_mesh(d.files[0]);
+    const graspcd::TriangleMesh b = graspcd::io::load_mesh(d.files[1]);
+    std::istringstream pose_text(read_file(d.files[2]).substr(read_file(d.files[2]).find('\n')));
+    graspcd::Pose pose;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) pose_text >> pose.R(r, c);
+    }
+    pose_text >> pose.t.x() >> pose.t.y() >> pose.t.z();
+    std::vector<graspcd::TrianglePair> found;
+    BrokenTester tester;
+    const bool hit =
+        tester.tree_query(0, graspcd::ObbTree::build(a), graspcd::ObbTree::build(b), pose, found);
+    EXPECT_EQ(hit, d.answer);
+    EXPECT_EQ(found.size(), d.answer_pairs);
+  }
+  EXPECT_GT(caught, 0);
+}
+
+TEST_F(ValidateTest, CommandPrintsTheTableAndJsonAndExitsZeroOnTheBoxHand) {
+  const Outcome text = graspcd("validate '" + kMjcf + "hand_boxes.xml' --steps 30 --method sat");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find(": 30 closing grasp steps"), std::string::npos) << "--steps caps them";
+  EXPECT_NE(text.out.find("first_disagreement"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("finger1_B/object_cap"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("# result: no missed collision"), std::string::npos) << text.out;
+
+  const Outcome j =
+      graspcd("validate '" + kMjcf + "hand_boxes.xml' --steps 80 --all-methods --json --out '" +
+              (dir_ / "cases").string() + "'");
+  ASSERT_EQ(j.exit_code, 0) << j.err;
+  const json doc = json::parse(j.out);
+  ASSERT_EQ(doc["methods"].size(), graspcd::all_methods().size() - 1);
+  for (const json& m : doc["methods"]) {
+    EXPECT_NE(m["method"], "perceptron-nodisp") << "--all-methods asks for it by name only";
+  }
+  EXPECT_FALSE(doc["missed_any"].get<bool>());
+  EXPECT_TRUE(doc["gripped"].get<bool>());
+  int truth = 0;
+  for (const json& m : doc["methods"]) {
+    for (const json& p : m["pairs"]) {
+      EXPECT_EQ(p["path"], "boxes");
+      EXPECT_EQ(p["missed"].get<int>(), 0) << m["method"] << ' ' << p["pair"];
+      EXPECT_EQ(p["steps"].get<int>(), doc["steps"].get<int>());
+      truth += p["truth_hits"].get<int>();
+      // A false collision (a perceptron that hit its cap) comes with its reproducing boxbox line.
+      if (!p["first_disagreement"].is_null()) {
+        const json& d = p["first_disagreement"];
+        EXPECT_FALSE(d["truth"].get<bool>());
+        ASSERT_EQ(d["files"].size(), 1u);
+        const Outcome exact = graspcd("boxbox --exact '" + d["files"][0].get<std::string>() + "'");
+        EXPECT_EQ(exact.out.substr(0, 1), "0") << "CGAL: disjoint";
+      }
+    }
+  }
+  EXPECT_GT(truth, 0) << "the box hand touches";
+}
+
+TEST_F(ValidateTest, BadInputIsOneLineAndExitCodeTwo) {
+  const Outcome missing = graspcd("validate '" + (dir_ / "none.xml").string() + "'");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("none.xml: cannot open the scene"), std::string::npos) << missing.err;
+  EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
+
+  const Outcome no_config = graspcd("validate '" + kMjcf + "example1.xml' --config '" +
+                                    (dir_ / "none.pairs.json").string() + "'");
+  EXPECT_EQ(no_config.exit_code, 2);
+  EXPECT_NE(no_config.err.find("none.pairs.json: cannot open the pair config"), std::string::npos)
+      << no_config.err;
+
+  const std::string config =
+      write("bad.pairs.json", R"({"pairs": [{"a": "finger*", "b": "nothing*"}]})");
+  const Outcome nothing = graspcd("validate '" + kMjcf + "example1.xml' --config '" + config + "'");
+  EXPECT_EQ(nothing.exit_code, 2);
+  EXPECT_NE(nothing.err.find("bad.pairs.json"), std::string::npos) << nothing.err;
+  EXPECT_NE(nothing.err.find("nothing*"), std::string::npos) << nothing.err;
+  EXPECT_EQ(std::count(nothing.err.begin(), nothing.err.end(), '\n'), 1) << nothing.err;
+
+  const Outcome both = graspcd("validate '" + kMjcf + "example1.xml' --all-methods --method sat");
+  EXPECT_EQ(both.exit_code, 2) << both.err;
+  const Outcome steps = graspcd("validate '" + kMjcf + "example1.xml' --steps 0");
+  EXPECT_EQ(steps.exit_code, 2) << steps.err;
+}
+
+}  // namespace
