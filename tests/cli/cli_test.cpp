@@ -131,6 +131,22 @@ TEST_F(CliTest, NanAndInfAreErrors) {
   EXPECT_EQ(r.err, inf + ":3: non-finite number \"-Infinity\" (nan and inf are not accepted)\n");
 }
 
+// A mesh file with a non-finite coordinate: one line naming the file and the line, exit 2, and no
+// answers (meshes load before any pose is read).
+TEST_F(CliTest, MeshpairNonFiniteMeshCoordinatesAreErrors) {
+  const std::string good = write("good.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string bad = write("bad.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+  Result r = run("meshpair " + good + " " + bad, "1 0 0 0 1 0 0 0 1  0 0 0\n");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err,
+            bad + ":2: vertex 2: non-finite number \"nan\" (nan and inf are not accepted)\n");
+  const std::string over = write("over.obj", "v 0 0 0\nv 1 0 0\nv 0 1e999 0\nf 1 2 3\n");
+  r = run("meshpair " + over + " " + good, "1 0 0 0 1 0 0 0 1  0 0 0\n");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, over + ":3: vertex 3: number \"1e999\" overflows a double\n");
+}
+
 TEST_F(CliTest, WrongCountIsAnError) {
   const std::string path = write("count.txt", "0 0 0 1 0 0 0 1 0  0 0 1 0 0 2 1 0\n");
   const Result r = run("tritri " + path);
