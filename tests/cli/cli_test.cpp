@@ -131,6 +131,35 @@ TEST_F(CliTest, NanAndInfAreErrors) {
   EXPECT_EQ(r.err, inf + ":3: non-finite number \"-Infinity\" (nan and inf are not accepted)\n");
 }
 
+// Every spelling strtod reads as non-finite, and overflow, in each command's text input.
+TEST_F(CliTest, NonFiniteNumbersAreErrorsInEveryCommand) {
+  const std::string a = write("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  for (const std::string token : {"nan", "NaN", "-nan", "nan(0x1)", "inf", "-INF", "infinity"}) {
+    const std::string expected =
+        ":1: non-finite number \"" + token + "\" (nan and inf are not accepted)\n";
+    Result r = run("tritri", "0 0 0 1 0 0 0 1 0  0 0 1 0 0 2 " + token + " 0 2\n");
+    EXPECT_EQ(r.exit_code, 2) << token;
+    EXPECT_EQ(r.err, "<stdin>" + expected);
+    r = run("boxbox", "0 0 0 1 0 0 0 1 0 0 0 1 1 1 1  2 0 0 1 0 0 0 1 0 0 0 1 1 1 " + token + "\n");
+    EXPECT_EQ(r.exit_code, 2) << token;
+    EXPECT_EQ(r.err, "<stdin>" + expected);
+    r = run("meshpair " + a + " " + a, "1 0 0 0 1 0 0 0 1  0 " + token + " 0\n");
+    EXPECT_EQ(r.exit_code, 2) << token;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "<stdin>" + expected);
+  }
+  const std::string overflow = ":1: number \"1e999\" overflows a double\n";
+  Result r = run("tritri", "0 0 0 1 0 0 0 1 0  0 0 1 0 0 2 1e999 0 2\n");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "<stdin>" + overflow);
+  r = run("boxbox", "0 0 0 1 0 0 0 1 0 0 0 1 1 1 1  1e999 0 0 1 0 0 0 1 0 0 0 1 1 1 1\n");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "<stdin>" + overflow);
+  r = run("meshpair " + a + " " + a, "1 0 0 0 1 0 0 0 1  1e999 0 0\n");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "<stdin>" + overflow);
+}
+
 // A mesh file with a non-finite coordinate: one line naming the file and the line, exit 2, and no
 // answers (meshes load before any pose is read).
 TEST_F(CliTest, MeshpairNonFiniteMeshCoordinatesAreErrors) {
