@@ -486,6 +486,7 @@ TEST_F(CliTest, GraspPrintsAHeaderOneLinePerGraspStepAndASummary) {
   EXPECT_EQ(out[9].rfind("# method sat; first contact (grasp step): finger1_A=-", 0), 0u) << out[9];
   EXPECT_EQ(out[10].rfind("# gripped no; held no;", 0), 0u) << out[10];
   EXPECT_EQ(out[11].rfind("# detection ns ", 0), 0u) << out[11];
+  EXPECT_NE(out[11].find(" 0 non-finite skips"), std::string::npos) << out[11];
 }
 
 TEST_F(CliTest, GraspJsonIsOneDocumentWithTheSameRecords) {
@@ -536,6 +537,66 @@ TEST_F(CliTest, GraspMissingSceneOrConfigIsOneLineAndExitTwo) {
   ASSERT_EQ(lines(r.err).size(), 1u) << r.err;
   EXPECT_EQ(r.err.rfind(config + ": ", 0), 0u) << r.err;
   EXPECT_EQ(r.out, "");
+}
+
+// A copy of a shipped scene in the test folder, with its meshes in DIR/meshes (the scene's
+// meshdir); `skip_mesh` is left out, and `open_mesh` is written without its last face.
+std::string copy_scene(const fs::path& dir, const std::string& name, const std::string& skip_mesh,
+                       const std::string& open_mesh) {
+  const fs::path mjcf = fs::path(GRASPCD_DATA_DIR).parent_path() / "mjcf";
+  fs::create_directories(dir / "meshes");
+  for (const auto& entry : fs::directory_iterator(mjcf / "meshes")) {
+    const std::string file = entry.path().filename().string();
+    if (file == skip_mesh) continue;
+    std::string text = read_file(entry.path());
+    if (file == open_mesh) {
+      text.erase(text.rfind("\nf ") + 1);  // drop the last face
+    }
+    std::ofstream(dir / "meshes" / file, std::ios::binary) << text;
+  }
+  fs::copy_file(mjcf / (name + ".xml"), dir / (name + ".xml"));
+  fs::copy_file(mjcf / (name + ".pairs.json"), dir / (name + ".pairs.json"));
+  return (dir / (name + ".xml")).string();
+}
+
+TEST_F(CliTest, GraspMjcfWithAMissingMeshFileIsOneLineAndExitTwo) {
+  const std::string scene = copy_scene(dir_ / "s", "example1", "cup.obj", "");
+  const Result r = run("grasp " + scene + " --max-steps 2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  const std::vector<std::string> err = lines(r.err);
+  ASSERT_EQ(err.size(), 1u) << r.err;
+  EXPECT_EQ(err[0].rfind(scene + ": ", 0), 0u) << err[0];
+  EXPECT_NE(err[0].find("cup.obj"), std::string::npos) << err[0];
+}
+
+TEST_F(CliTest, GraspConfigWhosePatternMatchesNothingIsOneLineAndExitTwo) {
+  const std::string config =
+      write("none.pairs.json", R"({"pairs": [{"a": "geom:nothing*", "b": "body:object"}]})");
+  const Result r = run("grasp " + shipped_scene("example1") + " --config " + config);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, config + ": pattern 'geom:nothing*' matches no collidable geom\n");
+}
+
+// An open object mesh: the containment check cannot be decided inside it, so the registry warns
+// on one line and the grasp goes on with surface contacts (exit 0).
+TEST_F(CliTest, GraspWithAnOpenMeshWarnsAndGoesOn) {
+  const std::string scene = copy_scene(dir_ / "s", "example1", "", "cup.obj");
+  const Result r = run("grasp " + scene + " --max-steps 2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> err = lines(r.err);
+  ASSERT_EQ(err.size(), 1u) << r.err;
+  const std::string config = (dir_ / "s" / "example1.pairs.json").string();
+  EXPECT_EQ(err[0].rfind("warning: " + config + ": mesh ", 0), 0u) << err[0];
+  EXPECT_NE(err[0].find("'cup' is not closed: "), std::string::npos) << err[0];
+  EXPECT_NE(err[0].find("boundary edges"), std::string::npos) << err[0];
+  EXPECT_NE(err[0].find("containment inside it is not checked"), std::string::npos) << err[0];
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc.at("warnings").size(), 1u);
+  EXPECT_EQ("warning: " + doc.at("warnings")[0].get<std::string>(), err[0]);
+  EXPECT_EQ(doc.at("steps").size(), 2u);
+  EXPECT_EQ(doc.at("nonfinite_skips"), 0);
 }
 
 TEST_F(CliTest, GraspHelpDocumentsTheOutput) {
