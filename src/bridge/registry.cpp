@@ -116,7 +116,8 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
+    // parse_error, and out_of_range for a number that overflows a double (e.g. 1e999).
     std::string what = e.what();
     for (char& c : what) {
       if (c == '\n' || c == '\r') c = ' ';

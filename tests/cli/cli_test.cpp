@@ -577,6 +577,15 @@ TEST_F(CliTest, GraspConfigWhosePatternMatchesNothingIsOneLineAndExitTwo) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.out, "");
   EXPECT_EQ(r.err, config + ": pattern 'geom:nothing*' matches no collidable geom\n");
+  // A number that overflows a double is bad JSON, named like every other config error.
+  const std::string depth =
+      write("depth.pairs.json", R"({"max_depth": 1e999, "pairs": [{"a": "x", "b": "y"}]})");
+  const Result d = run("grasp " + shipped_scene("example1") + " --config " + depth);
+  EXPECT_EQ(d.exit_code, 2);
+  EXPECT_EQ(d.out, "");
+  EXPECT_EQ(d.err, depth +
+                       ": bad JSON: [json.exception.out_of_range.406] number overflow parsing "
+                       "'1e999'\n");
 }
 
 // An open object mesh: the containment check cannot be decided inside it, so the registry warns
