@@ -172,6 +172,16 @@ Registry* find_registry(const mjModel* m) {
   return nullptr;
 }
 
+bool bad_geom_placement(const mjData* d, int g) {
+  for (int k = 0; k < 3; ++k) {
+    if (mju_isBad(d->geom_xpos[3 * g + k])) return true;
+  }
+  for (int k = 0; k < 9; ++k) {
+    if (mju_isBad(d->geom_xmat[9 * g + k])) return true;
+  }
+  return false;
+}
+
 Pose relative_pose(const mjData* d, int g1, int g2) {
   const Mat3 R1 = from_row_major(d->geom_xmat + 9 * g1);
   const Mat3 R2 = from_row_major(d->geom_xmat + 9 * g2);
@@ -285,7 +295,14 @@ int collide_box_box(Registry& registry, ServedPair& served, const mjData* d, mjC
 int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
                         int g2) {
   ServedPair& served = registry.pair(pair_index);
-  ++registry.stats().calls;
+  BridgeStats& stats = registry.stats();
+  ++stats.calls;
+  // A NaN or infinite placement: no query on a meaningless pose, no contacts, counted.
+  if (bad_geom_placement(d, g1) || bad_geom_placement(d, g2)) {
+    ++stats.nonfinite_skips;
+    served.contained = false;
+    return 0;
+  }
   return served.path == PairPath::kBoxBox ? collide_box_box(registry, served, d, con, g1, g2)
                                           : collide_trees(registry, served, d, con, g1, g2);
 }

@@ -15,6 +15,12 @@
 // box-box path, or the tree query) and returns our contacts; every other call goes to the saved
 // original of its own type pair, unchanged, with the same arguments.
 //
+// Non-finite state: a served call whose geoms' geom_xpos or geom_xmat hold a NaN, an infinity or
+// any number beyond MuJoCo's mjMAXVAL (1e10, the bound of its own mju_isBad) is skipped: it returns
+// 0 contacts without running the tree query or the box test (whose answers on a NaN pose would mean
+// nothing) and counts one BridgeStats::nonfinite_skips. Delegated pairs go to MuJoCo unchanged, as
+// always.
+//
 // Contract per served call (mujoco-2.2-notes.md): at most mjMAXCONPAIR contacts, dist <= 0,
 // frame[0..2] the unit normal from geom1 toward geom2 and frame[3..8] a right-handed tangent
 // basis (box-box pairs: MuJoCo's own contacts); MuJoCo fills the rest. Margins are ignored on
@@ -57,13 +63,19 @@ void detach(const Registry& registry);
 // The registry attached to `m`, or nullptr.
 Registry* find_registry(const mjModel* m);
 
-// Runs a served pair by its path (registry.h). Trees: the tree query with the pair's detector in
-// all-contacts mode, contacts from the intersecting triangle pairs (contact.h). Box-box: the
-// detector's box test, then MuJoCo's box-box function with margin 0 (the saved original; the
-// current table entry when not installed) unless the boxes were proven disjoint. At most
-// mjMAXCONPAIR contacts written to `con`. Returns the count. Updates the registry's statistics.
+// Runs a served pair by its path (registry.h); a pair whose placement in `d` holds a bad number
+// is skipped and counted (see "Non-finite state" above). Trees: the tree query with the pair's
+// detector in all-contacts mode, contacts from the intersecting triangle pairs (contact.h).
+// Box-box: the detector's box test, then MuJoCo's box-box function with margin 0 (the saved
+// original; the current table entry when not installed) unless the boxes were proven disjoint. At
+// most mjMAXCONPAIR contacts written to `con`. Returns the count. Updates the registry's
+// statistics.
 int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
                         int g2);
+
+// True when geom_xpos or geom_xmat of geom `g` in `d` holds a number MuJoCo calls bad
+// (mju_isBad: NaN, or |x| > mjMAXVAL = 1e10, which covers the infinities).
+bool bad_geom_placement(const mjData* d, int g);
 
 // geom2 placed in geom1's frame from d->geom_xpos / d->geom_xmat (row-major):
 // R = R1^T R2, t = R1^T (p2 - p1), so that x_1 = R x_2 + t.

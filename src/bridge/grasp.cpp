@@ -41,6 +41,7 @@ class GraspRun {
       : m_(m),
         d_(d),
         registry_(registry),
+        scene_(scene),
         controller_(m, joint_names(), PdGains::critically_damped(options.omega)) {
     const std::size_t n = controller_.size();
     q_d_.resize(n);
@@ -87,6 +88,7 @@ class GraspRun {
     mj_step2(m_, d_);
     wall_ns_ += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count();
     ++physics_steps_;
+    check_finite();
     touching_.fill(false);
     contacts_ = 0;
     for (int i = 0; i < d_->ncon; ++i) {
@@ -104,12 +106,34 @@ class GraspRun {
     max_contacts_ = std::max(max_contacts_, contacts_);
   }
 
+  // Stops the grasp when MuJoCo found a bad number in the state or the controls during the last
+  // physics step (grasp.h, "Non-finite state"): it has reset the state or zeroed the controls.
+  void check_finite() const {
+    static const std::array<std::pair<int, const char*>, 4> kBad = {{
+        {mjWARN_BADQPOS, "qpos"},
+        {mjWARN_BADQVEL, "qvel"},
+        {mjWARN_BADQACC, "qacc"},
+        {mjWARN_BADCTRL, "ctrl"},
+    }};
+    for (const auto& [warning, what] : kBad) {
+      const mjWarningStat& w = d_->warning[warning];
+      if (w.number == 0) continue;
+      throw std::runtime_error(
+          scene_ + ": the simulation went non-finite in " + phase_ + " (physics step " +
+          std::to_string(physics_steps_) + "): MuJoCo found a bad number (NaN or beyond 1e10) in " +
+          what + " at index " + std::to_string(w.lastinfo) +
+          (warning == mjWARN_BADCTRL ? " and zeroed the controls" : " and reset the state") +
+          "; the grasp stops");
+    }
+  }
+
   // The bridge's statistics since the last call (zero with native collision).
   BridgeStats take_stats() {
     if (!registry_) return BridgeStats{};
     BridgeStats s = registry_->take_stats();
     detection_ns_total_ += s.detection_ns;
     contained_total_ += s.contained;
+    nonfinite_total_ += s.nonfinite_skips;
     return s;
   }
 
@@ -129,6 +153,8 @@ class GraspRun {
   const mjModel* m_;
   mjData* d_;
   Registry* registry_;
+  std::string scene_;
+  std::string phase_ = "the closing";  // for messages
   ComputedTorqueController controller_;
   std::vector<double> q_d_, qd_d_, qdd_d_;
   std::vector<int> segment_of_geom_;
@@ -143,6 +169,7 @@ class GraspRun {
   std::int64_t wall_ns_ = 0;
   std::uint64_t detection_ns_total_ = 0;
   std::uint64_t contained_total_ = 0;
+  std::uint64_t nonfinite_total_ = 0;
 };
 
 // Phase 1, paper section 9 (DESIGN.md "Semantics"): grasp steps of 0.003 rad until each finger
@@ -161,6 +188,7 @@ void close_fingers(GraspRun& run, const GraspOptions& options, GraspResult& resu
       end[i] = stopped[i] ? start[i] : std::min(start[i] + kGraspStepRad, run.upper_[i]);
     }
     std::array<bool, kFingerSegments> touched{};
+    run.phase_ = "grasp step " + std::to_string(k) + " of the closing";
     for (int p = 1; p <= n; ++p) {
       const double f = static_cast<double>(p) / n;
       for (std::size_t i = 0; i < kFingerSegments; ++i) {
@@ -180,6 +208,7 @@ void close_fingers(GraspRun& run, const GraspOptions& options, GraspResult& resu
     record.triangle_tests = stats.counters.tri_tests;
     record.served_calls = stats.calls;
     record.contained = stats.contained;
+    record.nonfinite_skips = stats.nonfinite_skips;
     record.object_z = run.object_z();
     result.steps.push_back(record);
     result.detection_ns_close += stats.detection_ns;
@@ -299,10 +328,11 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
     install_guard = std::make_unique<ScopedInstall>();
     attach(*registry);
   }
+  GraspResult result;
+  if (registry) result.warnings = registry->warnings();
 
   DataPtr data(mj_makeData(m));
   mjData* d = data.get();
-  GraspResult result;
   result.scene = scene_path;
   result.native = options.native;
   result.method = options.native ? "native" : method_name(config.method);
@@ -315,6 +345,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   close_fingers(run, options, result);
 
   // Phase 2: squeeze, then settle.
+  run.phase_ = "the squeeze";
   std::vector<double> closed(run.q_d_.begin(), run.q_d_.end());
   const auto observe_nothing = [] {};
   run.run_phase(
@@ -327,6 +358,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
         }
       },
       observe_nothing);
+  run.phase_ = "the settling";
   run.run_phase(
       options.settle_time, [](double) {}, observe_nothing);
   result.object_z_gripped = run.object_z();
@@ -345,6 +377,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   const double q2 = run.q_d_[1];
   const double q3 = run.q_d_[2];
   const double period = options.lift_time;
+  run.phase_ = "the lift";
   run.run_phase(
       period,
       [&](double t) {
@@ -366,6 +399,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   const std::array<double, 3> rel0 = run.object_in_palm();
   result.hold_min_z = run.object_z();
   result.hold_drift = 0;
+  run.phase_ = "the hold";
   run.run_phase(
       options.hold_time, [](double) {},
       [&] {
@@ -389,6 +423,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
                                                : 0.0;
   result.detection_ns_total = run.detection_ns_total_;
   result.contained_calls = run.contained_total_;
+  result.nonfinite_skips = run.nonfinite_total_;
   result.max_contacts = run.max_contacts_;
   registry.reset();  // detaches before the model goes
   return result;

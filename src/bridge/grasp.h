@@ -27,6 +27,16 @@
 //   4. Hold `hold_time` s. The object is held when its final height is >= 0.03 m above its
 //      initial height, stays so during the hold, and its position relative to the palm moves by
 //      less than 0.01 m during the hold.
+//
+// Non-finite state: after every physics step the driver reads MuJoCo's warnings for a bad number
+// (NaN, or beyond mjMAXVAL = 1e10) in qpos, qvel, qacc or ctrl (mjWARN_BADQPOS, mjWARN_BADQVEL,
+// mjWARN_BADQACC, mjWARN_BADCTRL). MuJoCo 2.2 answers the first three by resetting the state to
+// qpos0 (mj_checkPos, mj_checkVel, mj_checkAcc) and the last by zeroing the controls, so a grasp
+// that went on would silently start over or drop its torques: run_grasp stops instead with a
+// std::runtime_error, "SCENE: the simulation went non-finite ...", naming the phase, the grasp
+// step or time, and the warning (the command line prints it on one line and exits with code 2).
+// Served pairs that reach graspcd's callback with a bad placement are skipped and counted
+// (BridgeStats::nonfinite_skips, per grasp step and in total).
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -91,8 +101,9 @@ struct GraspStepRecord {
   std::uint64_t box_tests = 0;
   std::uint64_t triangle_tests = 0;
   std::uint64_t served_calls = 0;
-  std::uint64_t contained = 0;  // served calls that found a segment wholly inside the object
-  double object_z = 0;          // object body height after the step, m
+  std::uint64_t contained = 0;        // served calls that found a segment wholly inside the object
+  std::uint64_t nonfinite_skips = 0;  // served calls skipped on a non-finite placement
+  double object_z = 0;                // object body height after the step, m
 };
 
 struct GraspResult {
@@ -115,6 +126,9 @@ struct GraspResult {
   std::uint64_t detection_ns_total = 0;  // all phases
   int max_contacts = 0;                  // most finger-object contacts in one physics step
   std::uint64_t contained_calls = 0;     // containment findings over all phases (registry.h)
+  std::uint64_t nonfinite_skips = 0;  // served calls skipped on a non-finite placement, all phases
+  // The registry's warnings (registry.h, Registry::warnings()), one line each.
+  std::vector<std::string> warnings;
 };
 
 // The segment names in record order: finger1_A, finger1_B, ..., finger4_C.
@@ -123,7 +137,7 @@ const std::array<std::string, kFingerSegments>& finger_segment_names();
 // Loads `scene_path` and runs the grasp. Throws GraspInputError for a missing or bad MJCF (the
 // message "FILE: <MuJoCo's message on one line>"), or a missing or bad pair config (the
 // registry's message, which starts with the config's name); std::runtime_error for a scene that
-// breaks the scene contract.
+// breaks the scene contract, and for a simulation that goes non-finite (see above).
 GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options = {});
 
 // Loads an MJCF file. A missing file or MuJoCo's error become a GraspInputError whose message is

@@ -116,7 +116,8 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
+    // parse_error, and out_of_range for a number that overflows a double (e.g. 1e999).
     std::string what = e.what();
     for (char& c : what) {
       if (c == '\n' || c == '\r') c = ' ';
@@ -270,6 +271,23 @@ Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::st
         built = &it->second;
       }
       geom_trees_[static_cast<std::size_t>(g)] = built;
+    }
+  }
+  // Open meshes (core/containment.h): the separate containment check needs a closed solid, so it
+  // is skipped inside them; their pairs still get every surface contact. Once per mesh.
+  std::set<int> warned;
+  for (const ServedPair& p : pairs_) {
+    if (p.path != PairPath::kTrees) continue;
+    for (int g : {p.geom_lo, p.geom_hi}) {
+      const MeshTree* t = geom_trees_[static_cast<std::size_t>(g)];
+      if (t->closedness.closed() || m->geom_type[g] != mjGEOM_MESH) continue;
+      const int mesh = m->geom_dataid[g];
+      if (!warned.insert(mesh).second) continue;
+      const std::string mname = name_of(m, mjOBJ_MESH, mesh);
+      warnings_.push_back(source + ": mesh " + std::to_string(mesh) +
+                          (mname.empty() ? "" : " '" + mname + "'") + " is " +
+                          t->closedness.describe() +
+                          "; containment inside it is not checked (surface contacts only)");
     }
   }
 }

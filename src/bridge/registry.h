@@ -92,6 +92,12 @@ struct BridgeStats {
   // and the time that check took (not part of detection_ns).
   std::uint64_t contained = 0;
   std::uint64_t containment_ns = 0;
+  // Served calls skipped because MuJoCo's state held a non-finite number (NaN or +-inf, or beyond
+  // mjMAXVAL = 1e10 as mju_isBad says) in the pair's geom_xpos or geom_xmat: the pair gets 0
+  // contacts and no tree query runs on a NaN pose (collision.h). MuJoCo's own checks (mj_checkPos
+  // and friends, run by mj_step) reset a state with bad qpos, qvel or qacc, so this counts what
+  // gets past them: e.g. mj_forward on a bad qpos, or a caller writing into mjData.
+  std::uint64_t nonfinite_skips = 0;
 };
 
 // The tree of one mesh (or of one primitive's tessellation) and, for each face id, the face's slot
@@ -166,8 +172,13 @@ class Registry {
   std::size_t tree_count() const { return trees_.size() + primitive_trees_.size(); }
   std::size_t primitive_tree_count() const { return primitive_trees_.size(); }
 
-  // Non-fatal findings of the construction, one line each (e.g. a served geom with a non-zero
-  // margin: served pairs report intersecting surfaces only, DESIGN.md "The seam with MuJoCo").
+  // Non-fatal findings of the construction, one line each, starting with the config's name: a
+  // served geom with a non-zero margin (served pairs report intersecting surfaces only, DESIGN.md
+  // "The seam with MuJoCo"); a mesh of a pair served by trees that is not closed
+  // (core/containment.h: "mesh N 'name' is not closed: ...; containment inside it is not checked
+  // (surface contacts only)"), since the containment check needs a closed solid: its pairs get
+  // their surface contacts, and containment is decided only inside the pair's other geom, if
+  // closed.
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   BridgeStats& stats() { return stats_; }

@@ -62,7 +62,8 @@ void print_text(const bridge::GraspResult& r) {
   out << "# detection ns " << r.detection_ns_close << " closing, " << r.detection_ns_total
       << " total; " << r.physics_steps << " physics steps, " << std::setprecision(2) << r.sim_time
       << " s simulated, " << std::setprecision(4) << r.step_wall_ms << " ms per physics step; "
-      << r.contained_calls << " containment findings\n";
+      << r.contained_calls << " containment findings; " << r.nonfinite_skips
+      << " non-finite skips\n";
   std::cout << out.str();
 }
 
@@ -80,6 +81,7 @@ void print_json(const bridge::GraspResult& r) {
                      {"triangle_tests", s.triangle_tests},
                      {"served_calls", s.served_calls},
                      {"contained", s.contained},
+                     {"nonfinite_skips", s.nonfinite_skips},
                      {"object_z", s.object_z},
                      {"segments", segments}});
   }
@@ -110,7 +112,9 @@ void print_json(const bridge::GraspResult& r) {
                               {"sim_time", r.sim_time},
                               {"ms_per_physics_step", r.step_wall_ms},
                               {"max_contacts", r.max_contacts},
-                              {"contained_calls", r.contained_calls}};
+                              {"contained_calls", r.contained_calls},
+                              {"nonfinite_skips", r.nonfinite_skips},
+                              {"warnings", r.warnings}};
   std::cout << doc.dump(2) << '\n';
 }
 
@@ -129,6 +133,9 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app) {
   } catch (const bridge::GraspInputError& e) {
     throw io::InputError(e.file(), 0, e.message());
   }
+  // The registry's findings (e.g. an open mesh whose containment cannot be decided), one line
+  // each on stderr before the answer.
+  for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << '\n';
   if (options.json) {
     print_json(result);
   } else {
@@ -166,17 +173,26 @@ Command add_grasp_command(CLI::App& parent) {
       "with '#': the first-contact grasp step of each segment ('-' for never); gripped and held "
       "(the object rose >= 3 cm and stayed within 1 cm of its place in the hand during the "
       "2 s hold) with its heights; the detection time of the closing steps and of the whole "
-      "run, the physics steps, simulated seconds and wall ms per physics step, and the "
+      "run, the physics steps, simulated seconds and wall ms per physics step, the "
       "containment findings (served calls whose surfaces did not meet but a segment lay wholly "
-      "inside the closed object: a contact the surface test cannot see).\n"
+      "inside the closed object: a contact the surface test cannot see), and the non-finite "
+      "skips (served calls whose geom placement held NaN, inf or a number beyond 1e10: no "
+      "contacts, no query).\n"
       "--json: one document with the same: scene, method, native, steps (step, contacts, "
-      "detection_ns, box_tests, triangle_tests, served_calls, contained, object_z, segments), "
-      "first_contact (segment -> step or null), gripped, held, object_z_initial, "
-      "object_z_gripped, object_z_final, hold_min_z, hold_drift, detection_ns_close, "
-      "detection_ns_total, physics_steps, sim_time, ms_per_physics_step, max_contacts, "
-      "contained_calls.\n"
-      "Errors: a missing or unreadable scene or config, or a bad MJCF (MuJoCo's message on one "
-      "line), print one line 'FILE: message' on stderr and exit with code 2.\n"
+      "detection_ns, box_tests, triangle_tests, served_calls, contained, nonfinite_skips, "
+      "object_z, segments), first_contact (segment -> step or null), gripped, held, "
+      "object_z_initial, object_z_gripped, object_z_final, hold_min_z, hold_drift, "
+      "detection_ns_close, detection_ns_total, physics_steps, sim_time, ms_per_physics_step, "
+      "max_contacts, contained_calls, nonfinite_skips, warnings.\n"
+      "Warnings: the pair registry's findings that do not stop the grasp (a served geom with a "
+      "margin, an open mesh inside which containment is not checked), one line 'warning: "
+      "CONFIG: message' each on stderr, and in the JSON's warnings.\n"
+      "Errors: a missing or unreadable scene or config, a bad MJCF (MuJoCo's message on one "
+      "line, e.g. a mesh file it cannot find), a config that is bad or whose pattern matches no "
+      "geom, print one line 'FILE: message' on stderr and exit with code 2. A simulation that "
+      "goes non-finite (MuJoCo finds NaN or a number beyond 1e10 in qpos, qvel, qacc or ctrl and "
+      "resets) stops the grasp with one line 'graspcd: error: SCENE: the simulation went "
+      "non-finite ...' and exit code 2.\n"
       "Example:\n"
       "  graspcd grasp mjcf/example1.xml --method perceptron"));
   return Command{app, [options, app] { run_grasp_command(*options, *app); }};

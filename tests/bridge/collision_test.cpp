@@ -173,6 +173,54 @@ TEST_F(StackScene, AttachedRegistryWithoutThisPairDelegates) {
   EXPECT_TRUE(contacts_between(ours.get(), a_, c_).empty());
 }
 
+// Non-finite state (collision.h): a served pair whose placement holds NaN, an infinity or a number
+// beyond mjMAXVAL gets 0 contacts, runs no query and is counted; other pairs are MuJoCo's.
+TEST_F(StackScene, NonFinitePlacementIsSkippedAndCounted) {
+  ScopedInstall bridge;
+  RegistryConfig config;
+  config.patterns = {{"cube_a", "cube_b"}};
+  Registry registry(model_.get(), config);
+  attach(registry);
+  const DataPtr d = forward();
+  ASSERT_FALSE(contacts_between(d.get(), a_, b_).empty());
+  ASSERT_EQ(registry.stats().nonfinite_skips, 0u);
+
+  // The callback itself, on a placement made bad entry by entry.
+  std::vector<mjContact> con(mjMAXCONPAIR);
+  const double kBad[] = {std::nan(""), INFINITY, -INFINITY, 2 * mjMAXVAL};
+  std::uint64_t skips = 0;
+  for (const double bad : kBad) {
+    for (mjtNum* x : {&d->geom_xpos[3 * b_ + 2], &d->geom_xpos[3 * a_], &d->geom_xmat[9 * b_ + 4],
+                      &d->geom_xmat[9 * a_ + 8]}) {
+      const mjtNum saved = *x;
+      *x = bad;
+      registry.reset_stats();
+      EXPECT_EQ(collide_geoms(model_.get(), d.get(), con.data(), a_, b_, 0), 0) << bad;
+      EXPECT_EQ(registry.stats().calls, 1u);
+      EXPECT_EQ(registry.stats().nonfinite_skips, 1u);
+      EXPECT_EQ(registry.stats().counters.box_tests, 0u);
+      skips += registry.stats().nonfinite_skips;
+      *x = saved;
+    }
+  }
+  EXPECT_EQ(skips, 16u);
+  // The placement restored: contacts again.
+  registry.reset_stats();
+  EXPECT_GT(collide_geoms(model_.get(), d.get(), con.data(), a_, b_, 0), 0);
+  EXPECT_EQ(registry.stats().nonfinite_skips, 0u);
+
+  // Through MuJoCo: mj_forward does not check qpos (mj_step would reset it), so a NaN in cube_b's
+  // free joint reaches the kinematics and the collision; the served pair gets no contact.
+  const int q = model_->jnt_qposadr[model_->body_jntadr[model_->geom_bodyid[b_]]];
+  d->qpos[q] = std::nan("");
+  registry.reset_stats();
+  mj_forward(model_.get(), d.get());
+  EXPECT_TRUE(contacts_between(d.get(), a_, b_).empty());
+  EXPECT_EQ(registry.stats().calls, 1u);
+  EXPECT_EQ(registry.stats().nonfinite_skips, 1u);
+  EXPECT_EQ(registry.stats().counters.box_tests, 0u);
+}
+
 // (c) install/uninstall: every entry among the served types (sphere, capsule, ellipsoid,
 // cylinder, box, mesh; t1 <= t2) gets graspcd's function and its original is saved; every other
 // entry (plane and hfield rows, the unused lower triangle) is untouched; uninstall restores each.
@@ -622,6 +670,43 @@ TEST(Containment, ASegmentWhollyInsideIsReportedNotContacted) {
     EXPECT_EQ(!contacts_between(d.get(), gb, gs).empty(), c.contacts) << c.x;
     EXPECT_EQ(registry.pair(0).contained, c.contained) << c.x;
     EXPECT_EQ(registry.stats().contained, c.contained ? 1u : 0u) << c.x;
+  }
+}
+
+// Containment needs a closed solid: inside an open mesh it is not checked. The registry says so
+// in one warning, and the pair still gets its surface contacts.
+TEST(Containment, InsideAnOpenMeshIsNotCheckedAndTheRegistryWarns) {
+  TempDir dir;
+  TriangleMesh open = testing::make_box_mesh(0.05, 0.05, 0.05);
+  // Without the top's two triangles (make_prism lists each cap triangle top, then bottom).
+  open.faces.erase(open.faces.begin() + 2);
+  open.faces.erase(open.faces.begin());
+  const ModelPtr m = load_scene(
+      dir, kNestedScene, {{"big", open}, {"small", testing::make_box_mesh(0.01, 0.01, 0.01)}});
+  ASSERT_TRUE(m);
+  const int gb = mj_name2id(m.get(), mjOBJ_GEOM, "big");
+  const int gs = mj_name2id(m.get(), mjOBJ_GEOM, "small");
+  ScopedInstall bridge;
+  RegistryConfig config;
+  config.patterns = {{"small", "big"}};
+  Registry registry(m.get(), config, "nested.json");
+  attach(registry);
+  ASSERT_FALSE(registry.geom_tree(gb)->closedness.closed());
+  ASSERT_EQ(registry.warnings().size(), 1u);
+  EXPECT_EQ(registry.warnings()[0],
+            "nested.json: mesh " + std::to_string(m->geom_dataid[gb]) +
+                " 'big' is not closed: 4 boundary edges (10 faces); containment inside it is not "
+                "checked (surface contacts only)");
+  const DataPtr d(mj_makeData(m.get()));
+  const int q = m->jnt_qposadr[m->body_jntadr[m->geom_bodyid[gs]]];
+  for (const double x : {0.0, 0.045}) {  // inside (not decided), through the wall (contacts)
+    d->qpos[q] = x;
+    registry.reset_stats();
+    mj_forward(m.get(), d.get());
+    ASSERT_EQ(registry.stats().calls, 1u) << x;
+    EXPECT_EQ(!contacts_between(d.get(), gb, gs).empty(), x > 0) << x;
+    EXPECT_FALSE(registry.pair(0).contained) << x;
+    EXPECT_EQ(registry.stats().contained, 0u) << x;
   }
 }
 

@@ -3,12 +3,14 @@
 // in the hand for 2 s of simulated time, on the non-convex cup (example 1) and the can (example 2);
 // the per-step detection time is recorded; MuJoCo's native collision runs the same grasp, and on
 // the C-block (example 3) finger 2 meets the convex hull at the slot's mouth before our detector
-// meets the real surface. Also the errors: a missing or bad MJCF, a missing config.
+// meets the real surface. Also the errors: a missing or bad MJCF, a missing config, a simulation
+// that goes non-finite.
 #include "bridge/grasp.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -171,6 +173,44 @@ TEST(GraspErrors, MissingConfigNamesTheConfig) {
     const std::string message = e.what();
     EXPECT_EQ(message.rfind(options.config_path + ": ", 0), 0u) << message;
   }
+}
+
+// Non-finite state (grasp.h): a NaN written into qvel after grasp step 2 makes MuJoCo reset the
+// state in the next physics step (mj_checkVel); the grasp stops with one line naming the scene,
+// the grasp step and the warning instead of starting over silently.
+TEST(GraspErrors, NonFiniteStateStopsTheGrasp) {
+  for (const bool native : {false, true}) {
+    GraspOptions options;
+    options.native = native;
+    options.max_steps = 5;
+    int steps_seen = 0;
+    options.on_grasp_step = [&](const mjModel*, const mjData* d, int step) {
+      steps_seen = step;
+      // The test plays a diverging solver: run_grasp's mjData is not const.
+      if (step == 2) const_cast<mjData*>(d)->qvel[0] = std::nan("");
+    };
+    try {
+      run_grasp(scene("example2"), options);
+      FAIL() << "no exception";
+    } catch (const GraspInputError&) {
+      FAIL() << "not an input error";
+    } catch (const std::runtime_error& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message, scene("example2") +
+                             ": the simulation went non-finite in grasp step 3 of the closing "
+                             "(physics step 11): MuJoCo found a bad number (NaN or beyond 1e10) "
+                             "in qvel at index 0 and reset the state; the grasp stops");
+    }
+    EXPECT_EQ(steps_seen, 2);
+  }
+}
+
+// A grasp that stays finite skips nothing.
+TEST(GraspErrors, FiniteGraspsSkipNothing) {
+  const GraspResult& r = grasp("example1", false);
+  EXPECT_EQ(r.nonfinite_skips, 0u);
+  for (const GraspStepRecord& s : r.steps) EXPECT_EQ(s.nonfinite_skips, 0u);
+  EXPECT_TRUE(r.warnings.empty());
 }
 
 TEST(GraspErrors, JoinLinesMakesOneLine) {

@@ -95,14 +95,16 @@ TEST(RegistryConfig, ParsesEveryField) {
 // Each bad config gives one line that starts with the config's name.
 TEST(RegistryConfig, ErrorsAreOneLineAndNameTheSource) {
   for (const char* bad : {
-           R"({"pairs": [)",                       // bad JSON
-           R"({"method": "magic", "pairs": []})",  // unknown method
-           R"({"cap": 0, "pairs": []})",           // cap < 1
-           R"({"max_depth": -1, "pairs": []})",    // depth <= 0
-           R"({"colour": "red", "pairs": []})",    // unknown field
-           R"({"method": "sat"})",                 // no pairs
-           R"({"pairs": [{"a": "x"}]})",           // pair without b
-           R"([1, 2])",                            // not an object
+           R"({"pairs": [)",                        // bad JSON
+           R"({"method": "magic", "pairs": []})",   // unknown method
+           R"({"cap": 0, "pairs": []})",            // cap < 1
+           R"({"max_depth": -1, "pairs": []})",     // depth <= 0
+           R"({"colour": "red", "pairs": []})",     // unknown field
+           R"({"method": "sat"})",                  // no pairs
+           R"({"pairs": [{"a": "x"}]})",            // pair without b
+           R"([1, 2])",                             // not an object
+           R"({"max_depth": 1e999, "pairs": []})",  // overflow: nlohmann's out_of_range 406
+           R"({"cap": -1e400, "pairs": []})",
        }) {
     try {
       parse_registry_config(bad, "cfg/hand.json");

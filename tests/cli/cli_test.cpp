@@ -131,6 +131,51 @@ TEST_F(CliTest, NanAndInfAreErrors) {
   EXPECT_EQ(r.err, inf + ":3: non-finite number \"-Infinity\" (nan and inf are not accepted)\n");
 }
 
+// Every spelling strtod reads as non-finite, and overflow, in each command's text input.
+TEST_F(CliTest, NonFiniteNumbersAreErrorsInEveryCommand) {
+  const std::string a = write("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  for (const std::string token : {"nan", "NaN", "-nan", "nan(0x1)", "inf", "-INF", "infinity"}) {
+    const std::string expected =
+        ":1: non-finite number \"" + token + "\" (nan and inf are not accepted)\n";
+    Result r = run("tritri", "0 0 0 1 0 0 0 1 0  0 0 1 0 0 2 " + token + " 0 2\n");
+    EXPECT_EQ(r.exit_code, 2) << token;
+    EXPECT_EQ(r.err, "<stdin>" + expected);
+    r = run("boxbox", "0 0 0 1 0 0 0 1 0 0 0 1 1 1 1  2 0 0 1 0 0 0 1 0 0 0 1 1 1 " + token + "\n");
+    EXPECT_EQ(r.exit_code, 2) << token;
+    EXPECT_EQ(r.err, "<stdin>" + expected);
+    r = run("meshpair " + a + " " + a, "1 0 0 0 1 0 0 0 1  0 " + token + " 0\n");
+    EXPECT_EQ(r.exit_code, 2) << token;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "<stdin>" + expected);
+  }
+  const std::string overflow = ":1: number \"1e999\" overflows a double\n";
+  Result r = run("tritri", "0 0 0 1 0 0 0 1 0  0 0 1 0 0 2 1e999 0 2\n");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "<stdin>" + overflow);
+  r = run("boxbox", "0 0 0 1 0 0 0 1 0 0 0 1 1 1 1  1e999 0 0 1 0 0 0 1 0 0 0 1 1 1 1\n");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "<stdin>" + overflow);
+  r = run("meshpair " + a + " " + a, "1 0 0 0 1 0 0 0 1  1e999 0 0\n");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "<stdin>" + overflow);
+}
+
+// A mesh file with a non-finite coordinate: one line naming the file and the line, exit 2, and no
+// answers (meshes load before any pose is read).
+TEST_F(CliTest, MeshpairNonFiniteMeshCoordinatesAreErrors) {
+  const std::string good = write("good.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string bad = write("bad.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+  Result r = run("meshpair " + good + " " + bad, "1 0 0 0 1 0 0 0 1  0 0 0\n");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err,
+            bad + ":2: vertex 2: non-finite number \"nan\" (nan and inf are not accepted)\n");
+  const std::string over = write("over.obj", "v 0 0 0\nv 1 0 0\nv 0 1e999 0\nf 1 2 3\n");
+  r = run("meshpair " + over + " " + good, "1 0 0 0 1 0 0 0 1  0 0 0\n");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, over + ":3: vertex 3: number \"1e999\" overflows a double\n");
+}
+
 TEST_F(CliTest, WrongCountIsAnError) {
   const std::string path = write("count.txt", "0 0 0 1 0 0 0 1 0  0 0 1 0 0 2 1 0\n");
   const Result r = run("tritri " + path);
@@ -441,6 +486,7 @@ TEST_F(CliTest, GraspPrintsAHeaderOneLinePerGraspStepAndASummary) {
   EXPECT_EQ(out[9].rfind("# method sat; first contact (grasp step): finger1_A=-", 0), 0u) << out[9];
   EXPECT_EQ(out[10].rfind("# gripped no; held no;", 0), 0u) << out[10];
   EXPECT_EQ(out[11].rfind("# detection ns ", 0), 0u) << out[11];
+  EXPECT_NE(out[11].find(" 0 non-finite skips"), std::string::npos) << out[11];
 }
 
 TEST_F(CliTest, GraspJsonIsOneDocumentWithTheSameRecords) {
@@ -491,6 +537,75 @@ TEST_F(CliTest, GraspMissingSceneOrConfigIsOneLineAndExitTwo) {
   ASSERT_EQ(lines(r.err).size(), 1u) << r.err;
   EXPECT_EQ(r.err.rfind(config + ": ", 0), 0u) << r.err;
   EXPECT_EQ(r.out, "");
+}
+
+// A copy of a shipped scene in the test folder, with its meshes in DIR/meshes (the scene's
+// meshdir); `skip_mesh` is left out, and `open_mesh` is written without its last face.
+std::string copy_scene(const fs::path& dir, const std::string& name, const std::string& skip_mesh,
+                       const std::string& open_mesh) {
+  const fs::path mjcf = fs::path(GRASPCD_DATA_DIR).parent_path() / "mjcf";
+  fs::create_directories(dir / "meshes");
+  for (const auto& entry : fs::directory_iterator(mjcf / "meshes")) {
+    const std::string file = entry.path().filename().string();
+    if (file == skip_mesh) continue;
+    std::string text = read_file(entry.path());
+    if (file == open_mesh) {
+      text.erase(text.rfind("\nf ") + 1);  // drop the last face
+    }
+    std::ofstream(dir / "meshes" / file, std::ios::binary) << text;
+  }
+  fs::copy_file(mjcf / (name + ".xml"), dir / (name + ".xml"));
+  fs::copy_file(mjcf / (name + ".pairs.json"), dir / (name + ".pairs.json"));
+  return (dir / (name + ".xml")).string();
+}
+
+TEST_F(CliTest, GraspMjcfWithAMissingMeshFileIsOneLineAndExitTwo) {
+  const std::string scene = copy_scene(dir_ / "s", "example1", "cup.obj", "");
+  const Result r = run("grasp " + scene + " --max-steps 2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  const std::vector<std::string> err = lines(r.err);
+  ASSERT_EQ(err.size(), 1u) << r.err;
+  EXPECT_EQ(err[0].rfind(scene + ": ", 0), 0u) << err[0];
+  EXPECT_NE(err[0].find("cup.obj"), std::string::npos) << err[0];
+}
+
+TEST_F(CliTest, GraspConfigWhosePatternMatchesNothingIsOneLineAndExitTwo) {
+  const std::string config =
+      write("none.pairs.json", R"({"pairs": [{"a": "geom:nothing*", "b": "body:object"}]})");
+  const Result r = run("grasp " + shipped_scene("example1") + " --config " + config);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, config + ": pattern 'geom:nothing*' matches no collidable geom\n");
+  // A number that overflows a double is bad JSON, named like every other config error.
+  const std::string depth =
+      write("depth.pairs.json", R"({"max_depth": 1e999, "pairs": [{"a": "x", "b": "y"}]})");
+  const Result d = run("grasp " + shipped_scene("example1") + " --config " + depth);
+  EXPECT_EQ(d.exit_code, 2);
+  EXPECT_EQ(d.out, "");
+  EXPECT_EQ(d.err, depth +
+                       ": bad JSON: [json.exception.out_of_range.406] number overflow parsing "
+                       "'1e999'\n");
+}
+
+// An open object mesh: the containment check cannot be decided inside it, so the registry warns
+// on one line and the grasp goes on with surface contacts (exit 0).
+TEST_F(CliTest, GraspWithAnOpenMeshWarnsAndGoesOn) {
+  const std::string scene = copy_scene(dir_ / "s", "example1", "", "cup.obj");
+  const Result r = run("grasp " + scene + " --max-steps 2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> err = lines(r.err);
+  ASSERT_EQ(err.size(), 1u) << r.err;
+  const std::string config = (dir_ / "s" / "example1.pairs.json").string();
+  EXPECT_EQ(err[0].rfind("warning: " + config + ": mesh ", 0), 0u) << err[0];
+  EXPECT_NE(err[0].find("'cup' is not closed: "), std::string::npos) << err[0];
+  EXPECT_NE(err[0].find("boundary edges"), std::string::npos) << err[0];
+  EXPECT_NE(err[0].find("containment inside it is not checked"), std::string::npos) << err[0];
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc.at("warnings").size(), 1u);
+  EXPECT_EQ("warning: " + doc.at("warnings")[0].get<std::string>(), err[0]);
+  EXPECT_EQ(doc.at("steps").size(), 2u);
+  EXPECT_EQ(doc.at("nonfinite_skips"), 0);
 }
 
 TEST_F(CliTest, GraspHelpDocumentsTheOutput) {
