@@ -90,7 +90,7 @@ void print_text(const study::ValidationReport& report) {
       << "): " << report.steps << " closing grasp steps of the grasp driven by "
       << report.grasp_method << (report.gripped ? " (gripped)" : " (not gripped within the steps)")
       << "; truth: CGAL " << exact::cgal_version()
-      << " brute force on the same triangles in the same poses\n";
+      << " on the same triangles or boxes in the same poses\n";
   std::size_t width = 4;
   for (const study::MethodTable& t : report.methods) {
     for (const study::PairRow& r : t.rows) width = std::max(width, r.pair.size());
