@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -248,6 +249,59 @@ TEST_F(ValidateTest, BrokenDetectorIsCaughtAndItsFirstDisagreementReproduces) {
     EXPECT_EQ(found.size(), d.answer_pairs);
   }
   EXPECT_GT(caught, 0);
+}
+
+// A star-shaped prism (closed, non-convex): 8 points at radius r_out, 8 notches at r_in, from
+// z = 0 to h, as an OBJ text.
+std::string star_prism_obj(double r_out, double r_in, double h) {
+  std::ostringstream obj;
+  obj.precision(17);
+  const int n = 16;
+  for (double z : {0.0, h}) {
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * 3.14159265358979323846 * i / n;
+      const double r = i % 2 == 0 ? r_out : r_in;
+      obj << "v " << r * std::cos(a) << ' ' << r * std::sin(a) << ' ' << z << '\n';
+    }
+  }
+  obj << "v 0 0 0\nv 0 0 " << h << '\n';  // the caps' centres: vertices 2n+1 and 2n+2
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    const int b0 = i + 1, b1 = j + 1, t0 = n + i + 1, t1 = n + j + 1;
+    obj << "f " << b0 << ' ' << b1 << ' ' << t1 << "\nf " << b0 << ' ' << t1 << ' ' << t0 << '\n';
+    obj << "f " << 2 * n + 1 << ' ' << b1 << ' ' << b0 << "\nf " << 2 * n + 2 << ' ' << t0 << ' '
+        << t1 << '\n';
+  }
+  return obj.str();
+}
+
+// A user's own scene: example 1 with the cup swapped for a new non-convex object (an OBJ beside the
+// scene, one line of MJCF changed, the same pair config). validate checks it like a shipped one.
+TEST_F(ValidateTest, UsersOwnSceneWithANewObject) {
+  fs::create_directories(dir_ / "meshes");
+  for (const char* f : {"finger_A.obj", "finger_B.obj", "finger_C.obj"}) {
+    fs::copy_file(kMjcf + "meshes/" + f, dir_ / "meshes" / f);
+  }
+  write("meshes/star.obj", star_prism_obj(0.036, 0.026, 0.08));
+  std::string xml = read_file(kMjcf + "example1.xml");
+  const std::string cup = R"(<mesh name="cup" file="cup.obj"/>)";
+  ASSERT_NE(xml.find(cup), std::string::npos);
+  xml.replace(xml.find(cup), cup.size(), R"(<mesh name="cup" file="star.obj"/>)");
+  const std::string scene = write("star.xml", xml);
+  write("star.pairs.json", read_file(kMjcf + "example1.pairs.json"));
+
+  const ValidationReport report = graspcd::study::validate_scene(
+      scene, {graspcd::study::detector_tester(Method::kSat, {}),
+              graspcd::study::detector_tester(Method::kNeuroSatSticky, {})});
+  EXPECT_TRUE(report.gripped);
+  EXPECT_FALSE(report.missed_any());
+  for (const auto& table : report.methods) {
+    EXPECT_GT(sum(table.rows, &PairRow::truth_hits), 0) << table.method;
+    EXPECT_EQ(sum(table.rows, &PairRow::agree), sum(table.rows, &PairRow::steps)) << table.method;
+  }
+  const Outcome r = graspcd("validate '" + scene + "' --steps 40");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("finger1_A/object"), std::string::npos) << r.out;
 }
 
 TEST_F(ValidateTest, CommandPrintsTheTableAndJsonAndExitsZeroOnTheBoxHand) {
