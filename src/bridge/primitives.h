@@ -57,6 +57,9 @@ inline constexpr double kTessPad = 1e-12;  // relative outward pad of curved rad
 double tess_round_factor();   // k_round
 double tess_around_factor();  // k_around
 
+// The tessellations of the table above, in the geom frame; sizes in metres, as MuJoCo's geom_size
+// gives them (box half-extents, radii, half-lengths). Each throws std::invalid_argument for a size
+// that is not positive and finite.
 TriangleMesh tessellate_box(const Vec3& half);
 TriangleMesh tessellate_sphere(double radius);
 TriangleMesh tessellate_ellipsoid(const Vec3& radii);

@@ -69,9 +69,11 @@ struct RegistryConfig {
   std::vector<std::pair<int, int>> geom_pairs;
 };
 
-// Parses the JSON text of a config; `source` (a file name) starts every error message.
+// Parses the JSON text of a config; `source` (a file name) starts every error message. Throws
+// std::runtime_error for bad JSON, an unknown field or method, or a value out of range.
 RegistryConfig parse_registry_config(const std::string& json_text, const std::string& source);
-// Reads and parses a config file; errors name the file.
+// Reads and parses a config file. Throws std::runtime_error naming the file when it cannot be read
+// or does not parse.
 RegistryConfig load_registry_config(const std::string& path);
 
 // True when `name` matches the glob `pattern` ('*' only).
@@ -138,7 +140,8 @@ struct ServedPair {
 class Registry {
  public:
   // Resolves patterns and geom pairs against `m`, builds the trees. `source` names the config in
-  // error messages (e.g. its file name, or "<program>").
+  // error messages (e.g. its file name, or "<program>"). Throws std::runtime_error for the errors
+  // listed at the top of this file (a pattern that matches nothing, an unserved geom type, ...).
   Registry(const mjModel* m, const RegistryConfig& config, const std::string& source = "<program>");
   ~Registry();
   Registry(const Registry&) = delete;

@@ -35,7 +35,8 @@ enum class ObbFit {
 // the half-extents come from the extreme projections of the vertices, padded by tol::kObbFitPad so
 // that every vertex lies inside. Degenerate input (one triangle, collinear or coplanar or repeated
 // points) still gives an orthonormal right-handed frame and non-negative extents. kHullArea falls
-// back to kCovariance when the points have no 3D hull (flat or collinear).
+// back to kCovariance when the points have no 3D hull (flat or collinear). No triangles: the
+// default Obb (a point at the origin). Units: those of the input (metres in graspcd). No throw.
 Obb fit_obb(const std::vector<Triangle>& triangles, ObbFit method = ObbFit::kCovariance);
 
 }  // namespace graspcd

@@ -110,7 +110,9 @@ enum class Method {
 // Command-line names: sat, sat-cached, perceptron, perceptron-nodisp, perceptron-scaled,
 // perceptron-warm, neurosat, neurosat-sticky.
 const char* method_name(Method m);
+// The method of a command-line name above; std::nullopt for any other string (no throw).
 std::optional<Method> parse_method(const std::string& name);
+// Every method, in the order of the enum.
 const std::vector<Method>& all_methods();
 // True for the methods that report perceptron passes.
 bool uses_perceptron(Method m);
@@ -124,6 +126,7 @@ struct DetectorOptions {
 // One method with its state (caches carry over from query to query until reset()).
 class Detector {
  public:
+  // Throws std::invalid_argument when options.cap or options.switch_passes is < 1.
   explicit Detector(Method method, const DetectorOptions& options = {});
 
   Method method() const { return method_; }
