@@ -187,15 +187,15 @@ Vec3 lowest_feature_offset(const Mat3& axes, const Vec3& half, const Vec3& n, in
 
 // A vertex of B on a face of A, then B moved by g along the face's outer normal n: g > 0
 // separates them along n, g < 0 pushes the vertex into A (overlap).
-BoxPair box_vertex_on_face(Rng& rng, const Obb& a, const Mat3& b_axes, const Vec3& b_half,
-                           double g) {
+BoxPairCase box_vertex_on_face(Rng& rng, const Obb& a, const Mat3& b_axes, const Vec3& b_half,
+                               double g) {
   const int i = uniform_int(rng, 0, 2);
   const Vec3 n = random_sign(rng) * a.axes.col(i);
   Vec3 p = a.center + a.half[i] * n;
   for (int k = 0; k < 3; ++k) {
     if (k != i) p += uniform(rng, -0.9, 0.9) * a.half[k] * a.axes.col(k);
   }
-  BoxPair pair{a, Obb{Vec3::Zero(), b_axes, b_half}};
+  BoxPairCase pair{a, Obb{Vec3::Zero(), b_axes, b_half}};
   pair.b.center = p + g * n - lowest_feature_offset(b_axes, b_half, n);
   return pair;
 }
@@ -205,7 +205,8 @@ BoxPair box_vertex_on_face(Rng& rng, const Obb& a, const Mat3& b_axes, const Vec
 // n (the direction of A's edge x B's edge), g < 0 pushes B's edge into A. B is A turned by phi
 // about A's edge (0.15..0.6 rad: B's lowest feature along n stays an edge), then by theta about n
 // (which keeps that edge lowest).
-BoxPair box_edge_across_edge(Rng& rng, const Obb& a, const Vec3& b_half, double theta, double g) {
+BoxPairCase box_edge_across_edge(Rng& rng, const Obb& a, const Vec3& b_half, double theta,
+                                 double g) {
   const int k = uniform_int(rng, 0, 2), i = (k + 1) % 3, j = (k + 2) % 3;
   const double si = random_sign(rng), sj = random_sign(rng);
   const Vec3 n = (si * a.axes.col(i) + sj * a.axes.col(j)).normalized();
@@ -214,13 +215,13 @@ BoxPair box_edge_across_edge(Rng& rng, const Obb& a, const Vec3& b_half, double 
   const double phi_sign = random_sign(rng);
   const double phi = phi_sign * uniform(rng, 0.15, 0.6);
   const Mat3 b_axes = rotation_about(n, theta) * rotation_about(a.axes.col(k), phi) * a.axes;
-  BoxPair pair{a, Obb{Vec3::Zero(), b_axes, b_half}};
+  BoxPairCase pair{a, Obb{Vec3::Zero(), b_axes, b_half}};
   pair.b.center = p + g * n - lowest_feature_offset(b_axes, b_half, n, k);
   return pair;
 }
 
 // A vertex-face or edge-edge contact (half each) between two randomly turned boxes.
-BoxPair box_contact(Rng& rng, const Vec3& a_center, double size, bool sliver, double g_rel) {
+BoxPairCase box_contact(Rng& rng, const Vec3& a_center, double size, bool sliver, double g_rel) {
   const Obb a{a_center, random_rotation(rng), box_halves(rng, size, sliver)};
   const Vec3 b_half = box_halves(rng, size * log_uniform(rng, 0.3, 3.0), sliver);
   const double g = g_rel * size;
@@ -228,7 +229,7 @@ BoxPair box_contact(Rng& rng, const Vec3& a_center, double size, bool sliver, do
   return box_edge_across_edge(rng, a, b_half, uniform(rng, 0.05, kPi / 2), g);
 }
 
-BoxPair make_box_case(ClassId id, Rng& rng) {
+BoxPairCase make_box_case(ClassId id, Rng& rng) {
   switch (id) {
     case kBoxScale: {
       const double size = log_uniform(rng, 1e-4, 1e4);
@@ -572,7 +573,7 @@ bool within_sat_band(const Obb& a, const Obb& b) {
 
 void run_box_class(std::size_t index, int count, std::uint64_t seed,
                    const std::vector<BoxMethod>& methods, std::vector<StressRow>& rows) {
-  const std::vector<BoxPair> cases = make_box_cases(index, count, seed);
+  const std::vector<BoxPairCase> cases = make_box_cases(index, count, seed);
   std::vector<char> truth(cases.size());
   for (std::size_t c = 0; c < cases.size(); ++c) {
     truth[c] = exact::box_box_overlap(cases[c].a, cases[c].b);
@@ -587,7 +588,7 @@ void run_box_class(std::size_t index, int count, std::uint64_t seed,
     row.method = m.name;
     row.reference = m.reference;
     for (std::size_t c = 0; c < cases.size(); ++c) {
-      const BoxPair& pair = cases[c];
+      const BoxPairCase& pair = cases[c];
       const BoxAnswer answer = m.test(pair.a, pair.b);
       ++row.cases;
       row.overlapping += truth[c];
@@ -646,10 +647,10 @@ std::string format_double(double v) {
 
 const std::vector<StressClass>& stress_classes() { return kClasses; }
 
-std::vector<BoxPair> make_box_cases(std::size_t index, int count, std::uint64_t seed) {
+std::vector<BoxPairCase> make_box_cases(std::size_t index, int count, std::uint64_t seed) {
   const ClassId id = class_id(index, StressKind::kBoxes);
   Rng rng = class_rng(index, seed);
-  std::vector<BoxPair> cases;
+  std::vector<BoxPairCase> cases;
   cases.reserve(static_cast<std::size_t>(std::max(count, 0)));
   for (int i = 0; i < count; ++i) cases.push_back(make_box_case(id, rng));
   return cases;

@@ -37,7 +37,7 @@ struct StressClass {
 // The classes, boxes first, in the order of the table.
 const std::vector<StressClass>& stress_classes();
 
-struct BoxPair {
+struct BoxPairCase {
   Obb a, b;
 };
 struct TrianglePairCase {
@@ -48,7 +48,7 @@ struct TrianglePairCase {
 // run and platform with the same libm (the engine is std::mt19937_64, the distributions are
 // written out in stress.cpp). Each class draws from its own stream, so a class's cases do not
 // depend on the other classes or on their counts.
-std::vector<BoxPair> make_box_cases(std::size_t index, int count, std::uint64_t seed);
+std::vector<BoxPairCase> make_box_cases(std::size_t index, int count, std::uint64_t seed);
 std::vector<TrianglePairCase> make_triangle_cases(std::size_t index, int count, std::uint64_t seed);
 
 // ---- Methods under test ------------------------------------------------------------------------
