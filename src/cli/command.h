@@ -34,6 +34,7 @@ Command add_grasp_command(CLI::App& parent);
 Command add_study_command(CLI::App& parent);
 Command add_stress_command(CLI::App& parent);
 Command add_validate_command(CLI::App& parent);
+Command add_trajectory_command(CLI::App& parent);
 
 // The paragraphs on the number grammar and the errors that every subcommand's help repeats.
 std::string number_grammar_help();

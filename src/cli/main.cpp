@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
       graspcd::cli::add_tritri_command(app),   graspcd::cli::add_boxbox_command(app),
       graspcd::cli::add_meshpair_command(app), graspcd::cli::add_grasp_command(app),
       graspcd::cli::add_study_command(app),    graspcd::cli::add_stress_command(app),
-      graspcd::cli::add_validate_command(app),
+      graspcd::cli::add_validate_command(app), graspcd::cli::add_trajectory_command(app),
   };
 
   try {

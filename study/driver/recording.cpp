@@ -24,6 +24,23 @@ std::string hex64(std::uint64_t v) {
   return buf;
 }
 
+std::vector<RecordedContact> recorded_contacts(const mjData* d) {
+  std::vector<RecordedContact> out;
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& c = d->contact[i];
+    RecordedContact rc;
+    rc.geom1 = c.geom1;
+    rc.geom2 = c.geom2;
+    for (int k = 0; k < 3; ++k) {
+      rc.pos[k] = c.pos[k];
+      rc.normal[k] = c.frame[k];
+    }
+    rc.dist = c.dist;
+    out.push_back(rc);
+  }
+  return out;
+}
+
 Recording record_grasp(const std::string& name, const std::string& scene, bool native,
                        int max_steps) {
   Recording r;
@@ -37,6 +54,8 @@ Recording record_grasp(const std::string& name, const std::string& scene, bool n
     r.ngeom = m->ngeom;
     r.xpos.emplace_back(d->geom_xpos, d->geom_xpos + 3 * m->ngeom);
     r.xmat.emplace_back(d->geom_xmat, d->geom_xmat + 9 * m->ngeom);
+    r.qpos.emplace_back(d->qpos, d->qpos + m->nq);
+    r.contacts.push_back(recorded_contacts(d));
   };
   r.grasp = bridge::run_grasp(scene, options);
   Fnv1a h;

@@ -8,6 +8,7 @@
 // parallelepiped hand (Figures 13-15): segments B and C against every object box.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -21,6 +22,15 @@
 
 namespace graspcd::study {
 
+// A contact of mjData after a grasp step (the viewer's and the figures' data, trajectory.h).
+struct RecordedContact {
+  int geom1 = 0;
+  int geom2 = 0;
+  std::array<double, 3> pos{};
+  std::array<double, 3> normal{};  // from geom1 toward geom2 (frame[0..2])
+  double dist = 0;                 // negative when penetrating
+};
+
 struct Recording {
   std::string name;   // e.g. "example1"
   std::string scene;  // the MJCF path
@@ -30,11 +40,17 @@ struct Recording {
   // physics step.
   std::vector<std::vector<double>> xpos;
   std::vector<std::vector<double>> xmat;
+  // Per closing grasp step: d->qpos and d->contact after its last physics step (not hashed).
+  std::vector<std::vector<double>> qpos;
+  std::vector<std::vector<RecordedContact>> contacts;
   bridge::GraspResult grasp;
   std::uint64_t pose_hash = 0;  // FNV-1a over the bits of every recorded pose
 
   int steps() const { return static_cast<int>(xpos.size()); }
 };
+
+// The contacts of `d` (d->contact[0 .. ncon)).
+std::vector<RecordedContact> recorded_contacts(const mjData* d);
 
 // Runs the grasp on `scene` (with the bridge and the scene's pair config, or MuJoCo's native
 // collision) and records the poses of every closing grasp step.

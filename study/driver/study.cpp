@@ -24,6 +24,7 @@
 #include "study/driver/fcl_querier.h"
 #include "study/driver/recording.h"
 #include "study/driver/replay.h"
+#include "study/driver/trajectory.h"
 
 #ifndef GRASPCD_MJCF_DIR
 #error "GRASPCD_MJCF_DIR must name the repository's mjcf folder"
@@ -765,6 +766,25 @@ std::string box_csv(const json& box) {
   return s.str();
 }
 
+// The viewer's and the figures' data (trajectory.h): each example with the per-step detection
+// times of Table 1's replays, and the box hand.
+void write_trajectories(const std::filesystem::path& dir, const std::vector<Example>& ex,
+                        const std::vector<Recording>& recs,
+                        const std::vector<std::unique_ptr<MeshScene>>& scenes,
+                        const ReplayCache& cache, const Recording& box, const Log& log) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw std::runtime_error(dir.string() + ": cannot create the folder: " + ec.message());
+  for (std::size_t e = 0; e < ex.size(); ++e) {
+    StepTimes times;
+    for (const auto& [method, stats] : cache)
+      times.emplace_back(method, step_medians(stats[e].step_ns));
+    write_trajectory((dir / (ex[e].name + ".json")).string(), recs[e], scenes[e].get(), times);
+  }
+  write_trajectory((dir / "hand_boxes.json").string(), box, nullptr, {});
+  log("wrote " + std::to_string(ex.size() + 1) + " trajectories into " + dir.string());
+}
+
 }  // namespace
 
 Shard parse_shard(const std::string& text) {
@@ -849,6 +869,7 @@ void run_study(const StudyOptions& options, const Log& log) {
     study["box_hand"] = run_box_hand(o, box, log);
     study["box_hand"]["recording"] = recording_json(box, nullptr);
     write_file(out / "box_hand.csv", box_csv(study["box_hand"]));
+    write_trajectories(out / "trajectories", ex, recs, scenes, cache, box, log);
     study["seconds"] = seconds_since(start);
     write_file(out / "study.json", study.dump(1) + "\n");
     log("wrote " + (out / "study.json").string() + ", table1.csv, box_hand.csv");

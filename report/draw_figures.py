@@ -1,0 +1,288 @@
+#!/usr/bin/python3
+"""Pictures of the grasps and the trees (issue 9), drawn from the trajectory files that
+`graspcd study` writes into OUT/trajectories/ (format: study/driver/trajectory.h).
+
+    /usr/bin/python3 report/draw_figures.py TRAJECTORY_DIR FIGURES_DIR
+
+Writes into FIGURES_DIR:
+  fig18_<example>.png      each grasp example at its first contact and at its last closing grasp
+                           step (the grip), as the paper's Figure 18
+  fig17_obb_depths.png     one finger segment's OBBs at tree depths 0 to 3 (Figure 17)
+  contacts_native.png      the contact points and normals on the non-convex object at the grip of
+                           example 1: ours beside MuJoCo's native convex-hull contacts at the same
+                           joint positions
+  fig12_box_hand.png       the box hand with its segments labelled A, B, C (Figure 12)
+Each input that is missing or not a trajectory file is a one-line error naming it, exit code 2.
+"""
+import json
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection  # noqa: E402
+
+COLORS = {"segment": "#c8a878", "object": "#7090c0", "hand": "#999999"}
+TOUCHING = "#e03030"
+DRAWN_TYPES = ("mesh", "box")  # the arm's capsules and cylinders are left out of the pictures
+BOX_EDGES = [(0, 1), (2, 3), (4, 5), (6, 7), (0, 2), (1, 3), (4, 6), (5, 7), (0, 4), (1, 5),
+             (2, 6), (3, 7)]
+
+
+class InputError(Exception):
+    pass
+
+
+def load(path):
+    try:
+        with open(path) as f:
+            data = json.load(f)
+    except (OSError, ValueError) as e:
+        raise InputError(f"{path}: cannot read the trajectory ({str(e).splitlines()[0]})")
+    if data.get("schema") != 1 or not data.get("steps") or "geoms" not in data:
+        raise InputError(f"{path}: not a trajectory file (schema 1 with steps and geoms expected)")
+    return data
+
+
+def pose(traj, step, g):
+    s = traj["steps"][step]
+    return np.array(s["rot"][9 * g:9 * g + 9]).reshape(3, 3), np.array(s["pos"][3 * g:3 * g + 3])
+
+
+def box_corners(center, axes, half):
+    """The 8 corners in the order of sign bits, x fastest (core/obb.h)."""
+    out = []
+    for k in range(8):
+        u = np.array([1 if k & 1 else -1, 1 if k & 2 else -1, 1 if k & 4 else -1], float)
+        out.append(center + axes @ (np.asarray(half) * u))
+    return np.array(out)
+
+
+def box_faces(corners):
+    quads = [(0, 1, 3, 2), (4, 5, 7, 6), (0, 1, 5, 4), (2, 3, 7, 6), (0, 2, 6, 4), (1, 3, 7, 5)]
+    return [corners[list(q)] for q in quads]
+
+
+def geom_polygons(traj, step, g):
+    """The triangles (or box faces) of geom g at `step`, in world coordinates."""
+    geom = traj["geoms"][g]
+    rot, pos = pose(traj, step, g)
+    if geom["type"] == "mesh":
+        mesh = traj["meshes"][geom["mesh"]]
+        v = np.array(mesh["vertices"]).reshape(-1, 3) @ rot.T + pos
+        return v[np.array(mesh["faces"]).reshape(-1, 3)]
+    return np.array(box_faces(box_corners(pos, rot, geom["size"])))
+
+
+LIGHT = np.array([-0.4, -0.6, 0.7]) / np.linalg.norm([-0.4, -0.6, 0.7])
+
+
+def shaded(polys, color, alpha):
+    """Per-face RGBA: `color` lit by a fixed light from above (|cos| of the face normal: the
+    meshes' faces may face either way once drawn from both sides)."""
+    polys = np.asarray(polys)
+    n = np.cross(polys[:, 1] - polys[:, 0], polys[:, 2] - polys[:, 0])
+    n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+    light = 0.45 + 0.55 * np.abs(n @ LIGHT)
+    rgb = np.array(matplotlib.colors.to_rgb(color))
+    rgba = np.empty((len(polys), 4))
+    rgba[:, :3] = np.clip(light[:, None] * rgb, 0, 1)
+    rgba[:, 3] = alpha
+    return rgba
+
+
+def touching_geoms(traj, step):
+    return {g for c in traj["steps"][step]["contacts"] for g in c["geoms"]}
+
+
+def set_equal(ax, points, margin=0.05):
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    span = hi - lo
+    lo, hi = lo - margin * span.max(), hi + margin * span.max()
+    ax.set_xlim(lo[0], hi[0])
+    ax.set_ylim(lo[1], hi[1])
+    ax.set_zlim(lo[2], hi[2])
+    ax.set_box_aspect(hi - lo)
+    ax.set_xlabel("x (m)", fontsize=7)
+    ax.set_ylabel("y (m)", fontsize=7)
+    ax.set_zlabel("z (m)", fontsize=7)
+    ax.tick_params(labelsize=6)
+
+
+def draw_scene(ax, traj, step, roles=("segment", "object", "hand"), alpha=None):
+    """Draws the geoms of `roles` at `step`; returns every drawn point (for the limits)."""
+    touched = touching_geoms(traj, step)
+    points = []
+    for g, geom in enumerate(traj["geoms"]):
+        if geom["type"] not in DRAWN_TYPES or geom["role"] not in roles:
+            continue
+        polys = geom_polygons(traj, step, g)
+        color = TOUCHING if g in touched and geom["role"] == "segment" else COLORS[geom["role"]]
+        a = alpha if alpha is not None else (0.45 if geom["role"] == "object" else 1.0)
+        ax.add_collection3d(Poly3DCollection(polys, facecolors=shaded(polys, color, a),
+                                             edgecolor="none"))
+        points.append(polys.reshape(-1, 3))
+    return np.concatenate(points)
+
+
+def first_contact_step(traj):
+    steps = [s for s in traj["first_contact"] if s > 0]
+    return (min(steps) if steps else 1) - 1  # 0-based
+
+
+def fig18(traj, out):
+    fig = plt.figure(figsize=(10, 5))
+    last = len(traj["steps"]) - 1
+    for k, (step, title) in enumerate([(first_contact_step(traj), "first contact"),
+                                       (last, "grip (last closing step)")]):
+        ax = fig.add_subplot(1, 2, k + 1, projection="3d")
+        points = draw_scene(ax, traj, step)
+        set_equal(ax, points)
+        ax.view_init(elev=20, azim=-60)
+        n = len(traj["steps"][step]["contacts"])
+        ax.set_title(f"{traj['name']}: {title}, grasp step {step + 1}\n{n} contacts "
+                     "(segments in contact red)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+
+def obb_finger(traj):
+    """The geom of a finger segment whose mesh has OBB levels (the distal segment C first)."""
+    for letter in ("C", "B", "A"):
+        for g, geom in enumerate(traj["geoms"]):
+            if geom["segment"] == letter and geom["type"] == "mesh" and \
+                    "obb_levels" in traj["meshes"][geom["mesh"]]:
+                return g
+    raise InputError(f"{traj['file']}: no finger segment with OBB levels")
+
+
+def fig17(traj, out):
+    g = obb_finger(traj)
+    mesh = traj["meshes"][traj["geoms"][g]["mesh"]]
+    v = np.array(mesh["vertices"]).reshape(-1, 3)
+    tris = v[np.array(mesh["faces"]).reshape(-1, 3)]
+    levels = mesh["obb_levels"]
+    fig = plt.figure(figsize=(12, 4))
+    for depth, boxes in enumerate(levels):
+        ax = fig.add_subplot(1, len(levels), depth + 1, projection="3d")
+        ax.add_collection3d(Poly3DCollection(tris, facecolors=shaded(tris, COLORS["segment"], 0.35),
+                                             edgecolor="none"))
+        segments = []
+        corners_all = [v]
+        for b in boxes:
+            c = box_corners(np.array(b["center"]), np.array(b["axes"]).reshape(3, 3), b["half"])
+            corners_all.append(c)
+            segments += [(c[i], c[j]) for i, j in BOX_EDGES]
+        ax.add_collection3d(Line3DCollection(segments, colors="#202060", linewidths=0.8))
+        set_equal(ax, np.concatenate(corners_all))
+        ax.view_init(elev=15, azim=-50)
+        ax.set_title(f"depth {depth}: {len(boxes)} boxes", fontsize=9)
+    fig.suptitle(f"OBB tree of {traj['geoms'][g]['name']} (mesh {mesh['name']}, "
+                 f"{len(mesh['faces']) // 3} triangles), in its geom frame", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+
+def contacts_figure(traj, out):
+    step = len(traj["steps"]) - 1
+    data = traj["steps"][step]
+    fig = plt.figure(figsize=(10, 5))
+    # The normal drawn with a length of a fifth of the object's size.
+    object_points = draw_scene(plt.figure().add_subplot(projection="3d"), traj, step, ("object",))
+    plt.close(plt.gcf())
+    scale = 0.2 * np.ptp(object_points, axis=0).max()
+    for k, (key, title, color) in enumerate([
+            ("contacts", "ours (graspcd, triangle meshes)", "#d00000"),
+            ("native_contacts", "MuJoCo native (convex hulls)", "#0030d0")]):
+        ax = fig.add_subplot(1, 2, k + 1, projection="3d")
+        points = draw_scene(ax, traj, step, ("object",), alpha=0.25)
+        contacts = data[key]
+        if contacts:
+            p = np.array([c["pos"] for c in contacts])
+            n = np.array([c["normal"] for c in contacts])
+            ax.scatter(p[:, 0], p[:, 1], p[:, 2], color=color, s=8, depthshade=False)
+            ax.quiver(p[:, 0], p[:, 1], p[:, 2], n[:, 0], n[:, 1], n[:, 2], length=scale,
+                      color=color, linewidth=0.7)
+            points = np.concatenate([points, p])
+        set_equal(ax, points)
+        ax.view_init(elev=25, azim=-60)
+        ax.set_title(f"{title}\n{len(contacts)} contacts", fontsize=9)
+    fig.suptitle(f"{traj['name']}, grasp step {step + 1}: contact points and normals on the object",
+                 fontsize=10)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+
+def fig12(traj, out):
+    fig = plt.figure(figsize=(6, 6))
+    ax = fig.add_subplot(projection="3d")
+    ax.computed_zorder = False  # the labels stay on top of the boxes
+    points = draw_scene(ax, traj, 0)
+    elev, azim = 15, -70
+    ax.view_init(elev=elev, azim=azim)
+    toward_camera = np.array([np.cos(np.radians(azim)), np.sin(np.radians(azim)), 0.0])
+    # The finger nearest the camera gets its segments labelled, each label pushed sideways.
+    fingers = {}
+    for g, geom in enumerate(traj["geoms"]):
+        if geom["segment"]:
+            fingers.setdefault(geom["name"].split("_")[0], []).append(g)
+    near = max(fingers, key=lambda f: np.mean([pose(traj, 0, g)[1] @ toward_camera
+                                                for g in fingers[f]]))
+    centre = points.mean(axis=0)
+    for g in fingers[near]:
+        _, pos = pose(traj, 0, g)
+        side = pos - centre
+        side[2] = 0
+        side = side / (np.linalg.norm(side) or 1) * 0.035
+        p = pos + side
+        ax.plot(*zip(pos, p), color="#b00000", linewidth=1.0, zorder=10)
+        ax.text(p[0], p[1], p[2], " " + traj["geoms"][g]["segment"], fontsize=15, color="#b00000",
+                fontweight="bold", zorder=11)
+    set_equal(ax, points)
+    ax.set_title(f"The box hand ({traj['name']}): segments A, B, C of {near}", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+
+def main(argv):
+    if len(argv) != 3:
+        print("usage: draw_figures.py TRAJECTORY_DIR FIGURES_DIR", file=sys.stderr)
+        return 2
+    src, dst = Path(argv[1]), Path(argv[2])
+    try:
+        examples = sorted(src.glob("example*.json"))
+        if not examples:
+            raise InputError(f"{src}: no example*.json trajectory files")
+        boxes = load(src / "hand_boxes.json")
+        trajs = [load(p) for p in examples]
+        for t, p in zip(trajs, examples):
+            t["file"] = str(p)
+        boxes["file"] = str(src / "hand_boxes.json")
+        dst.mkdir(parents=True, exist_ok=True)
+        written = []
+        for t in trajs:
+            written.append(dst / f"fig18_{t['name']}.png")
+            fig18(t, written[-1])
+        written.append(dst / "fig17_obb_depths.png")
+        fig17(trajs[0], written[-1])
+        written.append(dst / "contacts_native.png")
+        contacts_figure(trajs[0], written[-1])
+        written.append(dst / "fig12_box_hand.png")
+        fig12(boxes, written[-1])
+    except InputError as e:
+        print(e, file=sys.stderr)
+        return 2
+    for w in written:
+        print(f"wrote {w}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
