@@ -13,6 +13,8 @@ Writes into FIGURES_DIR:
                            joint positions
   fig12_box_hand.png       the box hand with its segments labelled A, B, C (Figure 12)
 Each input that is missing or not a trajectory file is a one-line error naming it, exit code 2.
+make_report.py calls insert_section(), which draws them when OUT/trajectories exists and adds their
+section to REPORT.md.
 """
 import json
 import sys
@@ -150,6 +152,10 @@ def fig18(traj, out):
     plt.close(fig)
 
 
+def boxes_text(n):
+    return f"{n} box" if n == 1 else f"{n} boxes"
+
+
 def obb_finger(traj):
     """The geom of a finger segment whose mesh has OBB levels (the distal segment C first)."""
     for letter in ("C", "B", "A"):
@@ -180,7 +186,7 @@ def fig17(traj, out):
         ax.add_collection3d(Line3DCollection(segments, colors="#202060", linewidths=0.8))
         set_equal(ax, np.concatenate(corners_all))
         ax.view_init(elev=15, azim=-50)
-        ax.set_title(f"depth {depth}: {len(boxes)} boxes", fontsize=9)
+        ax.set_title(f"depth {depth}: {boxes_text(len(boxes))}", fontsize=9)
     fig.suptitle(f"OBB tree of {traj['geoms'][g]['name']} (mesh {mesh['name']}, "
                  f"{len(mesh['faces']) // 3} triangles), in its geom frame", fontsize=10)
     fig.tight_layout()
@@ -251,36 +257,99 @@ def fig12(traj, out):
     plt.close(fig)
 
 
+def draw_all(src, dst):
+    """Draws every picture from the trajectory folder `src` into `dst`; returns what the report
+    says about them. Raises InputError naming the file that is missing or bad."""
+    src, dst = Path(src), Path(dst)
+    examples = sorted(src.glob("example*.json"))
+    if not examples:
+        raise InputError(f"{src}: no example*.json trajectory files")
+    trajs = []
+    for p in examples:
+        trajs.append(load(p))
+        trajs[-1]["file"] = str(p)
+    boxes = load(src / "hand_boxes.json")
+    boxes["file"] = str(src / "hand_boxes.json")
+    dst.mkdir(parents=True, exist_ok=True)
+    info = {"fig18": [], "examples": trajs}
+    for t in trajs:
+        name = f"fig18_{t['name']}.png"
+        fig18(t, dst / name)
+        info["fig18"].append((t, name))
+    fig17(trajs[0], dst / "fig17_obb_depths.png")
+    contacts_figure(trajs[0], dst / "contacts_native.png")
+    fig12(boxes, dst / "fig12_box_hand.png")
+    info["files"] = [n for _, n in info["fig18"]] + ["fig17_obb_depths.png", "contacts_native.png",
+                                                      "fig12_box_hand.png"]
+    return info
+
+
+def section(info, fig_rel):
+    """The report's section on the pictures (Markdown lines)."""
+    lines = ["## Pictures of the grasps and the trees", "",
+             "Drawn by `report/draw_figures.py` from the trajectory files `graspcd study` writes "
+             "into `trajectories/` (one per grasp: meshes, poses per closing grasp step, contacts, "
+             "per-step detection times, OBB levels; `graspcd trajectory --help`). "
+             "`./run study` also bundles them into the interactive viewer "
+             "`report/out/viewer/index.html`, one self-contained page that opens from the file "
+             "system: a step slider, play and pause, OBB depths 0-3, our and MuJoCo's contacts, "
+             "segments in contact coloured, and the detection time per grasp step of each method.",
+             "", "### Each example at first contact and at the grip (the paper's Figure 18)", ""]
+    for t, name in info["fig18"]:
+        first = first_contact_step(t)
+        lines += [f"{t['name']}: first contact at grasp step {first + 1} "
+                  f"({len(t['steps'][first]['contacts'])} contacts), the grip at step "
+                  f"{len(t['steps'])} ({len(t['steps'][-1]['contacts'])} contacts); "
+                  f"{'held' if t['held'] else 'not held'} after the lift.", "",
+                  f"![{name}]({fig_rel}/{name})", ""]
+    t = info["examples"][0]
+    g = obb_finger(t)
+    levels = t["meshes"][t["geoms"][g]["mesh"]]["obb_levels"]
+    lines += ["### One finger's OBBs at tree depths 0 to 3 (Figure 17)", "",
+              f"{t['geoms'][g]['name']} of {t['name']}: " +
+              ", ".join(f"depth {d}: {boxes_text(len(b))}" for d, b in enumerate(levels)) + ".", "",
+              f"![fig17_obb_depths.png]({fig_rel}/fig17_obb_depths.png)", ""]
+    last = t["steps"][-1]
+    lines += ["### Contacts on the non-convex object: ours and MuJoCo's convex hulls", "",
+              f"{t['name']} at the grip (grasp step {len(t['steps'])}): graspcd's contacts from the "
+              f"intersecting triangles ({len(last['contacts'])}) beside MuJoCo's native contacts "
+              f"from the convex hulls at the same joint positions ({len(last['native_contacts'])})"
+              ". Over all closing grasp steps: "
+              f"{sum(len(s['contacts']) for s in t['steps'])} of ours, "
+              f"{sum(len(s['native_contacts']) for s in t['steps'])} native.", "",
+              f"![contacts_native.png]({fig_rel}/contacts_native.png)", "",
+              "### The box hand and its segments A, B, C (Figure 12)", "",
+              f"![fig12_box_hand.png]({fig_rel}/fig12_box_hand.png)", ""]
+    return lines
+
+
+def insert_section(text, out_dir, fig_dir, fig_rel):
+    """make_report.py's hook: draws the pictures when OUT_DIR/trajectories exists and puts their
+    section before "## Reproduce" (at the end when there is none)."""
+    src = Path(out_dir) / "trajectories"
+    if not src.is_dir():
+        return text
+    try:
+        info = draw_all(src, fig_dir)
+    except InputError as e:
+        print(e, file=sys.stderr)
+        sys.exit(2)
+    block = "\n".join(section(info, fig_rel)) + "\n"
+    at = text.find("## Reproduce")
+    return text + "\n" + block if at < 0 else text[:at] + block + text[at:]
+
+
 def main(argv):
     if len(argv) != 3:
         print("usage: draw_figures.py TRAJECTORY_DIR FIGURES_DIR", file=sys.stderr)
         return 2
-    src, dst = Path(argv[1]), Path(argv[2])
     try:
-        examples = sorted(src.glob("example*.json"))
-        if not examples:
-            raise InputError(f"{src}: no example*.json trajectory files")
-        boxes = load(src / "hand_boxes.json")
-        trajs = [load(p) for p in examples]
-        for t, p in zip(trajs, examples):
-            t["file"] = str(p)
-        boxes["file"] = str(src / "hand_boxes.json")
-        dst.mkdir(parents=True, exist_ok=True)
-        written = []
-        for t in trajs:
-            written.append(dst / f"fig18_{t['name']}.png")
-            fig18(t, written[-1])
-        written.append(dst / "fig17_obb_depths.png")
-        fig17(trajs[0], written[-1])
-        written.append(dst / "contacts_native.png")
-        contacts_figure(trajs[0], written[-1])
-        written.append(dst / "fig12_box_hand.png")
-        fig12(boxes, written[-1])
+        info = draw_all(argv[1], argv[2])
     except InputError as e:
         print(e, file=sys.stderr)
         return 2
-    for w in written:
-        print(f"wrote {w}", file=sys.stderr)
+    for name in info["files"]:
+        print(f"wrote {Path(argv[2]) / name}", file=sys.stderr)
     return 0
 
 

@@ -22,6 +22,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+import draw_figures  # noqa: E402  (report/draw_figures.py, beside this script)
+
 # bridge::finger_segment_names(): the order of every per-segment array in study.json.
 SEGMENTS = [f"finger{f}_{s}" for f in range(1, 5) for s in "ABC"]
 
@@ -553,6 +555,8 @@ def main():
     figure_13_to_15(study, fig_dir)
     table1_figure(study, fig_dir)
     text = report(study, sweep, fig_dir, args.figures, stress)
+    # The pictures of the grasps and the trees (issue 9), from OUT_DIR/trajectories when present.
+    text = draw_figures.insert_section(text, args.out_dir, fig_dir, args.figures)
     with open(os.path.join(args.out_dir, "REPORT.md"), "w", encoding="utf-8") as f:
         f.write(text)
     print(f"wrote {os.path.join(args.out_dir, 'REPORT.md')} and {fig_dir}/*.png", file=sys.stderr)

@@ -118,6 +118,18 @@ TEST_F(StudyTest, QuickStudyWritesTheReportAndEveryMethodAgreesWithCgal) {
     ASSERT_TRUE(fs::exists(png)) << f;
     EXPECT_EQ(read_file(png).substr(1, 3), "PNG") << f;
   }
+  // The pictures (issue 9): a trajectory file per grasp, drawn into the report's own section.
+  const json traj = load(out / "trajectories" / "example1.json");
+  EXPECT_EQ(traj["grasp_steps"], rec["grasp_steps"]);
+  EXPECT_EQ(traj["times_ns"].size(), study["table1"]["methods"].size())
+      << "per-step times of every Table 1 method";
+  EXPECT_TRUE(fs::exists(out / "trajectories" / "hand_boxes.json"));
+  EXPECT_NE(report.find("## Pictures of the grasps and the trees"), std::string::npos);
+  for (const char* f : {"fig18_example1.png", "fig17_obb_depths.png", "contacts_native.png",
+                        "fig12_box_hand.png"}) {
+    EXPECT_NE(report.find(std::string("figures/") + f), std::string::npos) << f;
+    EXPECT_EQ(read_file(out / "figures" / f).substr(1, 3), "PNG") << f;
+  }
 }
 
 TEST_F(StudyTest, MergedShardsGiveTheAnswersOfOneUnshardedSweep) {

@@ -220,12 +220,14 @@ TEST_F(TrajectoryTest, BadInputIsOneLineNamingTheFileWithExitCode2) {
   r = run(script + bad.string() + "' '" + (dir_ / "f").string() + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find(bad.string()), std::string::npos) << r.err;
-  std::ofstream(bad / "example1.json") << "{\"schema\": 1}";
-  std::ofstream(bad / "hand_boxes.json") << "not json";
-  r = run(script + bad.string() + "' '" + (dir_ / "f").string() + "'");
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("hand_boxes.json"), std::string::npos) << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  // Not JSON, then JSON that is not a trajectory: each one line naming the file.
+  for (const char* text : {"not json", "{\"schema\": 1}"}) {
+    std::ofstream(bad / "example1.json") << text;
+    r = run(script + bad.string() + "' '" + (dir_ / "f").string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << text;
+    EXPECT_NE(r.err.find((bad / "example1.json").string()), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
 }
 
 }  // namespace
