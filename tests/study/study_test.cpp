@@ -4,9 +4,7 @@
 #include "study/driver/study.h"
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -14,44 +12,17 @@
 
 #include "study/driver/recording.h"
 #include "study/driver/replay.h"
-#include "support/temp_dir.h"
+#include "support/command_test.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string err;
-};
+using graspcd::testing::Outcome;
+using graspcd::testing::read_file;
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-class StudyTest : public graspcd::testing::TempDirTest {
- protected:
-  Outcome run(const std::string& command_line) {
-    const fs::path err = dir_ / "stderr.txt";
-    const int status =
-        std::system((command_line + " > /dev/null 2> '" + err.string() + "'").c_str());
-    Outcome r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    r.err = read_file(err);
-    return r;
-  }
-  Outcome graspcd(const std::string& args) {
-    return run(std::string("'") + GRASPCD_EXE + "' " + args);
-  }
-  json load(const fs::path& p) {
-    std::ifstream in(p);
-    json j;
-    in >> j;
-    return j;
-  }
-};
+class StudyTest : public graspcd::testing::CommandTest {};
 
 TEST_F(StudyTest, QuickStudyWritesTheReportAndEveryMethodAgreesWithCgal) {
   const fs::path out = dir_ / "quick";

@@ -4,10 +4,9 @@
 #include "study/driver/trajectory.h"
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -17,7 +16,7 @@
 #include "bridge/registry.h"
 #include "core/obb_tree.h"
 #include "study/driver/recording.h"
-#include "support/temp_dir.h"
+#include "support/command_test.h"
 
 namespace {
 
@@ -42,34 +41,10 @@ constexpr bool kSanitized = false;
 
 const std::string kMjcf = GRASPCD_SOURCE_DIR "/mjcf/";
 
-struct Outcome {
-  int exit_code = -1;
-  std::string err;
-};
+using graspcd::testing::Outcome;
+using graspcd::testing::read_file;
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-class TrajectoryTest : public graspcd::testing::TempDirTest {
- protected:
-  Outcome run(const std::string& command_line) {
-    const fs::path err = dir_ / "stderr.txt";
-    const int status =
-        std::system((command_line + " > /dev/null 2> '" + err.string() + "'").c_str());
-    Outcome r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    r.err = read_file(err);
-    return r;
-  }
-  static json load(const fs::path& p) {
-    std::ifstream in(p);
-    json j;
-    in >> j;
-    return j;
-  }
-};
+class TrajectoryTest : public graspcd::testing::CommandTest {};
 
 bool inside(const Obb& box, const Vec3& p, double tol) {
   const Vec3 local = box.axes.transpose() * (p - box.center);
@@ -166,12 +141,11 @@ TEST_F(TrajectoryTest, ARecordedGraspKeepsItsPosesContactsAndTimes) {
 
 TEST_F(TrajectoryTest, CommandWritesTimesPerMethodAndFiguresAreDrawnFromItsFiles) {
   const fs::path traj = dir_ / "trajectories";
-  Outcome r = run(std::string("'") + GRASPCD_EXE + "' trajectory '" + kMjcf +
-                  "example1.xml' --methods sat,sat-cached --out '" +
-                  (traj / "example1.json").string() + "'");
+  Outcome r = graspcd("trajectory '" + kMjcf + "example1.xml' --methods sat,sat-cached --out '" +
+                      (traj / "example1.json").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = run(std::string("'") + GRASPCD_EXE + "' trajectory '" + kMjcf + "hand_boxes.xml' --out '" +
-          (traj / "hand_boxes.json").string() + "'");
+  r = graspcd("trajectory '" + kMjcf + "hand_boxes.xml' --out '" +
+              (traj / "hand_boxes.json").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json e1 = load(traj / "example1.json");
   ASSERT_EQ(e1["times_ns"].size(), 2u);
@@ -203,13 +177,12 @@ TEST_F(TrajectoryTest, CommandWritesTimesPerMethodAndFiguresAreDrawnFromItsFiles
 
 TEST_F(TrajectoryTest, BadInputIsOneLineNamingTheFileWithExitCode2) {
   const std::string missing = (dir_ / "missing.xml").string();
-  Outcome r = run(std::string("'") + GRASPCD_EXE + "' trajectory '" + missing + "' --out '" +
-                  (dir_ / "t.json").string() + "'");
+  Outcome r = graspcd("trajectory '" + missing + "' --out '" + (dir_ / "t.json").string() + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find(missing), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  r = run(std::string("'") + GRASPCD_EXE + "' trajectory '" + kMjcf +
-          "example1.xml' --methods sat,nope --out '" + (dir_ / "t.json").string() + "'");
+  r = graspcd("trajectory '" + kMjcf + "example1.xml' --methods sat,nope --out '" +
+              (dir_ / "t.json").string() + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("nope"), std::string::npos) << r.err;
   // The figure script: a folder without trajectories, and a file that is not one.
