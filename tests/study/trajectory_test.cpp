@@ -17,6 +17,7 @@
 #include "core/obb_tree.h"
 #include "study/driver/recording.h"
 #include "support/command_test.h"
+#include "support/test_scale.h"
 
 namespace {
 
@@ -26,18 +27,6 @@ using graspcd::ObbTree;
 using graspcd::Vec3;
 using nlohmann::json;
 namespace study = graspcd::study;
-
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
 
 const std::string kMjcf = GRASPCD_SOURCE_DIR "/mjcf/";
 
@@ -160,9 +149,9 @@ TEST_F(TrajectoryTest, CommandWritesTimesPerMethodAndFiguresAreDrawnFromItsFiles
   EXPECT_TRUE(boxes["meshes"].empty());
   EXPECT_EQ(boxes["geoms"][0]["type"], "cylinder");
 
-  // draw_figures.py is Python: the sanitizer pass (the same suite under ASan) leaves it to the
+  // draw_figures.py is Python: the sanitizer pass (GRASPCD_TEST_SCALE < 1) leaves it to the
   // Release pass.
-  if (kSanitized) GTEST_SKIP() << "report/draw_figures.py runs in the Release pass";
+  if (graspcd::testing::test_scale() < 1) GTEST_SKIP() << "draw_figures.py: Release pass only";
   const fs::path figures = dir_ / "figures";
   r = run("/usr/bin/python3 '" GRASPCD_SOURCE_DIR "/report/draw_figures.py' '" + traj.string() +
           "' '" + figures.string() + "'");
@@ -186,7 +175,7 @@ TEST_F(TrajectoryTest, BadInputIsOneLineNamingTheFileWithExitCode2) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("nope"), std::string::npos) << r.err;
   // The figure script: a folder without trajectories, and a file that is not one.
-  if (kSanitized) GTEST_SKIP() << "report/draw_figures.py runs in the Release pass";
+  if (graspcd::testing::test_scale() < 1) GTEST_SKIP() << "draw_figures.py: Release pass only";
   const fs::path bad = dir_ / "bad";
   fs::create_directories(bad);
   const std::string script = "/usr/bin/python3 '" GRASPCD_SOURCE_DIR "/report/draw_figures.py' '";
