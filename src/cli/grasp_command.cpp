@@ -150,7 +150,7 @@ Command add_grasp_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "grasp", "Run a grasp (paper section 9): per grasp step, contacts and detection time");
   app->add_option("SCENE", options->scene, "The scene: an MJCF file of mjcf/")->required();
-  add_method_options(*app, options->method);
+  add_method_options(*app, options->method, MethodDefaults::kSceneConfig);
   app->add_flag("--native", options->native,
                 "MuJoCo's own collision (convex hulls) instead of graspcd's callback");
   app->add_flag("--json", options->json, "Print one JSON document instead of text");

@@ -14,19 +14,23 @@ std::vector<std::string> method_names() {
 
 }  // namespace
 
-void add_method_options(CLI::App& app, MethodOptions& options) {
-  app.add_option("--method", options.name,
-                 "Box-pair method: sat, sat-cached, perceptron, perceptron-nodisp, "
-                 "perceptron-scaled, perceptron-warm, neurosat or neurosat-sticky")
-      ->check(CLI::IsMember(method_names()))
-      ->capture_default_str();
-  app.add_option("--cap", options.cap, "Perceptron: most passes per box test (positive)")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  app.add_option("--switch", options.switch_passes,
-                 "Neuro-SAT: passes before SAT takes over (positive)")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+void add_method_options(CLI::App& app, MethodOptions& options, MethodDefaults defaults) {
+  CLI::Option* options_added[] = {
+      app.add_option("--method", options.name,
+                     "Box-pair method: sat, sat-cached, perceptron, perceptron-nodisp, "
+                     "perceptron-scaled, perceptron-warm, neurosat or neurosat-sticky")
+          ->check(CLI::IsMember(method_names())),
+      app.add_option("--cap", options.cap, "Perceptron: most passes per box test (positive)")
+          ->check(CLI::PositiveNumber),
+      app.add_option("--switch", options.switch_passes,
+                     "Neuro-SAT: passes before SAT takes over (positive)")
+          ->check(CLI::PositiveNumber)};
+  for (CLI::Option* option : options_added) {
+    option->capture_default_str();
+    if (defaults == MethodDefaults::kSceneConfig) {
+      option->default_str("the scene config's, else " + option->get_default_str());
+    }
+  }
 }
 
 void finish_method_options(MethodOptions& options) {

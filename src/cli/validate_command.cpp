@@ -217,7 +217,7 @@ Command add_validate_command(CLI::App& parent) {
       "validate", "Check a scene's grasp against CGAL: every registered pair at every grasp step");
   app->add_option("SCENE", o->scene, "The scene: an MJCF file with its SCENE.pairs.json")
       ->required();
-  add_method_options(*app, o->method);
+  add_method_options(*app, o->method, MethodDefaults::kSceneConfig);
   app->add_flag("--all-methods", o->all_methods,
                 "Check every method but perceptron-nodisp (default: the config's method)")
       ->excludes("--method");

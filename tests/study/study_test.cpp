@@ -13,6 +13,7 @@
 #include "study/driver/recording.h"
 #include "study/driver/replay.h"
 #include "support/command_test.h"
+#include "support/test_scale.h"
 
 namespace {
 
@@ -104,6 +105,11 @@ TEST_F(StudyTest, QuickStudyWritesTheReportAndEveryMethodAgreesWithCgal) {
 }
 
 TEST_F(StudyTest, MergedShardsGiveTheAnswersOfOneUnshardedSweep) {
+  if (graspcd::testing::test_scale() < 1) {
+    // Three more quick sweeps (2.5 min under the sanitizers): QuickStudy runs the same sweep code
+    // there; the merge is checked in the Release pass.
+    GTEST_SKIP() << "GRASPCD_TEST_SCALE < 1: the sweep runs under the sanitizers in QuickStudy";
+  }
   const fs::path whole = dir_ / "whole";
   const fs::path parts = dir_ / "parts";
   ASSERT_EQ(
