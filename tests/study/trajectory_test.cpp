@@ -129,6 +129,9 @@ TEST_F(TrajectoryTest, ARecordedGraspKeepsItsPosesContactsAndTimes) {
 }
 
 TEST_F(TrajectoryTest, CommandWritesTimesPerMethodAndFiguresAreDrawnFromItsFiles) {
+  // The sanitizer pass (GRASPCD_TEST_SCALE < 1) runs the same recording, replays and writer in
+  // ARecordedGrasp... and in StudyTest.QuickStudy...; the figures are Python: Release pass only.
+  if (graspcd::testing::test_scale() < 1) GTEST_SKIP() << "Release pass only";
   const fs::path traj = dir_ / "trajectories";
   Outcome r = graspcd("trajectory '" + kMjcf + "example1.xml' --methods sat,sat-cached --out '" +
                       (traj / "example1.json").string() + "'");
@@ -149,9 +152,6 @@ TEST_F(TrajectoryTest, CommandWritesTimesPerMethodAndFiguresAreDrawnFromItsFiles
   EXPECT_TRUE(boxes["meshes"].empty());
   EXPECT_EQ(boxes["geoms"][0]["type"], "cylinder");
 
-  // draw_figures.py is Python: the sanitizer pass (GRASPCD_TEST_SCALE < 1) leaves it to the
-  // Release pass.
-  if (graspcd::testing::test_scale() < 1) GTEST_SKIP() << "draw_figures.py: Release pass only";
   const fs::path figures = dir_ / "figures";
   r = run("/usr/bin/python3 '" GRASPCD_SOURCE_DIR "/report/draw_figures.py' '" + traj.string() +
           "' '" + figures.string() + "'");
