@@ -338,6 +338,7 @@ int& disagreements() {
 struct MeshRun {
   bool intersect = false;
   std::uint64_t box_tests = 0;
+  std::uint64_t tri_tests = 0;  // ours only
 };
 
 void BM_Spheres(benchmark::State& state, int rings, int who, double gap, bool first) {
@@ -360,6 +361,7 @@ void BM_Spheres(benchmark::State& state, int rings, int who, double gap, bool fi
                       ? collide(s->tree, s->tree, pose, mode, plain, c, pairs).intersect
                       : detector->collide(s->tree, s->tree, pose, mode, c, pairs).intersect;
     r.box_tests = c.box_tests;
+    r.tri_tests = c.tri_tests;
     return r;
   };
   for (auto _ : state) {
@@ -378,6 +380,7 @@ void BM_Spheres(benchmark::State& state, int rings, int who, double gap, bool fi
   }
   state.counters["box_tests"] = static_cast<double>(mine.box_tests);
   state.counters["pairs"] = static_cast<double>(my_pairs.size());
+  if (who != kFcl) state.counters["tri_tests"] = static_cast<double>(mine.tri_tests);
   state.counters["agrees"] = agrees ? 1 : 0;
   state.counters["faces"] = static_cast<double>(s->mesh.faces.size());
 }
