@@ -13,6 +13,7 @@ Exits 2 with a one-line message when an input is missing or not Google Benchmark
 
 import json
 import math
+import re
 import statistics
 import sys
 
@@ -48,7 +49,10 @@ def repetitions(data):
     for b in data["benchmarks"]:
         if b.get("run_type") != "iteration" or b.get("error_occurred"):
             continue
-        entry = out.setdefault(b["run_name"], {"times": [], "unit": b["time_unit"],
+        # A fixed iteration count shows in the name ("/iterations:1"); the comparisons do not
+        # depend on it.
+        name = re.sub(r"/iterations:\d+$", "", b["run_name"])
+        entry = out.setdefault(name, {"times": [], "unit": b["time_unit"],
                                                "counters": {}})
         entry["times"].append(b["cpu_time"])
         if not entry["counters"]:
