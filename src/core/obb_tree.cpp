@@ -96,7 +96,25 @@ ObbTree ObbTree::build(std::vector<Triangle> triangles, const ObbTreeOptions& op
     stack.push_back({mid, pending.end, pending.depth + 1, index});
     stack.push_back({pending.begin, mid, pending.depth + 1, -1});
   }
+  tree.link_frames();
   return tree;
+}
+
+void ObbTree::link_frames() {
+  in_parent_.assign(nodes_.size(), NodeFrame{});
+  if (nodes_.empty()) return;
+  in_parent_[0] = {nodes_[0].box.axes, nodes_[0].box.center};
+  const auto child_in = [](const Obb& parent, const Obb& child) {
+    return NodeFrame{parent.axes.transpose() * child.axes,
+                     parent.axes.transpose() * (child.center - parent.center)};
+  };
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const ObbNode& node = nodes_[i];
+    if (node.is_leaf()) continue;
+    in_parent_[i + 1] = child_in(node.box, nodes_[i + 1].box);
+    in_parent_[static_cast<std::size_t>(node.right)] =
+        child_in(node.box, nodes_[static_cast<std::size_t>(node.right)].box);
+  }
 }
 
 ObbTree ObbTree::build(const TriangleMesh& mesh, const ObbTreeOptions& options) {
@@ -129,6 +147,7 @@ ObbTree ObbTree::rounded_to_float(bool pad) const {
     }
     if (pad) box.half.array() += bound;
   }
+  out.link_frames();
   return out;
 }
 

@@ -19,6 +19,15 @@ struct ObbNode {
   bool is_leaf() const { return right < 0; }
 };
 
+// A node's box frame in its parent's box frame (RAPID's layout, Gottschalk, Lin, Manocha 1996):
+// R = P^T C and t = P^T (c_C - c_P) for the parent's axes P and centre c_P and the node's axes C
+// and centre c_C; for the root, its own axes and centre (the parent is the mesh frame). The tree
+// query carries relative frames down with these, one 3x3 product per step.
+struct NodeFrame {
+  Mat3 R = Mat3::Identity();
+  Vec3 t = Vec3::Zero();
+};
+
 struct ObbTreeOptions {
   int leaf_size = 1;                 // at most this many triangles per leaf (>= 1)
   ObbFit fit = ObbFit::kCovariance;  // how each node's box is fitted
@@ -37,6 +46,8 @@ class ObbTree {
   static ObbTree build(const TriangleMesh& mesh, const ObbTreeOptions& options = {});
 
   const std::vector<ObbNode>& nodes() const { return nodes_; }
+  // in_parent()[i]: node i's frame in its parent's (NodeFrame), parallel to nodes().
+  const std::vector<NodeFrame>& in_parent() const { return in_parent_; }
   // Triangles in leaf order; face_ids()[i] is the index of triangles()[i] in the input.
   const std::vector<Triangle>& triangles() const { return triangles_; }
   const std::vector<std::int32_t>& face_ids() const { return face_ids_; }
@@ -51,7 +62,11 @@ class ObbTree {
   ObbTree rounded_to_float(bool pad) const;
 
  private:
+  // Fills in_parent_ from nodes_.
+  void link_frames();
+
   std::vector<ObbNode> nodes_;
+  std::vector<NodeFrame> in_parent_;
   std::vector<Triangle> triangles_;
   std::vector<std::int32_t> face_ids_;
   int depth_ = 0;

@@ -6,12 +6,10 @@ namespace graspcd {
 
 bool SatCachedSeparator::disjoint(const Obb& a, const Obb& b, std::int32_t na, std::int32_t nb,
                                   QueryCounters& c) {
-  const SatAxis* last = cache.find(na, nb);
-  const SatAxis hint = last ? *last : kSatNoAxis;
-  const SatAxis axis = sat_separating_axis(a, b, hint);
+  const SatAxis first = hint(na, nb);
+  const SatAxis axis = sat_separating_axis(a, b, first);
   if (axis == kSatNoAxis) return false;
-  if (axis == hint) ++c.cache_hits;
-  cache.store(na, nb, axis);
+  record(na, nb, axis, first, c);
   return true;
 }
 

@@ -63,9 +63,18 @@ class PairCache {
 };
 
 // SAT that first tries the axis that separated the same node pair last time.
+// hint() and record() make it an axis separator for the tree query (tree_query.h).
 struct SatCachedSeparator {
   PairCache<SatAxis> cache;
   bool disjoint(const Obb& a, const Obb& b, std::int32_t na, std::int32_t nb, QueryCounters& c);
+  SatAxis hint(std::int32_t na, std::int32_t nb) const {
+    const SatAxis* last = cache.find(na, nb);
+    return last ? *last : kSatNoAxis;
+  }
+  void record(std::int32_t na, std::int32_t nb, SatAxis axis, SatAxis hint, QueryCounters& c) {
+    if (axis == hint) ++c.cache_hits;
+    cache.store(na, nb, axis);
+  }
 };
 
 // The perceptron alone (paper sections 5 and 11): "may overlap" when it hits its cap.

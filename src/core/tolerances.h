@@ -32,6 +32,22 @@ inline constexpr double kOrthonormalTol = 1e-9;
 inline constexpr double kSatRelativeSlack = 1e-8;
 inline constexpr double kSatRoundoffFactor = 16 * kUnitRoundoff;
 
+// The tree query with SAT (tree_query.h) carries B's node frame in A's node frame down both trees
+// (RAPID style): each step multiplies by a stored child-in-parent frame, so R and T gather
+// rounding from every level. Its slack at a node pair is
+//   kSatRelativeSlack * (sum of both boxes' half-extents + 2 |T|_1)
+//   + kSatCarriedRoundoffFactor * (depth_A + depth_B + 2) * S                   (metres),
+// with S = 2 (|cA_root|_1 + sum hA_root + |cB_root|_1 + sum hB_root) in A's frame, a bound on the
+// size of every node centre, extent and centre distance in either tree (a node's centre lies
+// within sqrt(3) of its triangles' farthest vertex, which lies in the root box). 2 |T|_1 bounds
+// the |cB - cA|_1 of the direct test (|d|_1 <= sqrt(3) |d|_2 = sqrt(3) |T|_2). One carried step
+// (a 3x3 product and a difference, the stored frame itself rounded) moves T by at most about
+// 16 u S and R's entries by about 8 u, so the second term covers every level four times over,
+// including the direct test's rounding of the root frame; R's drift moves B's corners by
+// depth * 8 u * sum hB, far inside the first term. Smaller risks a false "separated"; larger only
+// sends node pairs closer than ~1e-12 S further down the tree.
+inline constexpr double kSatCarriedRoundoffFactor = 64 * kUnitRoundoff;
+
 // An OBB fit pads each half-extent by this fraction of the largest |coordinate| of the fitted
 // points (metres per metre), so that every vertex lies inside the box although the projections that
 // size it are rounded. Smaller: a vertex may poke out by an ulp; larger: looser boxes.

@@ -17,16 +17,20 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/obb_tree.h"
 #include "core/separators.h"
+#include "core/tolerances.h"
 #include "core/tree_query.h"
 #include "io/mesh_io.h"
 #include "peer/fcl_peer.h"
+#include "support/meshes.h"
 #include "support/random_geometry.h"
 
 namespace graspcd {
@@ -118,7 +122,7 @@ struct Scene {
   }
 };
 
-enum class Who { kOursSat, kOursSatCached, kFclObb, kFclRss };
+enum class Who { kOursSat, kOursSatCached, kFclObb, kFclObbFront, kFclRss };
 
 const char* who_name(Who w) {
   switch (w) {
@@ -128,6 +132,8 @@ const char* who_name(Who w) {
       return "ours-sat-cached";
     case Who::kFclObb:
       return "fcl-obb";
+    case Who::kFclObbFront:
+      return "fcl-obb-front";
     case Who::kFclRss:
       return "fcl-rss";
   }
@@ -135,10 +141,10 @@ const char* who_name(Who w) {
 }
 
 // ns per query along one trajectory, replayed cyclically (one jump back to the start every
-// kSteps queries; the cached detector keeps its state throughout). Counters, from one extra
-// untimed pass over the whole trajectory after the timed loop, so they are the same for every
-// method up to FCL's rounding at touching poses: share of poses intersecting and pairs per pose;
-// for ours also box and triangle tests per pose.
+// kSteps queries; the cached detector and FCL's front list keep their state throughout). Counters,
+// from one extra untimed pass over the whole trajectory after the timed loop, so they are the same
+// for every method up to FCL's rounding at touching poses: share of poses intersecting and pairs
+// per pose; for ours also box and triangle tests per pose.
 void BM_Query(benchmark::State& state, Scene* scene, Who who, bool first_contact, double gap) {
   const std::vector<Pose> poses = scene->poses(gap);
   Detector detector(who == Who::kOursSatCached ? Method::kSatCached : Method::kSat);
@@ -146,14 +152,19 @@ void BM_Query(benchmark::State& state, Scene* scene, Who who, bool first_contact
   const bool ours = who == Who::kOursSat || who == Who::kOursSatCached;
   const peer::FclMesh& fa = who == Who::kFclRss ? *scene->fa_rss : *scene->fa_obb;
   const peer::FclMesh& fb = who == Who::kFclRss ? *scene->fb_rss : *scene->fb_obb;
+  peer::FclFront front;
+  peer::FclFront* front_list = who == Who::kFclObbFront ? &front : nullptr;
   QueryCounters counters;
+  std::uint64_t fcl_bv_tests = 0;
   // One query: (intersect, pairs).
   const auto query = [&](const Pose& pose) -> std::pair<bool, std::uint64_t> {
     if (ours) {
       const QueryResult r = detector.collide(scene->ta, scene->tb, pose, mode, counters);
       return {r.intersect, r.pair_count};
     }
-    const peer::FclQueryResult r = peer::fcl_collide(fa, fb, pose, first_contact);
+    const peer::FclQueryResult r =
+        peer::fcl_collide(fa, fb, pose, first_contact, nullptr, front_list);
+    fcl_bv_tests += r.bv_tests;
     return {r.intersect, r.pair_count};
   };
   std::size_t i = 0;
@@ -162,6 +173,7 @@ void BM_Query(benchmark::State& state, Scene* scene, Who who, bool first_contact
     benchmark::DoNotOptimize(r);
   }
   counters = QueryCounters{};
+  fcl_bv_tests = 0;
   std::uint64_t hits = 0, pairs = 0;
   for (const Pose& pose : poses) {
     const auto [hit, count] = query(pose);
@@ -171,10 +183,8 @@ void BM_Query(benchmark::State& state, Scene* scene, Who who, bool first_contact
   const double n = static_cast<double>(poses.size());
   state.counters["hit_share"] = static_cast<double>(hits) / n;
   state.counters["pairs"] = static_cast<double>(pairs) / n;
-  if (ours) {
-    state.counters["box_tests"] = static_cast<double>(counters.box_tests) / n;
-    state.counters["tri_tests"] = static_cast<double>(counters.tri_tests) / n;
-  }
+  state.counters["box_tests"] = static_cast<double>(ours ? counters.box_tests : fcl_bv_tests) / n;
+  if (ours) state.counters["tri_tests"] = static_cast<double>(counters.tri_tests) / n;
 }
 
 // Tree build from the mesh: ours (covariance fit, one triangle a leaf) and FCL's.
@@ -194,13 +204,34 @@ void BM_Build(benchmark::State& state, const TriangleMesh* mesh, int who) {
 // One OBB test, ours (SAT, core/sat.h) against FCL's fcl::obbDisjoint, on the same 65,536 random
 // box pairs: A at the identity, B rotated uniformly with its centre at a distance uniform in
 // [lo, hi] times the sum of the two boxes' half-diagonals (disjoint-heavy: [0.6, 1.2];
-// overlap-heavy: [0, 0.6]). Each iteration tests the next pair (cycling); "disjoint" counts the
-// answers, which must agree between the two (the pairs are random: no touching ones, where rounding
-// differs).
+// overlap-heavy: [0, 0.6]). Each iteration tests the next pair (cycling). Both are given what
+// FCL's test takes, B's axes and centre in A's frame and the half-extents: "ours" is
+// sat_separating_axis_in_a with its slack computed per pair (as sat_separating_axis computes it
+// for A at the identity); "ours-boxes" is sat_separating_axis on the two boxes, which also forms
+// A^T B and A^T (cB - cA). "disjoint" counts the answers, which must agree between the three (the
+// pairs are random: no touching ones, where the slack or rounding could differ).
 struct BoxPairSet {
   std::vector<Obb> a, b;
   double disjoint_ours = 0, disjoint_fcl = 0;
 };
+
+enum class ObbTester { kOurs, kOursBoxes, kFcl };
+
+bool obb_disjoint(ObbTester who, const Obb& a, const Obb& b) {
+  switch (who) {
+    case ObbTester::kOurs: {
+      const double slack =
+          tol::kSatRelativeSlack * (a.half.sum() + b.half.sum() + b.center.lpNorm<1>()) +
+          tol::kSatRoundoffFactor * b.center.lpNorm<1>();
+      return sat_separating_axis_in_a(b.axes, b.center, a.half, b.half, slack) != kSatNoAxis;
+    }
+    case ObbTester::kOursBoxes:
+      return sat_separating_axis(a, b) != kSatNoAxis;
+    case ObbTester::kFcl:
+      return peer::fcl_obb_disjoint(b.axes, b.center, a.half, b.half);
+  }
+  return false;
+}
 
 BoxPairSet make_box_pairs(double lo, double hi, std::uint64_t seed) {
   testing::Rng rng(seed);
@@ -211,29 +242,173 @@ BoxPairSet make_box_pairs(double lo, double hi, std::uint64_t seed) {
     Obb b = testing::random_box(rng, Vec3::Zero(), 0.2, 1.0);
     const double reach = a.half.norm() + b.half.norm();
     b.center = testing::random_unit_vector(rng) * reach * testing::uniform(rng, lo, hi);
-    set.disjoint_ours += sat_separating_axis(a, b) != kSatNoAxis;
-    set.disjoint_fcl += peer::fcl_obb_disjoint(b.axes, b.center, a.half, b.half);
+    const bool ours = obb_disjoint(ObbTester::kOurs, a, b);
+    if (ours != obb_disjoint(ObbTester::kOursBoxes, a, b)) {
+      std::fprintf(stderr, "BM_ObbTest: our two forms disagree on pair %d\n", i);
+      std::exit(1);
+    }
+    set.disjoint_ours += ours;
+    set.disjoint_fcl += obb_disjoint(ObbTester::kFcl, a, b);
     set.a.push_back(a);
     set.b.push_back(b);
   }
   return set;
 }
 
-void BM_ObbTest(benchmark::State& state, const BoxPairSet* set, bool fcl) {
+void BM_ObbTest(benchmark::State& state, const BoxPairSet* set, ObbTester who) {
   std::size_t i = 0;
   const std::size_t n = set->a.size();
   for (auto _ : state) {
-    const Obb& a = set->a[i];
-    const Obb& b = set->b[i];
-    const bool disjoint = fcl ? peer::fcl_obb_disjoint(b.axes, b.center, a.half, b.half)
-                              : sat_separating_axis(a, b) != kSatNoAxis;
+    const bool disjoint = obb_disjoint(who, set->a[i], set->b[i]);
     benchmark::DoNotOptimize(disjoint);
     i = i + 1 == n ? 0 : i + 1;
   }
   state.counters["disjoint_share"] =
-      (fcl ? set->disjoint_fcl : set->disjoint_ours) / static_cast<double>(n);
+      (who == ObbTester::kFcl ? set->disjoint_fcl : set->disjoint_ours) / static_cast<double>(n);
   state.counters["answers_differ"] = std::fabs(set->disjoint_fcl - set->disjoint_ours);
 }
+
+// Mesh against mesh: two UV spheres of radius 5 cm, A at the origin, B turned by a fixed random
+// rotation and placed along a fixed random direction d. The gaps are measured from the meshes'
+// own first contact along d (the largest centre distance s0 at which they intersect, to 50
+// bisections): a near miss at s0 + 0.5 mm, overlaps at s0 - 1 mm and s0 - 10 mm, at every
+// resolution. Every method of ours, the previous SAT descent ("ours-sat-transform": B's box
+// placed and A^T B formed at every node pair, as before the RAPID-style descent), and FCL's
+// BVHModel<OBBd>. Counters from one untimed query after the timed loop: box tests (FCL:
+// num_bv_tests), pairs found, and "agrees": 1 when the answer is FCL's (all contacts: the same
+// sorted pair list; first contact: the same yes/no).
+struct SpherePair {
+  TriangleMesh mesh;
+  ObbTree tree;
+  std::unique_ptr<peer::FclMesh> fcl;
+  Mat3 rotation;
+  Vec3 dir;
+  double contact = 0;  // s0
+  explicit SpherePair(int rings)
+      : mesh(testing::make_uv_sphere(0.05, rings, 2 * rings)),
+        tree(ObbTree::build(mesh)),
+        fcl(std::make_unique<peer::FclMesh>(mesh, peer::FclBv::kObb)) {
+    testing::Rng rng(17);
+    rotation = testing::random_rotation(rng);
+    dir = testing::random_unit_vector(rng);
+    // Convex solids: they overlap on an interval of s around 0; at 5 cm the surfaces cross, at
+    // 10.01 cm (the circumscribed spheres apart) they do not.
+    double lo = 0.05, hi = 0.1001;
+    for (int k = 0; k < 50; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      SatSeparator sat;
+      QueryCounters counters;
+      const bool hit =
+          collide(tree, tree, pose(mid), QueryMode::kFirstContact, sat, counters).intersect;
+      (hit ? lo : hi) = mid;
+    }
+    contact = lo;
+  }
+  Pose pose(double s) const {
+    Pose p;
+    p.R = rotation;
+    p.t = s * dir;
+    return p;
+  }
+};
+
+// The sphere pair of `rings` rings, built on first use (outside any timed loop) and kept.
+const SpherePair& sphere_pair(int rings) {
+  static std::map<int, std::unique_ptr<SpherePair>> pairs;
+  auto& p = pairs[rings];
+  if (!p) p = std::make_unique<SpherePair>(rings);
+  return *p;
+}
+
+struct PlainSatSeparator {  // the previous descent: no hint(), so collide() takes the generic one
+  bool disjoint(const Obb& a, const Obb& b, std::int32_t, std::int32_t, QueryCounters&) {
+    return sat_separating_axis(a, b) != kSatNoAxis;
+  }
+};
+
+// who: a Method index, kTransform (the previous SAT descent) or kFcl.
+constexpr int kTransform = -1, kFcl = -2;
+
+// Mesh queries whose answer differed from FCL's: main() exits 1 when there were any.
+int& disagreements() {
+  static int n = 0;
+  return n;
+}
+
+struct MeshRun {
+  bool intersect = false;
+  std::uint64_t box_tests = 0;
+  std::uint64_t tri_tests = 0;  // ours only
+};
+
+void BM_Spheres(benchmark::State& state, int rings, int who, double gap, bool first) {
+  const SpherePair* s = &sphere_pair(rings);
+  const Pose pose = s->pose(s->contact + gap);
+  const QueryMode mode = first ? QueryMode::kFirstContact : QueryMode::kAllContacts;
+  std::optional<Detector> detector;
+  if (who >= 0) detector.emplace(all_methods()[static_cast<std::size_t>(who)]);
+  PlainSatSeparator plain;
+  const auto run = [&](std::vector<TrianglePair>* pairs) {
+    MeshRun r;
+    if (who == kFcl) {
+      const peer::FclQueryResult f = peer::fcl_collide(*s->fcl, *s->fcl, pose, first, pairs);
+      r.intersect = f.intersect;
+      r.box_tests = f.bv_tests;
+      return r;
+    }
+    QueryCounters c;
+    r.intersect = who == kTransform
+                      ? collide(s->tree, s->tree, pose, mode, plain, c, pairs).intersect
+                      : detector->collide(s->tree, s->tree, pose, mode, c, pairs).intersect;
+    r.box_tests = c.box_tests;
+    r.tri_tests = c.tri_tests;
+    return r;
+  };
+  for (auto _ : state) {
+    const MeshRun r = run(nullptr);
+    benchmark::DoNotOptimize(r.intersect);
+  }
+  std::vector<TrianglePair> my_pairs, fcl_pairs;
+  const MeshRun mine = run(&my_pairs);
+  const peer::FclQueryResult f = peer::fcl_collide(*s->fcl, *s->fcl, pose, first, &fcl_pairs);
+  std::sort(my_pairs.begin(), my_pairs.end());
+  std::sort(fcl_pairs.begin(), fcl_pairs.end());
+  const bool agrees = first ? mine.intersect == f.intersect : my_pairs == fcl_pairs;
+  if (!agrees) {
+    disagreements() += 1;
+    state.SkipWithError("the answer differs from FCL's");
+  }
+  state.counters["box_tests"] = static_cast<double>(mine.box_tests);
+  state.counters["pairs"] = static_cast<double>(my_pairs.size());
+  if (who != kFcl) state.counters["tri_tests"] = static_cast<double>(mine.tri_tests);
+  state.counters["agrees"] = agrees ? 1 : 0;
+  state.counters["faces"] = static_cast<double>(s->mesh.faces.size());
+}
+
+std::string mesh_who_name(int who) {
+  if (who == kFcl) return "fcl-obb";
+  if (who == kTransform) return "ours-sat-transform";
+  return std::string("ours-") + method_name(all_methods()[static_cast<std::size_t>(who)]);
+}
+
+// Tree build on UV spheres of about n triangles (the meshes of the scaling series): ours
+// (covariance fit, one triangle a leaf) and FCL's OBB build.
+void BM_BuildScale(benchmark::State& state, int rings, bool fcl) {
+  const TriangleMesh* mesh = &sphere_pair(rings).mesh;
+  for (auto _ : state) {
+    if (fcl) {
+      const peer::FclMesh m(*mesh, peer::FclBv::kObb);
+      benchmark::DoNotOptimize(&m);
+    } else {
+      const ObbTree tree = ObbTree::build(*mesh);
+      benchmark::DoNotOptimize(tree.nodes().data());
+    }
+  }
+  state.counters["faces"] = static_cast<double>(mesh->faces.size());
+}
+
+// Rings of a UV sphere with about n triangles (4 rings (rings - 1) of them).
+int rings_for(double n) { return std::max(4, static_cast<int>(std::lround(std::sqrt(n) / 2))); }
 
 // With --benchmark_repetitions, min and max over the repetitions beside Google Benchmark's mean,
 // median and stddev.
@@ -270,14 +445,58 @@ int main(int argc, char** argv) {
   using namespace graspcd;
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::AddCustomContext("graspcd_build", GRASPCD_BUILD_DESCRIPTION);
   const BoxPairSet disjoint_heavy = make_box_pairs(0.6, 1.2, 11);
   const BoxPairSet overlap_heavy = make_box_pairs(0.0, 0.6, 12);
   for (const auto& [label, set] :
        {std::pair<const char*, const BoxPairSet*>{"disjoint-heavy", &disjoint_heavy},
         {"overlap-heavy", &overlap_heavy}}) {
+    for (const auto& [who_label, who] :
+         {std::pair<const char*, ObbTester>{"ours", ObbTester::kOurs},
+          {"ours-boxes", ObbTester::kOursBoxes},
+          {"fcl", ObbTester::kFcl}}) {
+      const std::string name = std::string("BM_ObbTest/") + label + "/" + who_label;
+      add_min_max(benchmark::RegisterBenchmark(name.c_str(), BM_ObbTest, set, who));
+    }
+  }
+  // Two 3,968-triangle spheres (32 rings), and the scaling series 1e2 to 1e6 triangles, built on
+  // first use (the largest take seconds), so only the sizes a filter selects pay for theirs.
+  const std::pair<const char*, double> sphere_gaps[] = {
+      {"near_miss_0.5mm", 5e-4}, {"overlap_1mm", -1e-3}, {"overlap_10mm", -1e-2}};
+  std::vector<int> whos;
+  for (std::size_t m = 0; m < all_methods().size(); ++m) whos.push_back(static_cast<int>(m));
+  whos.push_back(kTransform);
+  whos.push_back(kFcl);
+  for (const auto& [gap_name, gap] : sphere_gaps) {
+    for (const bool first : {true, false}) {
+      for (const int who : whos) {
+        const std::string name = std::string("BM_Spheres/3968/") + gap_name +
+                                 (first ? "/first/" : "/all/") + mesh_who_name(who);
+        add_min_max(benchmark::RegisterBenchmark(name.c_str(), BM_Spheres, 32, who, gap, first)
+                        ->Unit(benchmark::kMicrosecond));
+      }
+    }
+  }
+  for (const double n : {1e3, 1e4, 1e5, 1e6}) {
     for (const bool fcl : {false, true}) {
-      const std::string name = std::string("BM_ObbTest/") + label + (fcl ? "/fcl" : "/ours");
-      add_min_max(benchmark::RegisterBenchmark(name.c_str(), BM_ObbTest, set, fcl));
+      const std::string name =
+          "BM_BuildScale/" + std::to_string(static_cast<long>(n)) + (fcl ? "/fcl-obb" : "/ours");
+      auto* b = benchmark::RegisterBenchmark(name.c_str(), BM_BuildScale, rings_for(n), fcl)
+                    ->Unit(benchmark::kMillisecond);
+      if (n >= 1e6) b->Iterations(1);
+      add_min_max(b);
+    }
+  }
+  for (const double n : {1e2, 1e3, 1e4, 1e5, 1e6}) {
+    for (const auto& [gap_name, gap] :
+         {std::pair<const char*, double>{"near_miss_0.5mm", 5e-4}, {"overlap_1mm", -1e-3}}) {
+      for (const int who : {static_cast<int>(Method::kSat), kFcl}) {
+        const std::string name = "BM_QueryScale/" + std::to_string(static_cast<long>(n)) + "/" +
+                                 gap_name + "/all/" + mesh_who_name(who);
+        add_min_max(
+            benchmark::RegisterBenchmark(name.c_str(), BM_Spheres, rings_for(n), who, gap, false)
+                ->Unit(benchmark::kMicrosecond));
+      }
     }
   }
   const std::vector<std::unique_ptr<Scene>> scenes = load_scenes();
@@ -287,7 +506,8 @@ int main(int argc, char** argv) {
   for (const auto& scene : scenes) {
     for (const auto& [gap_name, gap] : gaps) {
       for (const bool first : {false, true}) {
-        for (const Who who : {Who::kOursSat, Who::kOursSatCached, Who::kFclObb, Who::kFclRss}) {
+        for (const Who who :
+             {Who::kOursSat, Who::kOursSatCached, Who::kFclObb, Who::kFclObbFront, Who::kFclRss}) {
           const std::string name = "BM_Query/" + scene->name + "/" + gap_name + "/" +
                                    (first ? "first/" : "all/") + who_name(who);
           add_min_max(
@@ -308,5 +528,9 @@ int main(int argc, char** argv) {
   }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
+  if (disagreements() > 0) {
+    std::fprintf(stderr, "error: %d mesh queries answered differently from FCL\n", disagreements());
+    return 1;
+  }
   return 0;
 }

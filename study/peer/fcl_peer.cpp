@@ -21,7 +21,33 @@ struct FclMesh::Impl {
   std::unique_ptr<fcl::BVHModel<fcl::RSSd>> rss;
 };
 
+struct FclFront::Impl {
+  fcl::detail::BVHFrontList list;
+};
+
+FclFront::FclFront() : impl_(std::make_unique<Impl>()) {}
+FclFront::~FclFront() = default;
+FclFront::FclFront(FclFront&&) noexcept = default;
+FclFront& FclFront::operator=(FclFront&&) noexcept = default;
+std::size_t FclFront::size() const { return impl_->list.size(); }
+void FclFront::clear() { impl_->list.clear(); }
+
 namespace {
+
+// One query through FCL's traversal node for the bounding volume (statistics on).
+template <class Node, class Model>
+std::uint64_t traverse(const Model& a, const Model& b, const fcl::Transform3d& tf,
+                       const fcl::CollisionRequestd& request, fcl::CollisionResultd& result,
+                       fcl::detail::BVHFrontList* front) {
+  static const fcl::Transform3d identity = fcl::Transform3d::Identity();
+  Node node;
+  if (!fcl::detail::initialize(node, a, identity, b, tf, request, result)) {
+    throw std::runtime_error("fcl_collide: FCL's initialize failed");
+  }
+  node.enable_statistics = true;
+  fcl::detail::collide(&node, front);
+  return static_cast<std::uint64_t>(node.num_bv_tests);
+}
 
 // beginModel / addSubModel / endModel (BVH_model.h); every call returns BVH_OK (0) on success.
 // Vec3 is fcl::Vector3d (both Eigen::Vector3d), so the vertices go in as they are.
@@ -83,11 +109,10 @@ int FclMesh::bv_count() const {
 }
 
 FclQueryResult fcl_collide(const FclMesh& a, const FclMesh& b, const Pose& b_in_a,
-                           bool first_contact, std::vector<TrianglePair>* pairs) {
+                           bool first_contact, std::vector<TrianglePair>* pairs, FclFront* front) {
   if (a.bv() != b.bv()) {
     throw std::invalid_argument("fcl_collide: the two meshes use different bounding volumes");
   }
-  static const fcl::Transform3d identity = fcl::Transform3d::Identity();
   fcl::Transform3d tf = fcl::Transform3d::Identity();
   tf.linear() = b_in_a.R;
   tf.translation() = b_in_a.t;
@@ -96,20 +121,19 @@ FclQueryResult fcl_collide(const FclMesh& a, const FclMesh& b, const Pose& b_in_
   const fcl::CollisionRequestd request(
       first_contact ? std::size_t{1} : std::numeric_limits<std::size_t>::max(), false);
   fcl::CollisionResultd result;
-  if (a.bv() == FclBv::kObb) {
-    // fcl::collide dispatches BVHModel<OBBd> pairs to orientedMeshCollide: an oriented traversal
-    // on the models as built, nothing copied.
-    fcl::collide(a.impl_->obb.get(), identity, b.impl_->obb.get(), tf, request, result);
-  } else {
-    // For BVHModel<RSSd> pairs FCL 0.7's fcl::collide takes the generic BVHCollideImpl, which
-    // copies both models, transforms B's vertices and rebuilds its tree on every call (FCL issue
-    // #38). So the RSS query runs what orientedMeshCollide does for OBB, with FCL's own RSS
-    // traversal node: initialize() on the models as built, then detail::collide().
-    fcl::detail::MeshCollisionTraversalNodeRSS<double> node;
-    fcl::detail::initialize(node, *a.impl_->rss, identity, *b.impl_->rss, tf, request, result);
-    fcl::detail::collide(&node);
-  }
+  fcl::detail::BVHFrontList* list = front ? &front->impl_->list : nullptr;
   FclQueryResult out;
+  // fcl::collide dispatches BVHModel<OBBd> pairs to orientedMeshCollide, which is this traversal
+  // on the models as built, nothing copied. For BVHModel<RSSd> pairs FCL 0.7's fcl::collide
+  // takes the generic BVHCollideImpl, which copies both models, transforms B's vertices and
+  // rebuilds its tree on every call (FCL issue #38), so both go through the node here.
+  if (a.bv() == FclBv::kObb) {
+    out.bv_tests = traverse<fcl::detail::MeshCollisionTraversalNodeOBB<double>>(
+        *a.impl_->obb, *b.impl_->obb, tf, request, result, list);
+  } else {
+    out.bv_tests = traverse<fcl::detail::MeshCollisionTraversalNodeRSS<double>>(
+        *a.impl_->rss, *b.impl_->rss, tf, request, result, list);
+  }
   out.intersect = result.isCollision();
   out.pair_count = result.numContacts();
   if (pairs) {

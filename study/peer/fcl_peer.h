@@ -30,6 +30,34 @@ struct FclQueryResult {
   bool intersect = false;
   // Intersecting triangle pairs FCL reported (0 or 1 in first-contact mode).
   std::uint64_t pair_count = 0;
+  // Box (BV) tests FCL's traversal made: its num_bv_tests statistic.
+  std::uint64_t bv_tests = 0;
+};
+
+class FclMesh;
+
+// FCL's front list (detail::BVHFrontList, the BVTT front of the previous query) for one pair of
+// meshes: passed to fcl_collide, the next query starts from it instead of the roots (temporal
+// coherence). FCL disables its early stop when a front list is used, and may then report an
+// intersecting pair twice (pair_count counts both; the set of pairs is unchanged). Move-only.
+class FclFront {
+ public:
+  FclFront();
+  ~FclFront();
+  FclFront(FclFront&&) noexcept;
+  FclFront& operator=(FclFront&&) noexcept;
+  FclFront(const FclFront&) = delete;
+  FclFront& operator=(const FclFront&) = delete;
+  std::size_t size() const;  // node pairs on the front
+  void clear();
+
+  struct Impl;  // holds the BVHFrontList; defined in fcl_peer.cpp
+
+ private:
+  friend FclQueryResult fcl_collide(const FclMesh& a, const FclMesh& b, const Pose& b_in_a,
+                                    bool first_contact, std::vector<TrianglePair>* pairs,
+                                    FclFront* front);
+  std::unique_ptr<Impl> impl_;
 };
 
 // A mesh as FCL's fcl::BVHModel<fcl::OBBd> or fcl::BVHModel<fcl::RSSd>, built once (FCL's default
@@ -57,7 +85,8 @@ class FclMesh {
 
  private:
   friend FclQueryResult fcl_collide(const FclMesh& a, const FclMesh& b, const Pose& b_in_a,
-                                    bool first_contact, std::vector<TrianglePair>* pairs);
+                                    bool first_contact, std::vector<TrianglePair>* pairs,
+                                    FclFront* front);
   FclBv bv_;
   std::unique_ptr<Impl> impl_;
 };
@@ -69,12 +98,15 @@ class FclMesh {
 // pair exactly once with its primitive ids, whereas with enable_contact it records 0 to 2 contact
 // points per pair (0 when its contact-point clipping finds none, so pairs would go missing).
 // `pairs`, if given, receives the pairs as face indices (a's, b's), in FCL's order.
-// The OBB query is fcl::collide. The RSS query runs FCL's own oriented RSS traversal directly
-// (initialize + detail::collide, what fcl::collide does for OBB), because fcl::collide in 0.7
-// copies both RSS models and rebuilds B's tree on every call (FCL issue #38).
+// Both queries run FCL's own oriented traversal node (detail::MeshCollisionTraversalNodeOBB or
+// ...RSS: initialize + detail::collide, what fcl::collide does for OBB, with statistics on for
+// bv_tests). The RSS query cannot go through fcl::collide, which in 0.7 copies both RSS models
+// and rebuilds B's tree on every call (FCL issue #38). `front`, if given, is FCL's front list of
+// the previous query of the same pair, and is updated.
 // Throws std::invalid_argument when a and b use different bounding volumes.
 FclQueryResult fcl_collide(const FclMesh& a, const FclMesh& b, const Pose& b_in_a,
-                           bool first_contact, std::vector<TrianglePair>* pairs = nullptr);
+                           bool first_contact, std::vector<TrianglePair>* pairs = nullptr,
+                           FclFront* front = nullptr);
 
 // FCL's one OBB test, fcl::obbDisjoint (RAPID's 15-axis test with early exit, Gottschalk et al.
 // 1996) on box A at the identity with half-extents `a` and box B with rotation `B`, centre `T`

@@ -73,6 +73,64 @@ TEST(TreeQuery, LeafSizeAndHullFitDoNotChangeAnswers) {
   }
 }
 
+// The SAT separators take the RAPID-style descent with frames carried down the trees
+// (detail::collide_carried); a separator without hint() takes the generic one, which places B's
+// box and forms A^T B at every node pair. Both must visit the same node pairs and find the same
+// triangle pairs, also far from the origin (meshes moved 1 km away), where the carried rounding
+// is largest against the features' size, and with the cached separator along a coherent path.
+struct GenericSat {  // sat_separating_axis per pair, no hint(): the generic descent
+  bool disjoint(const Obb& a, const Obb& b, std::int32_t, std::int32_t, QueryCounters&) {
+    return sat_separating_axis(a, b) != kSatNoAxis;
+  }
+};
+
+TEST(TreeQuery, CarriedFramesVisitTheSameNodePairsAsTheGenericDescent) {
+  for (const double offset : {0.0, 1000.0}) {
+    TriangleMesh torus = testing::make_torus(0.04, 0.012, 30, 16);
+    TriangleMesh sphere = testing::make_uv_sphere(0.015, 12, 16);
+    for (Vec3& v : torus.vertices) v += Vec3(offset, -offset, offset);
+    for (Vec3& v : sphere.vertices) v += Vec3(offset, -offset, offset);
+    const ObbTree ta = ObbTree::build(torus), tb = ObbTree::build(sphere);
+    std::mt19937_64 rng(21);
+    std::uniform_real_distribution<double> u(-0.06, 0.06);
+    Detector cached(Method::kSatCached);
+    int hits = 0;
+    const int n = scaled(300);
+    for (int i = 0; i < n; ++i) {
+      // A coherent path for the cached detector: a slow turn and a sweep across the torus.
+      Pose pose;
+      pose.R = testing::rotation_about(Vec3(0.3, 0.5, 0.8).normalized(), 0.01 * i);
+      const Vec3 c(offset, -offset, offset);
+      pose.t = c - pose.R * c + Vec3(0.12 * i / n - 0.06, 0.3 * u(rng), 0.2 * u(rng));
+      for (const QueryMode mode : {QueryMode::kAllContacts, QueryMode::kFirstContact}) {
+        GenericSat generic;
+        SatSeparator carried;
+        QueryCounters cg, cc, ck;
+        std::vector<TrianglePair> pg, pc, pk;
+        const QueryResult rg = collide(ta, tb, pose, mode, generic, cg, &pg);
+        const QueryResult rc = collide(ta, tb, pose, mode, carried, cc, &pc);
+        const QueryResult rk = cached.collide(ta, tb, pose, mode, ck, &pk);
+        ASSERT_EQ(rg.intersect, rc.intersect) << "offset " << offset << " pose " << i;
+        ASSERT_EQ(pg, pc) << "offset " << offset << " pose " << i;
+        ASSERT_EQ(cg.box_tests, cc.box_tests) << "offset " << offset << " pose " << i;
+        ASSERT_EQ(cg.tri_tests, cc.tri_tests);
+        // The cached hint changes which axis is found first, not the answer or the pairs.
+        ASSERT_EQ(rg.intersect, rk.intersect);
+        ASSERT_EQ(cg.box_tests, ck.box_tests);
+        if (mode == QueryMode::kAllContacts) {
+          std::sort(pg.begin(), pg.end());
+          std::sort(pk.begin(), pk.end());
+          ASSERT_EQ(pg, pk);
+          hits += rg.intersect;
+        }
+      }
+    }
+    // The path both touches and misses.
+    EXPECT_GT(hits, n / 10) << "offset " << offset;
+    EXPECT_LT(hits, n - n / 10) << "offset " << offset;
+  }
+}
+
 // Real non-convex meshes from ../shared/models (support/real_models.h): cube_cup_hi against the
 // mug.
 TEST(TreeQuery, RealCupAgainstMugMatchesBruteForce) {

@@ -43,6 +43,7 @@
 #include "core/tree_query.h"
 #include "io/mesh_io.h"
 #include "support/contact_rays.h"
+#include "support/meshes.h"
 #include "support/random_geometry.h"
 #include "support/real_models.h"
 #include "support/test_scale.h"
@@ -347,6 +348,40 @@ TEST(FclPeer, PoseConventionAndFaceIndicesMatchOurs) {
   // Random poses of this spread both hit and miss often.
   EXPECT_GT(hits, 100);
   EXPECT_GT(misses, 100);
+}
+
+// FCL's front list (temporal coherence) and its box-test statistic: along a coherent path of a
+// sphere sweeping through another, the front list must give the answers of the query from the
+// roots at every step, and the statistic must count box tests (at least one, the roots). FCL 0.7
+// reports some pairs twice when it starts from a front (a leaf pair on the front and again below a
+// front node that overlaps now), so the pairs are compared as sets.
+TEST(FclPeer, FrontListKeepsTheAnswersAndBoxTestsAreCounted) {
+  const TriangleMesh sphere = testing::make_uv_sphere(0.05, 10, 20);
+  const FclMesh m(sphere, FclBv::kObb);
+  peer::FclFront front;
+  int hits = 0;
+  const int n = 120;
+  for (int i = 0; i < n; ++i) {
+    Pose pose;
+    pose.R = testing::rotation_about(Vec3(0, 0.6, 0.8), 0.003 * i);
+    pose.t = Vec3(0.12 - 0.001 * i, 0.01, 0);
+    std::vector<TrianglePair> direct, coherent;
+    const peer::FclQueryResult r = peer::fcl_collide(m, m, pose, false, &direct);
+    const peer::FclQueryResult f = peer::fcl_collide(m, m, pose, false, &coherent, &front);
+    std::sort(direct.begin(), direct.end());
+    std::sort(coherent.begin(), coherent.end());
+    coherent.erase(std::unique(coherent.begin(), coherent.end()), coherent.end());
+    ASSERT_EQ(direct, coherent) << "step " << i;
+    ASSERT_EQ(r.intersect, f.intersect);
+    EXPECT_GE(r.bv_tests, 1u);
+    EXPECT_GE(front.size(), 1u);
+    hits += r.intersect;
+  }
+  // The path starts clear (centres 12 cm apart, radius 5 cm) and ends in deep overlap.
+  EXPECT_GT(hits, n / 4);
+  EXPECT_LT(hits, n - n / 10);
+  front.clear();
+  EXPECT_EQ(front.size(), 0u);
 }
 
 // ---- Real and shipped meshes ------------------------------------------------------------------

@@ -1,0 +1,171 @@
+#!/usr/bin/python3
+"""Turns the Google Benchmark JSON of `./run perf` into perf.json: medians, min and max over the
+repetitions of every benchmark, and every comparison of issue 6 as a ratio of ours to the peer
+measured in the same run, with its target and whether it is met.
+
+Usage: /usr/bin/python3 study/bench/perf_summary.py FCL_BENCH.json MUJOCO_BENCH.json > perf.json
+
+A ratio's median is the ratio of the two medians; its min and max are those of the ratios of
+repetition i of ours to repetition i of the peer (Google Benchmark runs the repetitions of one
+benchmark back to back, so pairing them by index is pairing runs minutes apart at most).
+Exits 2 with a one-line message when an input is missing or not Google Benchmark's JSON.
+"""
+
+import json
+import math
+import re
+import statistics
+import sys
+
+
+def fail(message):
+    print(f"perf_summary.py: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+def load(path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+    except OSError as e:
+        fail(f"{path}: {e.strerror}")
+    except json.JSONDecodeError as e:
+        fail(f"{path}:{e.lineno}: not JSON ({e.msg})")
+    if "benchmarks" not in data or "context" not in data:
+        fail(f"{path}: not Google Benchmark's JSON output (no 'benchmarks' or 'context')")
+    return data
+
+
+# Counters Google Benchmark adds that are not ours.
+NOT_COUNTERS = {"name", "family_index", "per_family_instance_index", "run_name", "run_type",
+                "repetitions", "repetition_index", "threads", "iterations", "real_time",
+                "cpu_time", "time_unit", "aggregate_name", "aggregate_unit", "label",
+                "error_occurred", "error_message"}
+
+
+def repetitions(data):
+    """name -> {"times": [cpu time per repetition], "unit", "counters" (of the first)}."""
+    out = {}
+    for b in data["benchmarks"]:
+        if b.get("run_type") != "iteration" or b.get("error_occurred"):
+            continue
+        # A fixed iteration count shows in the name ("/iterations:1"); the comparisons do not
+        # depend on it.
+        name = re.sub(r"/iterations:\d+$", "", b["run_name"])
+        entry = out.setdefault(name, {"times": [], "unit": b["time_unit"],
+                                               "counters": {}})
+        entry["times"].append(b["cpu_time"])
+        if not entry["counters"]:
+            entry["counters"] = {k: v for k, v in b.items() if k not in NOT_COUNTERS}
+    return out
+
+
+def summary(entry):
+    t = entry["times"]
+    return {"unit": entry["unit"], "median": statistics.median(t), "min": min(t), "max": max(t),
+            "repetitions": len(t), "counters": entry["counters"]}
+
+
+def compare(runs, group, label, ours, peer, target=None, **extra):
+    """A comparison of two benchmarks, or None when either did not run."""
+    if ours not in runs or peer not in runs:
+        return None
+    a, b = runs[ours]["times"], runs[peer]["times"]
+    per_rep = [x / y for x, y in zip(a, b)]
+    ratio = statistics.median(a) / statistics.median(b)
+    c = {"group": group, "label": label, "ours": ours, "peer": peer,
+         "ratio_median": ratio, "ratio_min": min(per_rep), "ratio_max": max(per_rep),
+         "target": target, "met": None if target is None else ratio <= target}
+    c.update(extra)
+    return c
+
+
+def main():
+    if len(sys.argv) != 3:
+        fail("usage: perf_summary.py FCL_BENCH.json MUJOCO_BENCH.json")
+    fcl_data, mj_data = load(sys.argv[1]), load(sys.argv[2])
+    runs = repetitions(fcl_data)
+    runs.update(repetitions(mj_data))
+    out = {"context": fcl_data["context"],
+           "benchmarks": {name: summary(e) for name, e in sorted(runs.items())},
+           "comparisons": []}
+    comps = out["comparisons"]
+
+    def add(c):
+        if c is not None:
+            comps.append(c)
+
+    # One OBB test.
+    for s in ("disjoint-heavy", "overlap-heavy"):
+        add(compare(runs, "obb_test", f"{s}, B in A's frame", f"BM_ObbTest/{s}/ours",
+                    f"BM_ObbTest/{s}/fcl", 0.5))
+        add(compare(runs, "obb_test", f"{s}, from two world boxes", f"BM_ObbTest/{s}/ours-boxes",
+                    f"BM_ObbTest/{s}/fcl"))
+    # Mesh against mesh, every method.
+    for name in sorted(runs):
+        parts = name.split("/")
+        if parts[0] != "BM_Spheres" or parts[-1] == "fcl-obb":
+            continue
+        peer = "/".join(parts[:-1] + ["fcl-obb"])
+        if peer not in runs:
+            continue
+        mine, theirs = runs[name]["counters"], runs[peer]["counters"]
+        target = 0.5 if parts[-1] == "ours-sat" or parts[-1] == "ours-sat-cached" else None
+        add(compare(runs, "mesh", f"{parts[2]}, {parts[3]}, {parts[4]}", name, peer, target,
+                    box_tests=mine.get("box_tests"), peer_box_tests=theirs.get("box_tests"),
+                    pairs=mine.get("pairs"), agrees=mine.get("agrees") == 1))
+    # Along the trajectories: ours with temporal coherence against FCL per step and FCL's front.
+    for name in sorted(runs):
+        parts = name.split("/")
+        if parts[0] != "BM_Query" or parts[-1] != "ours-sat-cached":
+            continue
+        stem = "/".join(parts[:-1])
+        for peer, what in (("fcl-obb", "FCL per step"), ("fcl-obb-front", "FCL's front list")):
+            add(compare(runs, "trajectory", f"{parts[1]}, {parts[2]}, {parts[3]}, vs {what}",
+                        name, f"{stem}/{peer}", 0.25,
+                        box_tests=runs[name]["counters"].get("box_tests"),
+                        peer_box_tests=runs.get(f"{stem}/{peer}", {}).get("counters", {})
+                        .get("box_tests"),
+                        hit_share=runs[name]["counters"].get("hit_share"),
+                        peer_hit_share=runs.get(f"{stem}/{peer}", {}).get("counters", {})
+                        .get("hit_share")))
+        add(compare(runs, "trajectory_plain", f"{parts[1]}, {parts[2]}, {parts[3]}, sat vs FCL",
+                    f"{stem}/ours-sat", f"{stem}/fcl-obb"))
+    # Tree build, with time / (n log2 n) to show n log n.
+    for name in sorted(runs):
+        parts = name.split("/")
+        if parts[0] != "BM_BuildScale" or parts[-1] != "ours":
+            continue
+        peer = "/".join(parts[:-1] + ["fcl-obb"])
+        n = runs[name]["counters"].get("faces", 0)
+        nlogn = n * math.log2(n) if n > 1 else 1
+        add(compare(runs, "build", f"{int(n)} triangles", name, peer, None, faces=n,
+                    ours_ns_per_nlogn=statistics.median(runs[name]["times"]) * 1e6 / nlogn,
+                    peer_ns_per_nlogn=statistics.median(runs[peer]["times"]) * 1e6 / nlogn
+                    if peer in runs else None))
+    # Query cost against triangle count.
+    for name in sorted(runs):
+        parts = name.split("/")
+        if parts[0] != "BM_QueryScale" or parts[-1] != "ours-sat":
+            continue
+        peer = "/".join(parts[:-1] + ["fcl-obb"])
+        c = runs[name]["counters"]
+        add(compare(runs, "scaling", f"{int(c.get('faces', 0))} triangles, {parts[2]}", name, peer,
+                    None, faces=c.get("faces"), box_tests=c.get("box_tests"),
+                    peer_box_tests=runs.get(peer, {}).get("counters", {}).get("box_tests"),
+                    agrees=c.get("agrees") == 1))
+    # MuJoCo: mj_step of the triangle hand with our callback against MuJoCo's own collision.
+    add(compare(runs, "mujoco", "mj_step, triangle hand, served pairs by graspcd",
+                "BM_StepServed", "BM_StepPlain", 2.0))
+    json.dump(out, sys.stdout, indent=1, sort_keys=True)
+    sys.stdout.write("\n")
+    # A short table on stderr.
+    for c in comps:
+        met = "" if c["met"] is None else (" met" if c["met"] else " NOT met")
+        target = "" if c["target"] is None else f" (target <= {c['target']}{met})"
+        print(f"{c['group']:16s} {c['label']:60s} {c['ratio_median']:.3f}"
+              f" [{c['ratio_min']:.3f}, {c['ratio_max']:.3f}]{target}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
