@@ -26,12 +26,12 @@ struct GraspCliOptions {
   int max_steps = 400;
 };
 
-std::string segments_text(const bridge::GraspStepRecord& r) {
+std::string segments_text(const bridge::GraspResult& g, const bridge::GraspStepRecord& r) {
   std::string out;
   for (std::size_t s = 0; s < r.touching.size(); ++s) {
     if (!r.touching[s]) continue;
     if (!out.empty()) out += ',';
-    out += bridge::finger_segment_names()[s];
+    out += g.segments[s];
   }
   return out.empty() ? "-" : out;
 }
@@ -42,12 +42,12 @@ void print_text(const bridge::GraspResult& r) {
   out << std::fixed;
   for (const bridge::GraspStepRecord& s : r.steps) {
     out << s.step << ' ' << s.contacts << ' ' << s.detection_ns << ' ' << s.box_tests << ' '
-        << s.triangle_tests << ' ' << std::setprecision(6) << s.object_z << ' ' << segments_text(s)
-        << '\n';
+        << s.triangle_tests << ' ' << std::setprecision(6) << s.object_z << ' '
+        << segments_text(r, s) << '\n';
   }
   out << "# method " << r.method << "; first contact (grasp step):";
   for (std::size_t s = 0; s < r.first_contact.size(); ++s) {
-    out << ' ' << bridge::finger_segment_names()[s] << '=';
+    out << ' ' << r.segments[s] << '=';
     if (r.first_contact[s] > 0) {
       out << r.first_contact[s];
     } else {
@@ -72,7 +72,7 @@ void print_json(const bridge::GraspResult& r) {
   for (const bridge::GraspStepRecord& s : r.steps) {
     nlohmann::json segments = nlohmann::json::array();
     for (std::size_t i = 0; i < s.touching.size(); ++i) {
-      if (s.touching[i]) segments.push_back(bridge::finger_segment_names()[i]);
+      if (s.touching[i]) segments.push_back(r.segments[i]);
     }
     steps.push_back({{"step", s.step},
                      {"contacts", s.contacts},
@@ -87,7 +87,7 @@ void print_json(const bridge::GraspResult& r) {
   }
   nlohmann::json first = nlohmann::json::object();
   for (std::size_t i = 0; i < r.first_contact.size(); ++i) {
-    const std::string& name = bridge::finger_segment_names()[i];
+    const std::string& name = r.segments[i];
     if (r.first_contact[i] > 0) {
       first[name] = r.first_contact[i];
     } else {
