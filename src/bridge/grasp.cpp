@@ -248,6 +248,25 @@ void close_fingers(GraspRun& run, const GraspOptions& options, GraspResult& resu
   for (std::size_t i = 0; i < kFingerSegments; ++i) run.qd_d_[kArmJoints + i] = 0;
 }
 
+// After the hold, the same for our hands (GraspRun) and a driven one (DrivenRun): the final
+// height, the verdict held, and the run's totals.
+template <class Run>
+void finish_result(const Run& run, const mjData* d, double final_z, GraspResult& result) {
+  result.object_z_final = final_z;
+  result.held = result.object_z_final >= result.object_z_initial + kHeldRise &&
+                result.hold_min_z >= result.object_z_initial + kHeldRise &&
+                result.hold_drift < kHeldDrift;
+  result.physics_steps = run.physics_steps_;
+  result.sim_time = d->time;
+  result.step_wall_ms = run.physics_steps_ > 0 ? static_cast<double>(run.wall_ns_) / 1e6 /
+                                                     static_cast<double>(run.physics_steps_)
+                                               : 0.0;
+  result.detection_ns_total = run.detection_ns_total_;
+  result.contained_calls = run.contained_total_;
+  result.nonfinite_skips = run.nonfinite_total_;
+  result.max_contacts = run.max_contacts_;
+}
+
 // A hand that is not ours, driven through its own actuators by the config's "grasp" section
 // (registry.h, DriveConfig; grasp.h, run_grasp). Grasp step k adds each closing actuator's step
 // to its control (clamped to its ctrlrange) and runs physics_steps_per_grasp_step physics steps
@@ -486,19 +505,7 @@ void run_driven_grasp(DrivenRun& run, const GraspOptions& options, GraspResult& 
         result.hold_drift = std::max(result.hold_drift, run.drift_from(rel0));
       });
   run.take_stats();
-  result.object_z_final = run.height();
-  result.held = result.object_z_final >= result.object_z_initial + kHeldRise &&
-                result.hold_min_z >= result.object_z_initial + kHeldRise &&
-                result.hold_drift < kHeldDrift;
-  result.physics_steps = run.physics_steps_;
-  result.sim_time = d->time;
-  result.step_wall_ms = run.physics_steps_ > 0 ? static_cast<double>(run.wall_ns_) / 1e6 /
-                                                     static_cast<double>(run.physics_steps_)
-                                               : 0.0;
-  result.detection_ns_total = run.detection_ns_total_;
-  result.contained_calls = run.contained_total_;
-  result.nonfinite_skips = run.nonfinite_total_;
-  result.max_contacts = run.max_contacts_;
+  finish_result(run, d, run.height(), result);
 }
 
 }  // namespace
@@ -696,19 +703,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
       });
   run.take_stats();
 
-  result.object_z_final = run.object_z();
-  result.held = result.object_z_final >= result.object_z_initial + kHeldRise &&
-                result.hold_min_z >= result.object_z_initial + kHeldRise &&
-                result.hold_drift < kHeldDrift;
-  result.physics_steps = run.physics_steps_;
-  result.sim_time = d->time;
-  result.step_wall_ms = run.physics_steps_ > 0 ? static_cast<double>(run.wall_ns_) / 1e6 /
-                                                     static_cast<double>(run.physics_steps_)
-                                               : 0.0;
-  result.detection_ns_total = run.detection_ns_total_;
-  result.contained_calls = run.contained_total_;
-  result.nonfinite_skips = run.nonfinite_total_;
-  result.max_contacts = run.max_contacts_;
+  finish_result(run, d, run.object_z(), result);
   registry.reset();  // detaches before the model goes
   return result;
 }
