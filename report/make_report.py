@@ -359,13 +359,18 @@ def real_models_section(real):
         for r in rows:
             groups.setdefault(tuple(r[k] for k in keys), []).append(r["method"])
         for counts, names in groups.items():
-            label = f"all {len(names)}" if len(groups) == 1 else ", ".join(names)
+            every = len(groups) == 1 and len(names) > 1
+            label = f"all {len(names)}" if every else ", ".join(names)
             w(f"| `{s['scene']}` | {label} | " + " | ".join(str(c) for c in counts) + " |")
     w("")
     methods = ", ".join(r["method"] for r in real["scenes"][0]["validate"]["methods"])
     text = f"Methods checked: {methods}. "
     text += ("No method missed a collision on the real scenes." if total_missed == 0 else
              f"The methods missed {total_missed} collisions on the real scenes: see the rows above.")
+    partial = [s["scene"] for s in real["scenes"] if not s["validate"].get("all_methods", True)]
+    if partial:
+        text += (" Only the config's method on " + ", ".join(f"`{p}`" for p in partial) +
+                 ": `--all-methods` took longer than the script's timeout there.")
     held = [s["scene"] for s in real["scenes"] if not s["grasp"]["held"]]
     if held:
         text += (" Not held in the lift: " + ", ".join(f"`{h}`" for h in held) +
