@@ -94,9 +94,9 @@ struct GraspOptions {
 
 // One closing grasp step.
 struct GraspStepRecord {
-  int step = 0;      // 1-based
-  int contacts = 0;  // finger-object contacts after the step's last physics step
-  std::array<bool, kFingerSegments> touching{};  // segments with such a contact then
+  int step = 0;                    // 1-based
+  int contacts = 0;                // finger-object contacts after the step's last physics step
+  std::vector<bool> touching;      // by GraspResult::segments: those with such a contact then
   std::uint64_t detection_ns = 0;  // tree query time over the step's physics steps (bridge)
   std::uint64_t box_tests = 0;
   std::uint64_t triangle_tests = 0;
@@ -111,8 +111,13 @@ struct GraspResult {
   bool native = false;
   std::string method;  // method name, or "native"
   std::vector<GraspStepRecord> steps;
-  std::array<int, kFingerSegments> first_contact{};  // grasp step, -1 when never
-  bool gripped = false;                              // every finger touched before max_steps
+  // What "touching" is reported for: the finger segments (finger_segment_names()) on our hands,
+  // the "touch" patterns of the config's "grasp" section on a driven real hand (registry.h).
+  std::vector<std::string> segments;
+  std::vector<int> first_contact;  // by segments: grasp step, -1 when never
+  bool gripped = false;            // every finger touched before max_steps
+  // Heights are along -gravity (z for gravity along -z), relative to the support body of a
+  // driven real hand (the world on our hands).
   double object_z_initial = 0;
   double object_z_gripped = 0;  // after the squeeze and settle
   double object_z_final = 0;

@@ -9,6 +9,7 @@
 #include "bridge/collision.h"
 #include "bridge/contact.h"
 #include "bridge/primitives.h"
+#include "core/mesh_hygiene.h"
 
 namespace graspcd::bridge {
 namespace {
@@ -63,8 +64,22 @@ MeshTree make_tree(const std::vector<Triangle>& tris) {
   return mt;
 }
 
-// The collidable geoms a pattern selects (see registry.h for the pattern grammar).
+// The collidable geoms a pattern selects, checked to be served (see registry.h for the pattern
+// grammar).
 std::vector<int> resolve(const mjModel* m, const std::string& pattern, const std::string& source) {
+  std::vector<int> out = match_geoms(m, pattern);
+  for (int g : out) {
+    if (!served_type(m->geom_type[g])) {
+      fail(source, "pattern '" + pattern + "' matches " + unserved_geom(m, g));
+    }
+  }
+  if (out.empty()) fail(source, "pattern '" + pattern + "' matches no collidable geom");
+  return out;
+}
+
+}  // namespace
+
+std::vector<int> match_geoms(const mjModel* m, const std::string& pattern) {
   bool by_geom = true, by_body = true;
   std::string glob = pattern;
   if (glob.rfind("geom:", 0) == 0) {
@@ -78,17 +93,10 @@ std::vector<int> resolve(const mjModel* m, const std::string& pattern, const std
   for (int g = 0; g < m->ngeom; ++g) {
     const bool hit = (by_geom && glob_match(glob, name_of(m, mjOBJ_GEOM, g))) ||
                      (by_body && glob_match(glob, name_of(m, mjOBJ_BODY, m->geom_bodyid[g])));
-    if (!hit || !collidable(m, g)) continue;
-    if (!served_type(m->geom_type[g])) {
-      fail(source, "pattern '" + pattern + "' matches " + unserved_geom(m, g));
-    }
-    out.push_back(g);
+    if (hit && collidable(m, g)) out.push_back(g);
   }
-  if (out.empty()) fail(source, "pattern '" + pattern + "' matches no collidable geom");
   return out;
 }
-
-}  // namespace
 
 // Iterative glob matching with one backtrack point for the last '*' (the classic linear-time
 // wildcard matcher, as in Krauss, "Matching Wildcards", Dr. Dobb's 2008).
@@ -111,6 +119,76 @@ bool glob_match(const std::string& pattern, const std::string& name) {
   while (p < pattern.size() && pattern[p] == '*') ++p;
   return p == pattern.size();
 }
+
+namespace {
+
+// The "grasp" section (registry.h, DriveConfig).
+DriveConfig parse_drive(const nlohmann::json& j, const std::string& source) {
+  const auto where = [&](const std::string& what) { return "'grasp': " + what; };
+  if (!j.is_object()) fail(source, where("must be an object"));
+  const auto text = [&](const nlohmann::json& v, const std::string& name) {
+    if (!v.is_string() || v.get<std::string>().empty()) {
+      fail(source, where("'" + name + "' must be a non-empty string"));
+    }
+    return v.get<std::string>();
+  };
+  const auto number = [&](const nlohmann::json& v, const std::string& name) {
+    if (!v.is_number()) fail(source, where("'" + name + "' must be a number"));
+    return v.get<double>();
+  };
+  DriveConfig d;
+  for (const auto& [field, value] : j.items()) {
+    if (field == "object") {
+      d.object = text(value, field);
+    } else if (field == "hand") {
+      d.hand = text(value, field);
+    } else if (field == "support") {
+      d.support = text(value, field);
+    } else if (field == "close") {
+      if (!value.is_array() || value.empty())
+        fail(source, where("'close' must be a non-empty array"));
+      for (const auto& c : value) {
+        if (!c.is_object()) fail(source, where("each entry of 'close' must be an object"));
+        CloseDrive cd;
+        for (const auto& [f, v] : c.items()) {
+          if (f == "actuator") {
+            cd.actuator = text(v, f);
+          } else if (f == "step") {
+            cd.step = number(v, f);
+            if (!(cd.step > 0)) fail(source, where("'step' must be > 0"));
+          } else if (f == "squeeze") {
+            cd.squeeze = number(v, f);
+          } else if (f == "touch") {
+            if (!v.is_array() || v.empty())
+              fail(source, where("'touch' must be a non-empty array"));
+            for (const auto& t : v) cd.touch.push_back(text(t, "touch"));
+          } else {
+            fail(source, where("unknown field '" + f + "' in 'close'"));
+          }
+        }
+        if (cd.actuator.empty() || cd.step <= 0 || cd.touch.empty()) {
+          fail(source, where("each entry of 'close' needs 'actuator', 'step' and 'touch'"));
+        }
+        d.close.push_back(cd);
+      }
+    } else if (field == "lift") {
+      if (!value.is_object() || !value.contains("actuator") || !value.contains("by") ||
+          value.size() != 2) {
+        fail(source, where("'lift' must be {\"actuator\": NAME, \"by\": CTRL}"));
+      }
+      d.lift_actuator = text(value.at("actuator"), "actuator");
+      d.lift_by = number(value.at("by"), "by");
+    } else {
+      fail(source, where("unknown field '" + field + "'"));
+    }
+  }
+  if (d.hand.empty() || d.close.empty() || d.lift_actuator.empty()) {
+    fail(source, where("needs 'hand', 'close' and 'lift'"));
+  }
+  return d;
+}
+
+}  // namespace
 
 RegistryConfig parse_registry_config(const std::string& json_text, const std::string& source) {
   nlohmann::json j;
@@ -150,6 +228,8 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
         fail(source, "'max_depth' must be a number > 0");
       }
       c.max_depth = value.get<double>();
+    } else if (field == "grasp") {
+      c.drive = parse_drive(value, source);
     } else if (field == "pairs") {
       if (!value.is_array()) fail(source, "'pairs' must be an array");
       for (const auto& p : value) {
@@ -249,9 +329,27 @@ Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::st
         const int mesh = m->geom_dataid[g];
         auto it = trees_.find(mesh);
         if (it == trees_.end()) {
-          const std::vector<Triangle> tris = mesh_triangles(m, mesh);
-          if (tris.empty()) fail(source, "mesh " + std::to_string(mesh) + " has no faces");
-          it = trees_.emplace(mesh, make_tree(tris)).first;
+          // Mesh hygiene: the tree leaves zero-area faces out (core/mesh_hygiene.h).
+          HygieneReport hygiene;
+          const std::vector<Triangle> tris =
+              drop_zero_area_faces(mesh_triangles(m, mesh), &hygiene);
+          const std::string mname = name_of(m, mjOBJ_MESH, mesh);
+          const std::string what =
+              "mesh " + std::to_string(mesh) + (mname.empty() ? "" : " '" + mname + "'");
+          if (tris.empty()) fail(source, what + " has no face of non-zero area");
+          if (!hygiene.dropped_faces.empty()) {
+            std::string ids;
+            for (std::size_t i = 0; i < hygiene.dropped_faces.size() && i < 5; ++i) {
+              ids += (i ? ", " : "") + std::to_string(hygiene.dropped_faces[i]);
+            }
+            if (hygiene.dropped_faces.size() > 5) ids += ", ...";
+            warnings_.push_back(
+                source + ": " + what + ": dropped " + std::to_string(hygiene.dropped_faces.size()) +
+                " zero-area faces (MuJoCo faces " + ids + "; each spans a segment or a point)");
+          }
+          MeshTree built_tree = make_tree(tris);
+          built_tree.source_face = std::move(hygiene.source_face);
+          it = trees_.emplace(mesh, std::move(built_tree)).first;
         }
         built = &it->second;
       } else {

@@ -41,6 +41,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -57,6 +58,35 @@ struct PairPattern {
   std::string b;
 };
 
+// How `graspcd grasp` drives a hand that is not ours (the "grasp" section of the config, e.g.
+// a real hand of ../shared/models; driven_grasp.h): the hand's own actuators close it, one more
+// actuator lifts. Fields, in JSON:
+//   "grasp": {
+//     "object": "object",         // the grasped body (a free joint); default "object"
+//     "hand": "base",             // the body the hold drift is measured against (required)
+//     "support": "table",         // the body heights are measured from; default: the world
+//     "close": [ {"actuator": "fingers_actuator",  // an actuator that closes the hand
+//                 "step": 0.96,   // ctrl added per grasp step (> 0): about 0.003 rad of its joint
+//                 "squeeze": 20,  // ctrl added after the closing (default 0)
+//                 "touch": ["body:left_pad", "body:right_pad"]} ],  // patterns (as "pairs");
+//                 // the actuator stops when a geom of each touches the object
+//     "lift": {"actuator": "lift", "by": 0.06}  // ctrl change that lifts the object (> 0 or < 0)
+//   }
+struct CloseDrive {
+  std::string actuator;
+  double step = 0;
+  double squeeze = 0;
+  std::vector<std::string> touch;
+};
+struct DriveConfig {
+  std::string object = "object";
+  std::string hand;
+  std::string support;
+  std::vector<CloseDrive> close;
+  std::string lift_actuator;
+  double lift_by = 0;
+};
+
 struct RegistryConfig {
   Method method = Method::kSat;
   DetectorOptions detector{tol::kPerceptronDefaultCap, tol::kNeuroSatDefaultSwitch, 1u << 12};
@@ -65,6 +95,8 @@ struct RegistryConfig {
   // true penetrations at millimetres.
   double max_depth = 0.01;
   std::vector<PairPattern> patterns;
+  // The "grasp" section: set for a hand that `graspcd grasp` drives through its own actuators.
+  std::optional<DriveConfig> drive;
   // Geom id pairs registered directly (programmatic use), in addition to the patterns.
   std::vector<std::pair<int, int>> geom_pairs;
 };
@@ -78,6 +110,9 @@ RegistryConfig load_registry_config(const std::string& path);
 
 // True when `name` matches the glob `pattern` ('*' only).
 bool glob_match(const std::string& pattern, const std::string& name);
+// The collidable geoms (contype or conaffinity non-zero) that a pattern of the config selects
+// ("geom:GLOB", "body:GLOB" or "GLOB"), in id order; empty when none.
+std::vector<int> match_geoms(const mjModel* m, const std::string& pattern);
 
 // Work and output of the served pairs, summed over callback calls until reset_stats().
 struct BridgeStats {
@@ -105,9 +140,12 @@ struct BridgeStats {
 // The tree of one mesh (or of one primitive's tessellation) and, for each face id, the face's slot
 // in the tree's leaf-ordered triangles. Also the sharp-edge masks of the faces (contact.h), by
 // face id.
+// Face ids are the tree's: a mesh's zero-area faces are dropped before the build (core/
+// mesh_hygiene.h), and source_face maps each tree face id to MuJoCo's face id in the mesh.
 struct MeshTree {
   ObbTree tree;
   Closedness closedness;  // of the tree's triangles: containment is decided for closed ones only
+  std::vector<std::int32_t> source_face;  // tree face id -> MuJoCo face id (mesh trees)
   std::vector<std::int32_t> slot_of_face;
   std::vector<std::uint8_t> sharp_masks;
   std::uint8_t sharp(std::int32_t f) const { return sharp_masks[static_cast<std::size_t>(f)]; }
@@ -181,7 +219,9 @@ class Registry {
   // (core/containment.h: "mesh N 'name' is not closed: ...; containment inside it is not checked
   // (surface contacts only)"), since the containment check needs a closed solid: its pairs get
   // their surface contacts, and containment is decided only inside the pair's other geom, if
-  // closed.
+  // closed (closedness welds MuJoCo's per-face vertices by position); a mesh with zero-area
+  // faces, which its tree leaves out ("mesh N 'name': dropped K zero-area faces (MuJoCo faces
+  // ...)"; MeshTree::source_face maps the rest).
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   BridgeStats& stats() { return stats_; }

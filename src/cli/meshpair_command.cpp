@@ -82,8 +82,16 @@ MeshQuery exact_query(const MeshpairOptions& options, const TriangleMesh& mesh_a
 void run_meshpair(MeshpairOptions& options) {
   finish_method_options(options.method);
   // Load both meshes first, then build, so that a bad file is reported before any work.
-  const TriangleMesh mesh_a = io::load_mesh(options.mesh_a);
-  auto mesh_b = std::make_shared<const TriangleMesh>(io::load_mesh(options.mesh_b));
+  io::MeshStats stats_a, stats_b;
+  const TriangleMesh mesh_a = io::load_mesh(options.mesh_a, &stats_a);
+  auto mesh_b = std::make_shared<const TriangleMesh>(io::load_mesh(options.mesh_b, &stats_b));
+  // Mesh hygiene findings that change the answers or MuJoCo's view of the file (dropped
+  // zero-area faces, an OBJ with several objects), one line each on stderr before the answers.
+  for (const auto& [path, stats] :
+       {std::pair{options.mesh_a, &stats_a}, {options.mesh_b, &stats_b}}) {
+    for (const std::string& w : io::mesh_warnings(path, *stats, true))
+      std::cerr << "warning: " << w << '\n';
+  }
   MeshQuery query;
   if (options.exact) {
     query = exact_query(options, mesh_a, mesh_b);
@@ -131,7 +139,10 @@ Command add_meshpair_command(CLI::App& parent) {
       "intersect, the number of intersecting triangle pairs (0 or 1 with --first-contact), and "
       "the time of the query alone in nanoseconds (after loading and building).\n"
       "Meshes are read in double precision in their own file coordinates; OBJ polygons are "
-      "triangulated and all objects concatenated.\n"
+      "triangulated and all objects concatenated. On load, equal vertices are welded and "
+      "zero-area faces (segments, points) dropped; dropped faces and an OBJ with several "
+      "objects (MuJoCo 2.2 keeps only the first) are each one line 'warning: FILE: ...' on "
+      "stderr.\n"
       "Poses: one per line, 12 numbers: R row-major (9), then t (3), placing B in A's frame "
       "(x_A = R x_B + t). R must be a rotation to within 1e-9.\n" +
       number_grammar_help() +

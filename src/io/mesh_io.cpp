@@ -13,13 +13,12 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
-#include <map>
 #include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "core/predicates.h"
+#include "core/mesh_hygiene.h"
 #include "core/tolerances.h"
 
 namespace graspcd::io {
@@ -61,15 +60,6 @@ void check_vertex(const std::string& path, const std::string& which, const Vec3&
   }
 }
 
-// True when the face spans no area: every component of (b-a) x (c-a) is exactly zero.
-bool zero_area(const TriangleMesh& mesh, std::size_t face) {
-  const Triangle t = mesh.triangle(face);
-  for (int drop = 0; drop < 3; ++drop) {
-    if (predicates::orient2d(t.v[0], t.v[1], t.v[2], drop) != 0) return false;
-  }
-  return true;
-}
-
 std::string lower_extension(const std::string& path) {
   const std::size_t slash = path.find_last_of('/');
   const std::size_t dot = path.find_last_of('.');
@@ -101,7 +91,10 @@ struct ObjVertexLine {
   Vec3 position;         // x y z as strtod reads them
 };
 
-std::vector<ObjVertexLine> read_obj_vertex_lines(const std::string& path) {
+// The scan also collects the names of the file's objects ('o NAME' lines): MuJoCo 2.2 loads only
+// the first object of an OBJ file, silently.
+std::vector<ObjVertexLine> read_obj_vertex_lines(const std::string& path,
+                                                 std::vector<std::string>& objects) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, "cannot open");
   const auto blank = [](char c) {
@@ -113,6 +106,14 @@ std::vector<ObjVertexLine> read_obj_vertex_lines(const std::string& path) {
   for (std::size_t line_number = 1; std::getline(in, line); ++line_number) {
     std::size_t pos = 0;
     while (pos < line.size() && (line[pos] == ' ' || line[pos] == '\t')) ++pos;
+    if (pos + 1 < line.size() && line[pos] == 'o' &&
+        (line[pos + 1] == ' ' || line[pos + 1] == '\t')) {
+      std::string name = line.substr(pos + 2);
+      while (!name.empty() && blank(name.back())) name.pop_back();
+      while (!name.empty() && blank(name.front())) name.erase(name.begin());
+      objects.push_back(name);
+      continue;
+    }
     if (pos + 1 >= line.size() || line[pos] != 'v' ||
         (line[pos + 1] != ' ' && line[pos + 1] != '\t')) {
       continue;
@@ -182,8 +183,8 @@ void check_obj_vertices(const std::string& path, const std::vector<ObjVertexLine
   }
 }
 
-TriangleMesh load_obj(const std::string& path) {
-  const std::vector<ObjVertexLine> scanned = read_obj_vertex_lines(path);
+TriangleMesh load_obj(const std::string& path, std::vector<std::string>& objects) {
+  const std::vector<ObjVertexLine> scanned = read_obj_vertex_lines(path, objects);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
@@ -286,10 +287,10 @@ TriangleMesh load_stl(const std::string& path) {
     fail(path, out.str());
   }
 
-  // Read the triangles, sharing bit-identical vertices.
+  // Read the triangles; every face gets its own three vertices (load_mesh welds them).
   TriangleMesh mesh;
-  std::map<std::array<double, 3>, std::int32_t> index_of;
   mesh.faces.reserve(count);
+  mesh.vertices.reserve(3 * count);
   for (std::uint64_t t = 0; t < count; ++t) {
     const unsigned char* record = bytes.data() + kHeaderBytes + kRecordBytes * t;
     std::array<std::int32_t, 3> face{};
@@ -298,10 +299,8 @@ TriangleMesh load_stl(const std::string& path) {
       const Vec3 vertex(read_f32_le(p), read_f32_le(p + 4), read_f32_le(p + 8));
       check_vertex(path, "triangle " + std::to_string(t + 1) + " vertex " + std::to_string(k + 1),
                    vertex);
-      const auto [it, inserted] = index_of.try_emplace(
-          {vertex[0], vertex[1], vertex[2]}, static_cast<std::int32_t>(mesh.vertices.size()));
-      if (inserted) mesh.vertices.push_back(vertex);
-      face[k] = it->second;
+      face[k] = static_cast<std::int32_t>(mesh.vertices.size());
+      mesh.vertices.push_back(vertex);
     }
     mesh.faces.push_back(face);
   }
@@ -313,22 +312,69 @@ TriangleMesh load_stl(const std::string& path) {
 TriangleMesh load_mesh(const std::string& path, MeshStats* stats) {
   require_readable(path);
   const std::string ext = lower_extension(path);
-  TriangleMesh mesh;
+  TriangleMesh read;
+  MeshStats local;
+  MeshStats& s = stats != nullptr ? *stats : local;
+  s = MeshStats{};
   if (ext == "obj") {
-    mesh = load_obj(path);
+    read = load_obj(path, s.obj_objects);
   } else if (ext == "stl") {
-    mesh = load_stl(path);
+    read = load_stl(path);
   } else {
     fail(path, "unknown mesh format (expected a .obj or .stl file)");
   }
-  if (mesh.faces.empty()) fail(path, "the mesh has no faces");
-  if (stats != nullptr) {
-    *stats = MeshStats{};
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-      if (zero_area(mesh, f)) ++stats->zero_area_faces;
-    }
+  if (read.faces.empty()) fail(path, "the mesh has no faces");
+
+  // Hygiene (core/mesh_hygiene.h): weld equal vertices, drop zero-area faces.
+  HygieneReport hygiene;
+  TriangleMesh mesh = clean_mesh(read, &hygiene);
+  if (mesh.faces.empty()) {
+    fail(path, "every face has zero area (" + std::to_string(read.faces.size()) +
+                   " faces, each a segment or a point)");
   }
+  s.zero_area_faces = hygiene.dropped_faces.size();
+  s.dropped_faces = std::move(hygiene.dropped_faces);
+  s.source_face = std::move(hygiene.source_face);
+  s.welded_vertices = hygiene.welded_vertices;
+  s.file_vertices = hygiene.input_vertices;
+  if (stats != nullptr) s.closedness = closedness(mesh);
   return mesh;
+}
+
+std::vector<std::string> mesh_warnings(const std::string& path, const MeshStats& stats,
+                                       bool changes_only) {
+  std::vector<std::string> out;
+  const std::string head = path + ": ";
+  if (stats.welded_vertices > 0 && !changes_only) {
+    out.push_back(head + "welded " + std::to_string(stats.welded_vertices) +
+                  " duplicate vertices (" + std::to_string(stats.file_vertices) + " in the file, " +
+                  std::to_string(stats.file_vertices - stats.welded_vertices) + " distinct)");
+  }
+  if (!stats.dropped_faces.empty()) {
+    std::string ids;
+    const std::size_t shown = std::min<std::size_t>(stats.dropped_faces.size(), 5);
+    for (std::size_t i = 0; i < shown; ++i) {
+      ids += (i ? ", " : "") + std::to_string(stats.dropped_faces[i] + 1);
+    }
+    if (shown < stats.dropped_faces.size()) ids += ", ...";
+    out.push_back(head + "dropped " + std::to_string(stats.dropped_faces.size()) +
+                  " zero-area faces (file faces " + ids + "; each spans a segment or a point)");
+  }
+  if (stats.closedness.faces > 0 && !stats.closedness.closed() && !changes_only) {
+    out.push_back(head + "the mesh is " + stats.closedness.describe() +
+                  "; containment inside it cannot be checked (surface contacts only)");
+  }
+  if (stats.obj_objects.size() > 1) {
+    std::string names;
+    for (std::size_t i = 0; i < stats.obj_objects.size() && i < 5; ++i) {
+      names += (i ? ", '" : "'") + stats.obj_objects[i] + "'";
+    }
+    if (stats.obj_objects.size() > 5) names += ", ...";
+    out.push_back(head + std::to_string(stats.obj_objects.size()) + " objects (" + names +
+                  "): graspcd reads them all, but MuJoCo 2.2 keeps only the first ('" +
+                  stats.obj_objects[0] + "'); merge them into one object for a scene");
+  }
+  return out;
 }
 
 }  // namespace graspcd::io

@@ -272,5 +272,46 @@ TEST(RegistryPrimitives, PathsAndTreesPerTypeAndSize) {
   }
 }
 
+// Mesh hygiene in the bridge: a MuJoCo mesh with a zero-area face (MuJoCo 2.2 keeps it) gets a
+// tree without it, one warning naming the mesh and MuJoCo's face id, and a map from the tree's
+// face ids to MuJoCo's.
+TEST(RegistryHygiene, ZeroAreaFacesAreLeftOutOfTheTreeWithAWarning) {
+  TempDir dir;
+  const testing::ModelPtr m = load_scene(dir, R"(
+<mujoco>
+  <asset>
+    <mesh name="tet" vertex="0 0 0  .1 0 0  0 .1 0  0 0 .1  .2 0 0  .2 0 0  .2 0 0"
+          face="0 2 1  4 5 6  0 1 3  0 3 2  1 2 3"/>
+  </asset>
+  <worldbody>
+    <body name="object" pos="0 0 0.5"><freejoint/><geom name="tet" type="mesh" mesh="tet"/></body>
+    <body name="tip" pos="0.3 0 0.5"><freejoint/><geom name="tip" type="sphere" size="0.01"/></body>
+  </worldbody>
+</mujoco>)",
+                                         {});
+  ASSERT_TRUE(m);
+  ASSERT_EQ(m->mesh_facenum[0], 5);  // MuJoCo keeps face 4 5 6, a point (three equal vertices stay
+                                     // equal through MuJoCo's recentring; collinear ones need not)
+  RegistryConfig c;
+  c.patterns = {{"geom:tip", "body:object"}};
+  const Registry r(m.get(), c, "hyg.json");
+  const MeshTree* t = r.tree(0);
+  ASSERT_NE(t, nullptr);
+  EXPECT_EQ(t->tree.triangles().size(), 4u);
+  EXPECT_EQ(t->source_face, (std::vector<std::int32_t>{0, 2, 3, 4}));
+  // Each tree face is MuJoCo's face source_face[f].
+  const std::vector<Triangle> mujoco_faces = Registry::mesh_triangles(m.get(), 0);
+  for (std::int32_t f = 0; f < 4; ++f) {
+    const Triangle& mj =
+        mujoco_faces[static_cast<std::size_t>(t->source_face[static_cast<std::size_t>(f)])];
+    for (std::size_t k = 0; k < 3; ++k) EXPECT_EQ(t->face(f).v[k], mj.v[k]);
+  }
+  ASSERT_EQ(r.warnings().size(), 1u);
+  EXPECT_EQ(r.warnings()[0],
+            "hyg.json: mesh 0 'tet': dropped 1 zero-area faces (MuJoCo faces 1; each spans a "
+            "segment or a point)");
+  EXPECT_TRUE(t->closedness.closed()) << t->closedness.describe();
+}
+
 }  // namespace
 }  // namespace graspcd::bridge

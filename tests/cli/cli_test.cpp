@@ -513,6 +513,75 @@ TEST_F(CliTest, GraspNativeHasNoDetectionTime) {
   EXPECT_GT(doc.at("physics_steps").get<long>(), 0);
 }
 
+// A closed box 50 x 40 x 60 (file units: millimetres), off the origin: x 100..150, z 10..70.
+const char* const kUserBox =
+    "v 100 -20 10\nv 150 -20 10\nv 150 20 10\nv 100 20 10\n"
+    "v 100 -20 70\nv 150 -20 70\nv 150 20 70\nv 100 20 70\n"
+    "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
+    "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+
+// A new object without a scene (README, "A new object"): the box is fitted to the cup's place
+// (its 60 mm height to 8 cm: scale 0.08 / 60, narrower than the 7 cm width), centred under the
+// hand, and the fingers close on it.
+TEST_F(CliTest, GraspObjectFitsANewMeshIntoTheTemplateAndTheFingersTouchIt) {
+  const std::string box = write("box.obj", kUserBox);
+  const fs::path tmp = dir_ / "tmp";  // the command's temporary folder goes here
+  fs::create_directories(tmp);
+  ASSERT_EQ(setenv("TMPDIR", tmp.c_str(), 1), 0);
+  const Result r = run("grasp --object " + box + " --json --max-steps 150");
+  unsetenv("TMPDIR");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["scene"], box);
+  EXPECT_EQ(doc["object"]["file"], box);
+  EXPECT_TRUE(doc["object"]["fitted"]);
+  EXPECT_NEAR(doc["object"]["scale"].get<double>(), 0.08 / 60, 1e-12);
+  int touched = 0;
+  for (const auto& [segment, step] : doc["first_contact"].items()) touched += !step.is_null();
+  EXPECT_GE(touched, 2) << doc["first_contact"].dump();
+  EXPECT_GT(doc["max_contacts"].get<int>(), 0);
+  // The temporary scene is gone.
+  EXPECT_TRUE(fs::is_empty(tmp));
+}
+
+TEST_F(CliTest, GraspObjectWithAScaleWritesTheSceneWhenAsked) {
+  const std::string box = write("box.obj", kUserBox);
+  const fs::path out = dir_ / "scene";
+  const Result r =
+      run("grasp --object " + box + " --scale 0.001 --max-steps 2 --write-scene " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> text = lines(r.out);
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), "# object " + box + " at scale 0.001 (given) in the template scene");
+  const std::string xml = read_file(out / "box.xml");
+  EXPECT_NE(xml.find("scale=\"0.001 0.001 0.001\""), std::string::npos);
+  // Centred under the hand (x 125 mm, y 0 in the file), its lowest point (10 mm) on the floor.
+  EXPECT_NE(xml.find("<body name=\"object\" pos=\"-0.125 0 -0.01\">"), std::string::npos) << xml;
+  EXPECT_TRUE(fs::exists(out / "box.pairs.json"));
+}
+
+TEST_F(CliTest, GraspObjectErrorsAreOneLineAndExitTwo) {
+  const std::string bad = write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 nan\nf 1 2 3\n");
+  Result r = run("grasp --object " + bad);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  ASSERT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind(bad + ":", 0), 0u) << r.err;
+  const std::string missing = (dir_ / "nowhere.obj").string();
+  r = run("grasp --object " + missing);
+  EXPECT_EQ(r.exit_code, 2);
+  ASSERT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind(missing + ":", 0), 0u) << r.err;
+  // Neither SCENE nor --object, or both, or --scale without --object: usage errors.
+  for (const std::string& args :
+       {std::string("grasp"), "grasp " + shipped_scene("example1") + " --object " + bad,
+        "grasp " + shipped_scene("example1") + " --scale 2"}) {
+    r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_EQ(lines(r.err).size(), 1u) << args << ": " << r.err;
+  }
+}
+
 TEST_F(CliTest, GraspBadMjcfIsOneLineWithTheFileAndExitTwo) {
   const std::string path =
       write("bad.xml", "<mujoco>\n  <worldbody>\n    <bogus/>\n  </worldbody>\n</mujoco>\n");

@@ -107,16 +107,77 @@ TEST_F(MeshIoTest, ObjCoordinatesAreDoubles) {
   EXPECT_NEAR(mesh.vertices[0][0], 1e-20, 1e-33);
 }
 
-TEST_F(MeshIoTest, ZeroAreaFacesAreKeptAndCounted) {
+// DESIGN.md "Semantics": mesh loading drops zero-area faces with a warning; the loaded faces
+// map back to the file's.
+TEST_F(MeshIoTest, ZeroAreaFacesAreDroppedWithAWarningAndFacesMapBack) {
   const std::string obj =
       "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\n"
+      "f 1 2 3\n"  // collinear
       "f 1 2 4\n"
-      "f 1 2 3\n"   // collinear
-      "f 1 1 1\n";  // a point
+      "f 1 1 1\n"  // a point
+      "f 2 3 4\n";
   MeshStats stats;
-  const TriangleMesh mesh = load_mesh(write("flat.obj", obj), &stats);
-  EXPECT_EQ(mesh.faces.size(), 3u);
+  const std::string path = write("flat.obj", obj);
+  const TriangleMesh mesh = load_mesh(path, &stats);
+  ASSERT_EQ(mesh.faces.size(), 2u);
   EXPECT_EQ(stats.zero_area_faces, 2u);
+  EXPECT_EQ(stats.dropped_faces, (std::vector<std::int32_t>{0, 2}));
+  EXPECT_EQ(stats.source_face, (std::vector<std::int32_t>{1, 3}));
+  EXPECT_EQ(mesh.faces[0], (std::array<std::int32_t, 3>{0, 1, 3}));
+  EXPECT_EQ(mesh.faces[1], (std::array<std::int32_t, 3>{1, 2, 3}));
+  const std::vector<std::string> w = mesh_warnings(path, stats);
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_EQ(w[0], path +
+                      ": dropped 2 zero-area faces (file faces 1, 3; each spans a segment or a "
+                      "point)");
+  EXPECT_EQ(w[1].rfind(path + ": the mesh is not closed: ", 0), 0u) << w[1];
+  // For commands without a containment check (meshpair) only the dropped faces are news.
+  EXPECT_EQ(mesh_warnings(path, stats, true), std::vector<std::string>{w[0]});
+  // A file of zero-area faces only is an error.
+  const std::string flat = write("flatter.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+  EXPECT_EQ(load_error(flat),
+            flat + ": every face has zero area (1 faces, each a segment or a point)");
+}
+
+// Duplicate vertices are welded (a file with a vertex per face corner, as exporters and MuJoCo
+// write them), restoring a closed surface; a clean closed mesh loads without any warning.
+TEST_F(MeshIoTest, DuplicateVerticesAreWeldedWithAWarning) {
+  std::string soup;
+  const char* corners[4] = {"0 0 0", "1 0 0", "0 1 0", "0 0 1"};
+  const int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  for (const auto& f : faces) {
+    for (int k = 0; k < 3; ++k) soup += std::string("v ") + corners[f[k]] + "\n";
+  }
+  soup += "f 1 2 3\nf 4 5 6\nf 7 8 9\nf 10 11 12\n";
+  MeshStats stats;
+  const std::string path = write("soup.obj", soup);
+  const TriangleMesh mesh = load_mesh(path, &stats);
+  EXPECT_EQ(mesh.vertices.size(), 4u);
+  EXPECT_EQ(stats.welded_vertices, 8u);
+  EXPECT_TRUE(stats.closedness.closed()) << stats.closedness.describe();
+  EXPECT_EQ(mesh_warnings(path, stats),
+            std::vector<std::string>{path + ": welded 8 duplicate vertices (12 in the file, 4 "
+                                            "distinct)"});
+  const std::string clean = write("clean.obj", kTetrahedron);
+  MeshStats clean_stats;
+  load_mesh(clean, &clean_stats);
+  EXPECT_TRUE(mesh_warnings(clean, clean_stats).empty());
+}
+
+// MuJoCo 2.2 keeps only the first object of an OBJ file; graspcd reads them all and warns.
+TEST_F(MeshIoTest, SeveralObjectsInAnObjAreWarnedAbout) {
+  const std::string path = write("two.obj",
+                                 "o first\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+                                 "o  second  \nv 0 0 1\nv 1 0 1\nv 0 1 1\nf 4 5 6\n");
+  MeshStats stats;
+  const TriangleMesh mesh = load_mesh(path, &stats);
+  EXPECT_EQ(mesh.faces.size(), 2u);
+  EXPECT_EQ(stats.obj_objects, (std::vector<std::string>{"first", "second"}));
+  const std::vector<std::string> w = mesh_warnings(path, stats);
+  ASSERT_EQ(w.size(), 2u);  // open, and two objects
+  EXPECT_EQ(w[1], path +
+                      ": 2 objects ('first', 'second'): graspcd reads them all, but MuJoCo 2.2 "
+                      "keeps only the first ('first'); merge them into one object for a scene");
 }
 
 TEST_F(MeshIoTest, ObjErrors) {
@@ -205,7 +266,7 @@ TEST_F(MeshIoTest, FileErrors) {
   EXPECT_EQ(load_error(none), none + ": unknown mesh format (expected a .obj or .stl file)");
 }
 
-TEST_F(MeshIoTest, LoadsABinaryStlSharingVertices) {
+TEST_F(MeshIoTest, LoadsABinaryStlWeldingItsVertices) {
   // A unit square as two triangles sharing an edge; the header even begins with "solid".
   const std::string path =
       write_stl("square.stl", {{0, 0, 0, 1, 0, 0, 1, 1, 0.5f}, {0, 0, 0, 1, 1, 0.5f, 0, 1, 0}},
@@ -218,6 +279,7 @@ TEST_F(MeshIoTest, LoadsABinaryStlSharingVertices) {
   EXPECT_EQ(mesh.faces[1], (std::array<std::int32_t, 3>{0, 2, 3}));
   EXPECT_EQ(mesh.vertices[2], Vec3(1, 1, 0.5));
   EXPECT_EQ(stats.zero_area_faces, 0u);
+  EXPECT_EQ(stats.welded_vertices, 2u);  // STL gives every triangle its own three vertices
   // Floats widen to doubles exactly.
   const std::string fine = write_stl("fine.STL", {{0.1f, 0, 0, 1, 0, 0, 0, 1, 0}});
   EXPECT_EQ(load_mesh(fine).vertices[0][0], static_cast<double>(0.1f));
@@ -268,7 +330,9 @@ TEST(MeshIoModels, LoadsTheCubeCup) {
   if (!fs::exists(path)) GTEST_SKIP() << "model not found: " << path;
   MeshStats stats;
   const TriangleMesh mesh = load_mesh(path.string(), &stats);
-  EXPECT_EQ(mesh.vertices.size(), 48u);
+  // 48 vertex lines, 16 distinct positions: welded on load.
+  EXPECT_EQ(mesh.vertices.size(), 16u);
+  EXPECT_EQ(stats.welded_vertices, 32u);
   EXPECT_EQ(mesh.faces.size(), 28u);
   EXPECT_EQ(stats.zero_area_faces, 0u);
   Vec3 lo = mesh.vertices[0];
