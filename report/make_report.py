@@ -518,6 +518,7 @@ def perf_closing_note(perf):
                        " MuJoCo's convex (hull) collision of the same pairs, which is not right"
                        " on non-convex objects")
         w(f"| {text} | {met} of {len(rows)} | {lo:.3f}-{hi:.3f} | {'; '.join(why)} |")
+    return lines
 
 
 def real_models_section(real):
