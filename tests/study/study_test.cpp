@@ -104,6 +104,39 @@ TEST_F(StudyTest, QuickStudyWritesTheReportAndEveryMethodAgreesWithCgal) {
   }
 }
 
+// The committed reference report/REPORT.md is what make_report.py draws from report/data (every
+// section: the study's, stress, performance, real hands), but for the pictures' section, which
+// is drawn from trajectory files that report/data does not keep (report/README.md).
+TEST_F(StudyTest, ReferenceReportIsWhatMakeReportDrawsFromItsData) {
+  if (graspcd::testing::test_scale() < 1) {
+    GTEST_SKIP() << "GRASPCD_TEST_SCALE < 1: Python only, checked in the Release pass";
+  }
+  const fs::path source = GRASPCD_SOURCE_DIR "/report";
+  const fs::path data = dir_ / "reference";
+  fs::create_directories(data);
+  for (const fs::directory_entry& e : fs::directory_iterator(source / "data")) {
+    fs::copy_file(e.path(), data / e.path().filename());
+  }
+  const Outcome p = run("/usr/bin/python3 '" + (source / "make_report.py").string() + "' '" +
+                        data.string() + "'");
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  const std::string drawn = read_file(data / "REPORT.md");
+  for (const char* section :
+       {"## Table 1", "## Numerical stability (stress)", "## Performance against FCL and MuJoCo",
+        "## Real hands and objects", "## Reproduce"}) {
+    EXPECT_NE(drawn.find(section), std::string::npos) << section;
+  }
+  std::string committed = read_file(source / "REPORT.md");
+  const std::size_t pictures = committed.find("## Pictures of the grasps and the trees");
+  ASSERT_NE(pictures, std::string::npos);
+  const std::size_t next = committed.find("\n## ", pictures);
+  ASSERT_NE(next, std::string::npos);
+  committed.erase(pictures, next + 1 - pictures);
+  EXPECT_TRUE(committed == drawn)
+      << "report/REPORT.md is not what make_report.py draws from report/data: redraw it "
+         "(report/README.md)";
+}
+
 TEST_F(StudyTest, MergedShardsGiveTheAnswersOfOneUnshardedSweep) {
   if (graspcd::testing::test_scale() < 1) {
     // Three more quick sweeps (2.5 min under the sanitizers): QuickStudy runs the same sweep code
