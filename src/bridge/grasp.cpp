@@ -175,6 +175,25 @@ class GraspRun {
   std::uint64_t nonfinite_total_ = 0;
 };
 
+// Appends grasp step k's record (its contacts, segments touching, the bridge's counters over the
+// step, the object's height) to the result, and adds its detection time to the closing's.
+void add_step_record(int k, int contacts, std::vector<bool> touching, const BridgeStats& stats,
+                     double object_z, GraspResult& result) {
+  GraspStepRecord record;
+  record.step = k;
+  record.contacts = contacts;
+  record.touching = std::move(touching);
+  record.detection_ns = stats.detection_ns;
+  record.box_tests = stats.counters.box_tests;
+  record.triangle_tests = stats.counters.tri_tests;
+  record.served_calls = stats.calls;
+  record.contained = stats.contained;
+  record.nonfinite_skips = stats.nonfinite_skips;
+  record.object_z = object_z;
+  result.steps.push_back(std::move(record));
+  result.detection_ns_close += stats.detection_ns;
+}
+
 // Phase 1, paper section 9 (DESIGN.md "Semantics"): grasp steps of 0.003 rad until each finger
 // has a segment in contact; a segment stops at its first contact.
 void close_fingers(GraspRun& run, const GraspOptions& options, GraspResult& result) {
@@ -202,20 +221,8 @@ void close_fingers(GraspRun& run, const GraspOptions& options, GraspResult& resu
       run.physics_step();
       for (std::size_t i = 0; i < kFingerSegments; ++i) touched[i] = touched[i] || run.touching_[i];
     }
-    const BridgeStats stats = run.take_stats();
-    GraspStepRecord record;
-    record.step = k;
-    record.contacts = run.contacts_;
-    record.touching.assign(run.touching_.begin(), run.touching_.end());
-    record.detection_ns = stats.detection_ns;
-    record.box_tests = stats.counters.box_tests;
-    record.triangle_tests = stats.counters.tri_tests;
-    record.served_calls = stats.calls;
-    record.contained = stats.contained;
-    record.nonfinite_skips = stats.nonfinite_skips;
-    record.object_z = run.object_z();
-    result.steps.push_back(record);
-    result.detection_ns_close += stats.detection_ns;
+    add_step_record(k, run.contacts_, std::vector<bool>(run.touching_.begin(), run.touching_.end()),
+                    run.take_stats(), run.object_z(), result);
     if (options.on_grasp_step) options.on_grasp_step(run.m_, run.d_, k);
 
     bool every_finger = true;
@@ -433,20 +440,7 @@ void run_driven_grasp(DrivenRun& run, const GraspOptions& options, GraspResult& 
       run.physics_step();
       for (std::size_t s = 0; s < segments; ++s) touched[s] = touched[s] || run.touching_[s];
     }
-    const BridgeStats stats = run.take_stats();
-    GraspStepRecord record;
-    record.step = k;
-    record.contacts = run.contacts_;
-    record.touching = run.touching_;
-    record.detection_ns = stats.detection_ns;
-    record.box_tests = stats.counters.box_tests;
-    record.triangle_tests = stats.counters.tri_tests;
-    record.served_calls = stats.calls;
-    record.contained = stats.contained;
-    record.nonfinite_skips = stats.nonfinite_skips;
-    record.object_z = run.height();
-    result.steps.push_back(record);
-    result.detection_ns_close += stats.detection_ns;
+    add_step_record(k, run.contacts_, run.touching_, run.take_stats(), run.height(), result);
     if (options.on_grasp_step) options.on_grasp_step(run.m_, d, k);
     for (std::size_t s = 0; s < segments; ++s) {
       if (touched[s] && result.first_contact[s] < 0) result.first_contact[s] = k;
