@@ -838,7 +838,9 @@ def main():
     if real is not None:  # study/real_models.py: the real hands of ../shared/models (issue 8)
         section = "\n".join(real_models_section(real)) + "\n\n"
         at = text.find("## Reproduce")
-        text = text[:at] + section + text[at:] if at >= 0 else text.rstrip("\n") + "\n\n" + section
+        if at < 0:
+            at = len(text)
+        text = text[:at].rstrip("\n") + "\n\n" + section + text[at:]
     # The pictures of the grasps and the trees (issue 9), from OUT_DIR/trajectories when present.
     text = draw_figures.insert_section(text, args.out_dir, fig_dir, args.figures)
     with open(os.path.join(args.out_dir, "REPORT.md"), "w", encoding="utf-8") as f:
