@@ -52,6 +52,13 @@ int expect_every_check_agrees(const ValidationReport& report) {
   return hits;
 }
 
+// Validates the scene's grasp (at most max_steps closing steps) with SAT against CGAL.
+ValidationReport validate_with_sat(const std::string& scene, int max_steps) {
+  ValidateOptions options;
+  options.max_steps = max_steps;
+  return validate_scene(scene, {detector_tester(Method::kSat, DetectorOptions{})}, options);
+}
+
 TEST(RealModels, RobotiqGraspsTheCupAndLiftsIt) {
   std::string why;
   if (skip_reason(why)) GTEST_SKIP() << why;
@@ -73,10 +80,7 @@ TEST(RealModels, RobotiqGraspsTheCupAndLiftsIt) {
 TEST(RealModels, RobotiqGraspAgreesWithCgalAtEveryStep) {
   std::string why;
   if (skip_reason(why)) GTEST_SKIP() << why;
-  ValidateOptions options;
-  options.max_steps = 80;
-  const ValidationReport report =
-      validate_scene(kScene, {detector_tester(Method::kSat, DetectorOptions{})}, options);
+  const ValidationReport report = validate_with_sat(kScene, 80);
   EXPECT_TRUE(report.gripped);
   EXPECT_FALSE(report.missed_any());
   // CGAL saw the pads touch: the check covered contact, not only misses.
@@ -89,10 +93,7 @@ TEST(RealModels, RobotiqGraspAgreesWithCgalAtEveryStep) {
 TEST(RealModels, ShadowHandHooksTheGlassAndAgreesWithCgal) {
   std::string why;
   if (skip_reason(why)) GTEST_SKIP() << why;
-  ValidateOptions options;
-  options.max_steps = 200;
-  const ValidationReport report =
-      validate_scene(kShadowScene, {detector_tester(Method::kSat, DetectorOptions{})}, options);
+  const ValidationReport report = validate_with_sat(kShadowScene, 200);
   EXPECT_TRUE(report.gripped);  // every finger's distal phalanx touched
   EXPECT_LT(report.steps, 200);
   EXPECT_FALSE(report.missed_any());
