@@ -1,13 +1,19 @@
-# Installation: `cmake --install BUILD [--prefix PREFIX]` installs graspcd as a library for any
-# MuJoCo 2.2 program (README.md, "Using graspcd in your MuJoCo program"):
-#   PREFIX/include/graspcd/core/*.h, PREFIX/include/graspcd/bridge/*.h (included as "core/..." and
-#     "bridge/...": the targets put PREFIX/include/graspcd on the include path)
-#   PREFIX/lib/libgraspcd_core.a     graspcd::core    pure geometry: Eigen, qhull; no MuJoCo
-#   PREFIX/lib/libgraspcd_bridge.a   graspcd::mujoco  the MuJoCo bridge: graspcd::core + MuJoCo
-#   PREFIX/lib/cmake/graspcd/        graspcdConfig.cmake, its version file and the targets
-# so that `find_package(graspcd 0.1 REQUIRED)` gives the two targets. graspcd_io, graspcd_exact
-# (CGAL), the study and the graspcd executable are not installed: CGAL stays out of the installed
-# runtime.
+# Installation: `cmake --install BUILD [--prefix PREFIX]` installs graspcd for any MuJoCo 2.2 program
+# (docs/library.md):
+#   PREFIX/bin/graspcd                 the command-line tool (docs/design.md, "The command line")
+#   PREFIX/include/graspcd/core/*.h    included as <graspcd/core/...>
+#   PREFIX/include/graspcd/io/*.h      included as <graspcd/io/...>
+#   PREFIX/include/graspcd/mujoco/*.h  included as <graspcd/mujoco/...>
+#   PREFIX/include/graspcd/bridge/*.h  forwarding headers: the 0.1 include paths "bridge/..." (and
+#                                      "core/...", found under PREFIX/include/graspcd) still compile;
+#                                      removed in 0.3
+#   PREFIX/lib/libgraspcd_core.a       graspcd::core    pure geometry: Eigen, qhull; no MuJoCo
+#   PREFIX/lib/libgraspcd_io.a         graspcd::io      the mesh reader and text grammar
+#   PREFIX/lib/libgraspcd_mujoco.a     graspcd::mujoco  the MuJoCo seam: graspcd::core + MuJoCo
+#   PREFIX/lib/cmake/graspcd/          graspcdConfig.cmake, its version file and the targets
+# so that `find_package(graspcd 0.2 REQUIRED)` gives the three targets. graspcd_exact (CGAL), the
+# grasp experiment and the study are not installed as libraries: CGAL stays out of the installed
+# libraries (the executable links it statically, header-only CGAL with GMP and MPFR).
 include(CMakePackageConfigHelpers)
 include(GNUInstallDirs)
 
@@ -19,10 +25,12 @@ if(GRASPCD_SANITIZE)
   target_link_options(graspcd_core INTERFACE ${GRASPCD_SANITIZE_FLAGS})
 endif()
 
-install(TARGETS graspcd_core graspcd_bridge EXPORT graspcdTargets
+install(TARGETS graspcd_core graspcd_io graspcd_mujoco EXPORT graspcdTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/core ${PROJECT_SOURCE_DIR}/src/bridge
+install(TARGETS graspcd RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/graspcd/core ${PROJECT_SOURCE_DIR}/src/graspcd/io
+                  ${PROJECT_SOURCE_DIR}/src/graspcd/mujoco ${PROJECT_SOURCE_DIR}/src/compat/bridge
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/graspcd
         FILES_MATCHING PATTERN "*.h")
 install(EXPORT graspcdTargets NAMESPACE graspcd:: DESTINATION ${GRASPCD_INSTALL_CMAKEDIR})

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "core/separators.h"
-#include "exact/exact.h"
 #include "fuzz_support.h"
-#include "io/text_input.h"
+#include "graspcd/core/separators.h"
+#include "graspcd/exact/exact.h"
+#include "graspcd/io/text_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static graspcd::fuzz::InputFile file("boxbox.txt");

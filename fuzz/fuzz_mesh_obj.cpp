@@ -9,12 +9,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/containment.h"
-#include "core/obb_tree.h"
-#include "core/separators.h"
-#include "exact/exact.h"
 #include "fuzz_support.h"
-#include "io/mesh_io.h"
+#include "graspcd/core/containment.h"
+#include "graspcd/core/obb_tree.h"
+#include "graspcd/core/separators.h"
+#include "graspcd/exact/exact.h"
+#include "graspcd/io/mesh_io.h"
 
 namespace {
 

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "core/obb_tree.h"
-#include "core/separators.h"
-#include "exact/exact.h"
 #include "fuzz_support.h"
-#include "io/text_input.h"
+#include "graspcd/core/obb_tree.h"
+#include "graspcd/core/separators.h"
+#include "graspcd/exact/exact.h"
+#include "graspcd/io/text_input.h"
 
 namespace {
 

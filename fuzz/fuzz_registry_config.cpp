@@ -13,10 +13,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "bridge/collision.h"
-#include "bridge/mujoco_ptr.h"
-#include "bridge/registry.h"
 #include "fuzz_support.h"
+#include "graspcd/mujoco/collision.h"
+#include "graspcd/mujoco/mujoco_ptr.h"
+#include "graspcd/mujoco/registry.h"
 
 namespace {
 

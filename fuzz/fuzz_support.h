@@ -1,4 +1,4 @@
-// Helpers shared by the libFuzzer targets of fuzz/ (README.md, "Fuzzing").
+// Helpers shared by the libFuzzer targets of fuzz/ (docs/fuzzing.md).
 #pragma once
 
 #include <stdlib.h>

@@ -16,10 +16,10 @@
 #include <cstdint>
 #include <cstring>
 
-#include "core/tolerances.h"
-#include "core/tritri.h"
-#include "exact/exact.h"
 #include "fuzz_support.h"
+#include "graspcd/core/tolerances.h"
+#include "graspcd/core/tritri.h"
+#include "graspcd/exact/exact.h"
 
 namespace {
 
@@ -79,8 +79,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (fast != graspcd::exact::tri_tri_intersect(t1, t2)) {
     graspcd::fuzz::disagreement("tri_tri_intersect disagrees with CGAL");
   }
-  if (fast != graspcd::tri_tri_intersect_exact(t1, t2)) {
-    graspcd::fuzz::disagreement("tri_tri_intersect disagrees with tri_tri_intersect_exact");
+  if (fast != graspcd::tri_tri_intersect_predicates(t1, t2)) {
+    graspcd::fuzz::disagreement("tri_tri_intersect disagrees with tri_tri_intersect_predicates");
   }
   // The answer is symmetric and does not depend on the order of the vertices.
   if (fast != graspcd::tri_tri_intersect(t2, t1)) {

@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/tritri.h"
-#include "exact/exact.h"
 #include "fuzz_support.h"
-#include "io/text_input.h"
+#include "graspcd/core/tritri.h"
+#include "graspcd/exact/exact.h"
+#include "graspcd/io/text_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static graspcd::fuzz::InputFile file("tritri.txt");

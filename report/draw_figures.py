@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Pictures of the grasps and the trees (issue 9), drawn from the trajectory files that
-`graspcd study` writes into OUT/trajectories/ (format: study/driver/trajectory.h).
+`graspcd study` writes into OUT/trajectories/ (format: src/graspcd/study/trajectory.h).
 
     /usr/bin/python3 report/draw_figures.py TRAJECTORY_DIR FIGURES_DIR
 

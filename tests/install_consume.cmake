@@ -4,8 +4,8 @@
 #   WORK_DIR      a scratch folder, emptied first: WORK_DIR/prefix and WORK_DIR/example
 #   CXX_COMPILER  BUILD_TYPE  the build's compiler and build type, which the consumer reuses (a
 #                 sanitizer build's libraries need the same compiler's runtimes)
-# Steps: `cmake --install BUILD_DIR --prefix WORK_DIR/prefix`; the prefix holds graspcd::core and
-# graspcd::mujoco and nothing of CGAL; the standalone project study/examples/nonconvex_contacts is
+# Steps: `cmake --install BUILD_DIR --prefix WORK_DIR/prefix`; the prefix holds graspcd::core,
+# graspcd::io, graspcd::mujoco and bin/graspcd, and no CGAL library; the standalone project study/examples/nonconvex_contacts is
 # configured against the prefix alone (CMAKE_PREFIX_PATH) with find_package(graspcd 0.1), built,
 # and run on mjcf/example1.xml: its fingers fall onto the cup, so graspcd must serve calls and
 # hand contacts to MuJoCo. A missing scene must be one line on stderr and exit code 2.
@@ -31,7 +31,8 @@ file(REMOVE_RECURSE "${WORK_DIR}")
 # 1. Install the build into a fresh prefix.
 run_checked("cmake --install" ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}")
 
-# 2. What was installed: the two libraries, the headers, the package; no CGAL. (The library folder
+# 2. What was installed: the three libraries, the executable, the headers (with the 0.1 forwarding
+# headers), the package; no CGAL, no study, no grasp experiment. (The library folder
 # is GNUInstallDirs' CMAKE_INSTALL_LIBDIR: lib, or lib/<multiarch> for a /usr prefix.)
 file(GLOB_RECURSE config_file "${prefix}/graspcdConfig.cmake")
 if(NOT config_file)
@@ -39,9 +40,13 @@ if(NOT config_file)
 endif()
 get_filename_component(package_dir "${config_file}" DIRECTORY)
 get_filename_component(libdir "${package_dir}/../.." ABSOLUTE)
-foreach(f ${libdir}/libgraspcd_core.a ${libdir}/libgraspcd_bridge.a
+foreach(f ${libdir}/libgraspcd_core.a ${libdir}/libgraspcd_io.a ${libdir}/libgraspcd_mujoco.a
           ${package_dir}/graspcdConfigVersion.cmake ${package_dir}/graspcdTargets.cmake
-          ${prefix}/include/graspcd/core/obb_tree.h ${prefix}/include/graspcd/bridge/registry.h
+          ${prefix}/bin/graspcd
+          ${prefix}/include/graspcd/core/obb_tree.h ${prefix}/include/graspcd/io/mesh_io.h
+          ${prefix}/include/graspcd/mujoco/registry.h
+          ${prefix}/include/graspcd/mujoco/nonconvex_contacts.h
+          ${prefix}/include/graspcd/bridge/registry.h
           ${prefix}/include/graspcd/bridge/nonconvex_contacts.h)
   if(NOT EXISTS "${f}")
     message(FATAL_ERROR "not installed: ${f}")
@@ -49,7 +54,7 @@ foreach(f ${libdir}/libgraspcd_core.a ${libdir}/libgraspcd_bridge.a
 endforeach()
 file(GLOB_RECURSE installed RELATIVE "${prefix}" "${prefix}/*")
 foreach(f ${installed})
-  if(f MATCHES "exact|graspcd_io|graspcd_study|bin/")
+  if(f MATCHES "exact|study|grasp/|graspcd_grasp|fcl")
     message(FATAL_ERROR "installed but must not be: ${f}")
   endif()
 endforeach()
@@ -71,6 +76,21 @@ if(NOT graspcd_dir STREQUAL "graspcd_DIR:PATH=${package_dir}")
   message(FATAL_ERROR "the example found graspcd elsewhere: ${graspcd_dir}")
 endif()
 run_checked("building the example" ${CMAKE_COMMAND} --build "${example}")
+# The example's second program includes the 0.1 paths ("bridge/...", "core/...") and uses
+# graspcd::io: programs written against the 0.1 package keep building.
+if(NOT EXISTS "${example}/legacy_includes")
+  message(FATAL_ERROR "the example's legacy_includes program was not built")
+endif()
+run_checked("the legacy-include program" "${example}/legacy_includes"
+            "${SOURCE_DIR}/mjcf/meshes/cup.obj")
+if(NOT run_out MATCHES "faces [1-9][0-9]*")
+  message(FATAL_ERROR "legacy_includes printed no face count:\n${run_out}")
+endif()
+# The installed executable runs from the prefix.
+run_checked("the installed graspcd" "${prefix}/bin/graspcd" --version)
+if(NOT run_out MATCHES "^graspcd ")
+  message(FATAL_ERROR "the installed graspcd --version printed:\n${run_out}")
+endif()
 
 # 4. Run it on a shipped scene: served calls and graspcd's contacts must both occur.
 set(exe "${example}/nonconvex_contacts")

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "core/obb.h"
-#include "core/sat.h"
-#include "core/separators.h"
-#include "core/tree_query.h"
-#include "core/tritri.h"
-#include "support/meshes.h"
-#include "support/random_geometry.h"
+#include "graspcd/core/obb.h"
+#include "graspcd/core/sat.h"
+#include "graspcd/core/separators.h"
+#include "graspcd/core/tree_query.h"
+#include "graspcd/core/tritri.h"
+#include "graspcd/support/meshes.h"
+#include "graspcd/support/random_geometry.h"
 
 namespace graspcd {
 namespace {
@@ -90,7 +90,7 @@ BENCHMARK_TEMPLATE(BM_TriTri, tri_tri_moller_naive)
     ->Name("BM_TriTri/naive_moller")
     ->Arg(10)
     ->Arg(30);
-BENCHMARK_TEMPLATE(BM_TriTri, tri_tri_intersect_exact)
+BENCHMARK_TEMPLATE(BM_TriTri, tri_tri_intersect_predicates)
     ->Name("BM_TriTri/predicates_only")
     ->Arg(10)
     ->Arg(30);

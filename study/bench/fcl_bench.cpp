@@ -24,14 +24,14 @@
 #include <utility>
 #include <vector>
 
-#include "core/obb_tree.h"
-#include "core/separators.h"
-#include "core/tolerances.h"
-#include "core/tree_query.h"
-#include "io/mesh_io.h"
-#include "peer/fcl_peer.h"
-#include "support/meshes.h"
-#include "support/random_geometry.h"
+#include "graspcd/core/obb_tree.h"
+#include "graspcd/core/separators.h"
+#include "graspcd/core/tolerances.h"
+#include "graspcd/core/tree_query.h"
+#include "graspcd/io/mesh_io.h"
+#include "graspcd/peer/fcl_peer.h"
+#include "graspcd/support/meshes.h"
+#include "graspcd/support/random_geometry.h"
 
 namespace graspcd {
 namespace {

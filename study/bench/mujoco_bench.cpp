@@ -27,10 +27,10 @@
 #include <utility>
 #include <vector>
 
-#include "bridge/collision.h"
-#include "bridge/grasp.h"
-#include "bridge/mujoco_ptr.h"
-#include "bridge/registry.h"
+#include "graspcd/grasp/grasp.h"
+#include "graspcd/mujoco/collision.h"
+#include "graspcd/mujoco/mujoco_ptr.h"
+#include "graspcd/mujoco/registry.h"
 
 namespace {
 

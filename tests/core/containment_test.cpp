@@ -1,7 +1,7 @@
-// Containment (src/core/containment.h): closedness after welding, the exact point-in-solid query
-// against CGAL's Side_of_triangle_mesh (src/exact) on points inside, outside, exactly on faces,
+// Containment (src/graspcd/core/containment.h): closedness after welding, the exact point-in-solid query
+// against CGAL's Side_of_triangle_mesh (src/graspcd/exact) on points inside, outside, exactly on faces,
 // edges and vertices, and on rays through edges and vertices, and the mesh-in-mesh check.
-#include "core/containment.h"
+#include "graspcd/core/containment.h"
 
 #include <gtest/gtest.h>
 
@@ -19,11 +19,11 @@
 #include <utility>
 #include <vector>
 
-#include "core/tree_query.h"
-#include "exact/exact.h"
-#include "io/mesh_io.h"
-#include "support/meshes.h"
-#include "support/random_geometry.h"
+#include "graspcd/core/tree_query.h"
+#include "graspcd/exact/exact.h"
+#include "graspcd/io/mesh_io.h"
+#include "graspcd/support/meshes.h"
+#include "graspcd/support/random_geometry.h"
 #include "support/real_models.h"
 #include "support/test_scale.h"
 

@@ -1,10 +1,10 @@
 // Mesh hygiene (core/mesh_hygiene.h): welding by coordinate equality, zero-area faces dropped
 // exactly, kept faces mapped to their input ids, order and winding kept.
-#include "core/mesh_hygiene.h"
+#include "graspcd/core/mesh_hygiene.h"
 
 #include <gtest/gtest.h>
 
-#include "core/containment.h"
+#include "graspcd/core/containment.h"
 
 namespace graspcd {
 namespace {

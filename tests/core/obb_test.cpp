@@ -1,12 +1,12 @@
 // OBB fit (eq. 1-3 and the hull-area variant): containment, frame, degenerate input, tightness.
-#include "core/obb.h"
+#include "graspcd/core/obb.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "support/meshes.h"
-#include "support/random_geometry.h"
+#include "graspcd/support/meshes.h"
+#include "graspcd/support/random_geometry.h"
 
 namespace graspcd {
 namespace {

@@ -1,5 +1,5 @@
 // OBB tree structure: containment, leaf sizes, a permutation of the input, depth, errors.
-#include "core/obb_tree.h"
+#include "graspcd/core/obb_tree.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "support/meshes.h"
+#include "graspcd/support/meshes.h"
 
 namespace graspcd {
 namespace {

@@ -1,6 +1,7 @@
-// The perceptron separator (paper section 5, DESIGN.md "Semantics"): proofs are exact, the update
-// count obeys Novikoff's bound, overlapping boxes run to the cap, warm starts and frames behave.
-#include "core/perceptron.h"
+// The perceptron separator (paper section 5, docs/design.md "Semantics"): proofs are exact, the
+// update count obeys Novikoff's bound, overlapping boxes run to the cap, warm starts and frames
+// behave.
+#include "graspcd/core/perceptron.h"
 
 #include <gtest/gtest.h>
 
@@ -8,10 +9,10 @@
 #include <cmath>
 #include <random>
 
-#include "core/sat.h"
-#include "exact/exact.h"
-#include "support/meshes.h"
-#include "support/random_geometry.h"
+#include "graspcd/core/sat.h"
+#include "graspcd/exact/exact.h"
+#include "graspcd/support/meshes.h"
+#include "graspcd/support/random_geometry.h"
 #include "support/tree_agreement.h"
 
 namespace graspcd {

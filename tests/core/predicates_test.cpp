@@ -1,6 +1,6 @@
 // The filtered predicates against their exact evaluation, on inputs whose true sign is known from
 // the construction (not from the code under test).
-#include "core/predicates.h"
+#include "graspcd/core/predicates.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The separating axis test (src/core/sat.h) against the exact box test (src/exact): random,
+// The separating axis test (src/graspcd/core/sat.h) against the exact box test (src/graspcd/exact): random,
 // near-parallel, near-touching and exactly touching box pairs at sizes 1 mm .. 100 m, near and far
 // from the origin.
 //
@@ -13,7 +13,7 @@
 //
 // GRASPCD_TEST_SCALE (a positive double, default 1) multiplies the number of pairs (never below
 // 1000), so that the sanitizer build can run a subset.
-#include "core/sat.h"
+#include "graspcd/core/sat.h"
 
 #include <gtest/gtest.h>
 
@@ -26,9 +26,9 @@
 #include <string>
 #include <utility>
 
-#include "core/tolerances.h"
-#include "exact/exact.h"
-#include "support/random_geometry.h"
+#include "graspcd/core/tolerances.h"
+#include "graspcd/exact/exact.h"
+#include "graspcd/support/random_geometry.h"
 #include "support/test_scale.h"
 
 namespace graspcd {

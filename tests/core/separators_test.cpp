@@ -1,6 +1,6 @@
 // Every separator gives CGAL's answers through the tree query, at random poses and along
 // continuous trajectories, in both modes; the caches are bounded, hit, and reset.
-#include "core/separators.h"
+#include "graspcd/core/separators.h"
 
 #include <gtest/gtest.h>
 

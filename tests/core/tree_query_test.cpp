@@ -1,7 +1,7 @@
-// The tree query against CGAL's brute force (src/exact): same collision answers and the same
+// The tree query against CGAL's brute force (src/graspcd/exact): same collision answers and the same
 // intersecting triangle pairs, in first-contact and all-contacts modes, on generated and real
 // non-convex meshes, at poses in deep overlap, shallow contact, touching and near miss.
-#include "core/tree_query.h"
+#include "graspcd/core/tree_query.h"
 
 #include <gtest/gtest.h>
 

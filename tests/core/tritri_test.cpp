@@ -1,4 +1,4 @@
-// The core's triangle tests (src/core/tritri.h) against the exact twin (CGAL, src/exact): seeded
+// The core's triangle tests (src/graspcd/core/tritri.h) against the exact twin (CGAL, src/graspcd/exact): seeded
 // random pairs at four scales, adversarial pairs of every degenerate class, symmetry under
 // swapping the triangles and permuting their vertices, and the documented defects of the two
 // reference variants.
@@ -6,7 +6,7 @@
 // GRASPCD_TEST_SCALE (a positive double, default 1) multiplies the number of random pairs (never
 // below 1000 per size), so that the sanitizer build can run a subset; the adversarial suite is
 // small and always runs in full.
-#include "core/tritri.h"
+#include "graspcd/core/tritri.h"
 
 #include <gtest/gtest.h>
 
@@ -19,8 +19,8 @@
 #include <sstream>
 #include <string>
 
-#include "exact/exact.h"
-#include "support/random_geometry.h"
+#include "graspcd/exact/exact.h"
+#include "graspcd/support/random_geometry.h"
 #include "support/test_scale.h"
 
 namespace graspcd {
@@ -57,7 +57,7 @@ struct Checker {
     const Triangle u1 = testing::permuted(t1, p), u2 = testing::permuted(t2, q);
     const std::array<bool, 5> answers = {tri_tri_intersect(t1, t2), tri_tri_intersect(t2, t1),
                                          tri_tri_intersect(u1, u2), tri_tri_intersect(u2, u1),
-                                         tri_tri_intersect_exact(t1, t2)};
+                                         tri_tri_intersect_predicates(t1, t2)};
     static constexpr const char* kNames[5] = {"fast", "fast swapped", "fast permuted",
                                               "fast permuted swapped", "exact"};
     bool ok = true;

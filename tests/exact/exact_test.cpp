@@ -1,6 +1,6 @@
-// Unit tests of the exact module (src/exact): hand-built cases whose answers are known from the
+// Unit tests of the exact module (src/graspcd/exact): hand-built cases whose answers are known from the
 // construction (dyadic coordinates, so every stated contact is exact in double).
-#include "exact/exact.h"
+#include "graspcd/exact/exact.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "support/random_geometry.h"
+#include "graspcd/support/random_geometry.h"
 
 namespace graspcd {
 namespace {

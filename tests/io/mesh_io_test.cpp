@@ -1,4 +1,4 @@
-#include "io/mesh_io.h"
+#include "graspcd/io/mesh_io.h"
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
@@ -107,7 +107,7 @@ TEST_F(MeshIoTest, ObjCoordinatesAreDoubles) {
   EXPECT_NEAR(mesh.vertices[0][0], 1e-20, 1e-33);
 }
 
-// DESIGN.md "Semantics": mesh loading drops zero-area faces with a warning; the loaded faces
+// docs/design.md "Semantics": mesh loading drops zero-area faces with a warning; the loaded faces
 // map back to the file's.
 TEST_F(MeshIoTest, ZeroAreaFacesAreDroppedWithAWarningAndFacesMapBack) {
   const std::string obj =

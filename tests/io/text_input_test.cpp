@@ -1,4 +1,4 @@
-#include "io/text_input.h"
+#include "graspcd/io/text_input.h"
 
 #include <gtest/gtest.h>
 #include <stdlib.h>

@@ -19,9 +19,9 @@
 #include <utility>
 #include <vector>
 
-#include "bridge/collision.h"
-#include "bridge/mujoco_ptr.h"
-#include "bridge/registry.h"
+#include "graspcd/mujoco/collision.h"
+#include "graspcd/mujoco/mujoco_ptr.h"
+#include "graspcd/mujoco/registry.h"
 
 namespace graspcd::bridge {
 namespace {

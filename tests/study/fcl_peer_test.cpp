@@ -1,4 +1,4 @@
-// FCL, the study's peer (study/peer/fcl_peer.h), against our tree query (graspcd::collide with
+// FCL, the study's peer (src/graspcd/peer/fcl_peer.h), against our tree query (graspcd::collide with
 // SatSeparator, all contacts, the exact triangle test at the leaves), on real and shipped meshes at
 // a few thousand poses around contact.
 //
@@ -26,7 +26,7 @@
 //     one pair among all-contacts' pairs), and no pair is reported twice.
 // Counts are printed: poses, intersecting poses, pairs found by each, pairs missed and extra, the
 // largest distance and depth among them, for FCL's OBB and RSS trees.
-#include "peer/fcl_peer.h"
+#include "graspcd/peer/fcl_peer.h"
 
 #include <gtest/gtest.h>
 
@@ -39,12 +39,12 @@
 #include <string>
 #include <vector>
 
-#include "core/obb_tree.h"
-#include "core/tree_query.h"
-#include "io/mesh_io.h"
+#include "graspcd/core/obb_tree.h"
+#include "graspcd/core/tree_query.h"
+#include "graspcd/io/mesh_io.h"
+#include "graspcd/support/meshes.h"
+#include "graspcd/support/random_geometry.h"
 #include "support/contact_rays.h"
-#include "support/meshes.h"
-#include "support/random_geometry.h"
 #include "support/real_models.h"
 #include "support/test_scale.h"
 

@@ -10,9 +10,9 @@
 #include <filesystem>
 #include <string>
 
-#include "bridge/grasp.h"
-#include "core/separators.h"
-#include "study/driver/validate.h"
+#include "graspcd/core/separators.h"
+#include "graspcd/grasp/grasp.h"
+#include "graspcd/study/validate.h"
 #include "support/test_scale.h"
 
 namespace graspcd::study {

@@ -2,7 +2,7 @@
 // false overlaps inside their band), every class really holds both truths (so the contract could
 // fail), a deliberately broken separator is caught, the cases are deterministic, and the command
 // line prints the table and JSON with the right exit codes.
-#include "study/driver/stress.h"
+#include "graspcd/study/stress.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/sat.h"
+#include "graspcd/core/sat.h"
 #include "support/temp_dir.h"
 #include "support/test_scale.h"
 

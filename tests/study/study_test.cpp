@@ -1,7 +1,7 @@
 // The study driver (issue 5): the quick study as a smoke test of the report's files and of the
 // answer hashes, the sweep's shards against one unsharded run, bad options, and the error counts
 // of replay.h on fabricated answers.
-#include "study/driver/study.h"
+#include "graspcd/study/study.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "study/driver/recording.h"
-#include "study/driver/replay.h"
+#include "graspcd/study/recording.h"
+#include "graspcd/study/replay.h"
 #include "support/command_test.h"
 #include "support/test_scale.h"
 

@@ -1,7 +1,7 @@
 // Trajectory files (issue 9): the OBB levels cover their mesh, a recorded grasp written as a
 // trajectory keeps its poses, contacts and times, `graspcd trajectory` and its errors, and
 // report/draw_figures.py draws the report's pictures from such files.
-#include "study/driver/trajectory.h"
+#include "graspcd/study/trajectory.h"
 
 #include <gtest/gtest.h>
 
@@ -13,9 +13,9 @@
 #include <set>
 #include <string>
 
-#include "bridge/registry.h"
-#include "core/obb_tree.h"
-#include "study/driver/recording.h"
+#include "graspcd/core/obb_tree.h"
+#include "graspcd/mujoco/registry.h"
+#include "graspcd/study/recording.h"
 #include "support/command_test.h"
 #include "support/test_scale.h"
 

@@ -1,7 +1,7 @@
 // graspcd validate (issue 10): every method agrees with CGAL on the shipped scenes; a deliberately
 // broken detector is caught with its first step, and the files written for that step reproduce
 // both its answer and CGAL's through `graspcd meshpair`; the command line's table, JSON and errors.
-#include "study/driver/validate.h"
+#include "graspcd/study/validate.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "core/obb_tree.h"
-#include "core/sat.h"
-#include "core/tree_query.h"
-#include "io/mesh_io.h"
+#include "graspcd/core/obb_tree.h"
+#include "graspcd/core/sat.h"
+#include "graspcd/core/tree_query.h"
+#include "graspcd/io/mesh_io.h"
 #include "support/temp_dir.h"
 #include "support/test_scale.h"
 

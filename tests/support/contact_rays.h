@@ -8,8 +8,8 @@
 
 #include <vector>
 
-#include "core/obb_tree.h"
-#include "support/random_geometry.h"
+#include "graspcd/core/obb_tree.h"
+#include "graspcd/support/random_geometry.h"
 
 namespace graspcd::testing {
 

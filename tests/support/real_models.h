@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "core/geometry.h"
-#include "io/mesh_io.h"
+#include "graspcd/core/geometry.h"
+#include "graspcd/io/mesh_io.h"
 
 namespace graspcd::testing {
 

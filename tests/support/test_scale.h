@@ -1,5 +1,5 @@
 // GRASPCD_TEST_SCALE (default 1) scales the number of random cases of the heavy randomized tests;
-// the sanitizer build runs them at 0.1 (README.md, "Build options").
+// the sanitizer build runs them at 0.1 (docs/testing.md).
 #pragma once
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Checks that a detector's tree query gives CGAL's brute-force answer (src/exact): the collision
+// Checks that a detector's tree query gives CGAL's brute-force answer (src/graspcd/exact): the collision
 // answer and the sorted intersecting triangle pairs in all-contacts mode, the answer and a 0/1
 // count in first-contact mode. Shared by the tree query and the separator tests.
 #pragma once
@@ -8,11 +8,11 @@
 #include <algorithm>
 #include <random>
 
-#include "core/separators.h"
-#include "exact/exact.h"
+#include "graspcd/core/separators.h"
+#include "graspcd/exact/exact.h"
+#include "graspcd/support/meshes.h"
+#include "graspcd/support/random_geometry.h"
 #include "support/contact_rays.h"
-#include "support/meshes.h"
-#include "support/random_geometry.h"
 #include "support/test_scale.h"
 
 namespace graspcd::testing {

@@ -18,7 +18,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "bridge/nonconvex_contacts.h"
+#include "graspcd/mujoco/nonconvex_contacts.h"
 
 namespace {
 
@@ -28,14 +28,6 @@ struct ModelDeleter {
 struct DataDeleter {
   void operator()(mjData* d) const { mj_deleteData(d); }
 };
-
-// SCENE.xml -> SCENE.pairs.json
-std::string pair_config_of(const std::string& scene) {
-  const std::string ext = ".xml";
-  const bool has_ext =
-      scene.size() > ext.size() && scene.compare(scene.size() - ext.size(), ext.size(), ext) == 0;
-  return (has_ext ? scene.substr(0, scene.size() - ext.size()) : scene) + ".pairs.json";
-}
 
 int run(int argc, char** argv) {
   if (argc < 2 || argc > 4) {
@@ -70,7 +62,8 @@ int run(int argc, char** argv) {
   std::unique_ptr<mjData, DataDeleter> d(mj_makeData(m.get()));
 
   // graspcd's contacts for the config's pairs, until `contacts` goes out of scope.
-  graspcd::bridge::NonconvexContacts contacts(m.get(), pair_config_of(scene), method);
+  graspcd::bridge::NonconvexContacts contacts(m.get(), graspcd::bridge::pair_config_path(scene),
+                                              method);
   for (const std::string& w : contacts.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
   // Step as usual; read graspcd's statistics once per step.

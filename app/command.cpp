@@ -1,0 +1,75 @@
+#include "command.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <iostream>
+#include <sstream>
+
+#include "graspcd/io/text_input.h"
+
+namespace graspcd::cli {
+
+namespace {
+
+// True when standard input is a pipe or a terminal rather than a regular file.
+bool stdin_is_stream() {
+  struct stat info {};
+  return ::fstat(STDIN_FILENO, &info) != 0 || !S_ISREG(info.st_mode);
+}
+
+}  // namespace
+
+void for_each_case(const std::string& path, std::size_t count,
+                   const std::function<void(const std::vector<double>&)>& answer) {
+  io::TextReader reader(path);
+  const bool flush_each = path == "-" && stdin_is_stream();
+  std::vector<double> values;
+  while (reader.next(count, values)) {
+    try {
+      answer(values);
+    } catch (const io::ValueError& e) {
+      reader.fail(e.what());
+    }
+    if (flush_each) std::cout.flush();
+  }
+  std::cout.flush();
+}
+
+std::string number_grammar_help() {
+  return "Numbers: whitespace-separated, in any form strtod reads (1, -2.5, 1e-3, 0x1p-4); nan and "
+         "inf are errors, and a nonzero value must satisfy 1e-50 <= |x| <= 1e50 (the range in "
+         "which the exact predicates stay exact). Blank lines and lines starting with '#' are "
+         "skipped; CRLF line ends are accepted.\n"
+         "Errors: one line 'FILE:LINE: message' on stderr (FILE is <stdin> for -), exit code 2; "
+         "answers printed for earlier lines stay printed.\n";
+}
+
+std::string wrap_help(const std::string& text, std::size_t width) {
+  std::istringstream paragraphs(text);
+  std::string out;
+  for (std::string paragraph; std::getline(paragraphs, paragraph);) {
+    if (paragraph.rfind("  ", 0) == 0) {
+      out += paragraph + '\n';
+      continue;
+    }
+    std::istringstream words(paragraph);
+    std::size_t column = 0;
+    for (std::string word; words >> word;) {
+      if (column > 0 && column + 1 + word.size() > width) {
+        out += '\n';
+        column = 0;
+      }
+      if (column > 0) {
+        out += ' ';
+        ++column;
+      }
+      out += word;
+      column += word.size();
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace graspcd::cli

@@ -1,0 +1,54 @@
+// The pieces shared by the subcommands of `graspcd` (docs/design.md, "The command line").
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace graspcd::cli {
+
+// A usage error found after CLI11's parse (e.g. a method that is not implemented yet). main()
+// prints "graspcd: <message>" and exits with code 2, like a CLI11 usage error.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A subcommand: its CLI11 app, what to run when it was the one given and, for a command whose
+// findings set the exit code (`stress`: 1 when a method broke its contract; `validate`: 1 on a
+// missed collision), where run() leaves that code for main() to return.
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<void()> run;
+  std::shared_ptr<int> exit_code = nullptr;
+};
+
+Command add_tritri_command(CLI::App& parent);
+Command add_boxbox_command(CLI::App& parent);
+Command add_meshpair_command(CLI::App& parent);
+Command add_grasp_command(CLI::App& parent);
+Command add_study_command(CLI::App& parent);
+Command add_stress_command(CLI::App& parent);
+Command add_validate_command(CLI::App& parent);
+Command add_trajectory_command(CLI::App& parent);
+
+// The paragraphs on the number grammar and the errors that every subcommand's help repeats.
+std::string number_grammar_help();
+
+// Word-wraps help text to `width` columns; '\n' ends a paragraph, and a line starting with two
+// spaces (an example command) is kept as is.
+std::string wrap_help(const std::string& text, std::size_t width = 100);
+
+// Reads the cases of `path` ("-" = stdin), each exactly `count` numbers, and calls `answer` on
+// each in input order. A graspcd::io::ValueError thrown by `answer` (an invalid box or pose) is
+// rethrown as an io::InputError located at the case's line. When the input is a pipe or a
+// terminal, stdout is flushed after every case, so that a driver waiting on each answer does not
+// deadlock; for a regular file it is flushed at the end only.
+void for_each_case(const std::string& path, std::size_t count,
+                   const std::function<void(const std::vector<double>&)>& answer);
+
+}  // namespace graspcd::cli

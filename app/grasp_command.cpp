@@ -1,0 +1,399 @@
+// graspcd grasp SCENE.xml [--method M] [--cap N] [--switch N] [--native] [--json]
+// [--config PAIRS.json] [--max-steps N]: runs the grasp of paper section 9 (bridge/grasp.h) and
+// prints, per grasp step, contacts and detection time, then a summary.
+// graspcd grasp --object FILE [--scale S] [--write-scene DIR]: the same with a user's OBJ or STL
+// in the template scene (example 1's arm and hand, the cup swapped for FILE).
+#include <stdlib.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "command.h"
+#include "graspcd/core/geometry.h"
+#include "graspcd/grasp/grasp.h"
+#include "graspcd/io/mesh_io.h"
+#include "graspcd/io/text_input.h"
+#include "method.h"
+
+#ifndef GRASPCD_MJCF_DIR
+#error "GRASPCD_MJCF_DIR must name the repository's mjcf folder"
+#endif
+
+namespace graspcd::cli {
+
+namespace {
+
+struct GraspCliOptions {
+  MethodOptions method;
+  std::string scene;
+  std::string config;
+  bool native = false;
+  bool json = false;
+  int max_steps = 400;
+  std::string object;       // --object FILE: a user's mesh in the template scene
+  double scale = 0;         // --scale S (> 0); 0: fit the object to the cup's size
+  std::string write_scene;  // --write-scene DIR: keep the generated scene there
+};
+
+namespace fs = std::filesystem;
+
+// --object: the template is example 1 (mjcf/example1.xml: the project's arm and 4-finger hand,
+// the cup centred under it). The object replaces the cup: centred under the hand in x and y, its
+// lowest point on the floor, scaled by S or, without --scale, to fit where the cup stands: its
+// wider horizontal extent 7 cm (the cup's outer diameter) and its height at most 8 cm (the cup's).
+constexpr double kFitWidth = 0.07;
+constexpr double kFitHeight = 0.08;
+
+struct ObjectScene {
+  std::string file;   // the user's mesh, as given
+  std::string scene;  // the generated MJCF, SCENE.pairs.json beside it
+  double scale = 0;
+  bool fitted = false;
+};
+
+std::string xml_escape(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw io::InputError(path, 0, "cannot read the template scene");
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Replaces the one occurrence of `from`; the template changing under us is an error naming it.
+void replace_once(std::string& text, const std::string& from, const std::string& to,
+                  const std::string& template_path) {
+  const std::size_t at = text.find(from);
+  if (at == std::string::npos || text.find(from, at + 1) != std::string::npos) {
+    throw io::InputError(
+        template_path, 0,
+        "the template scene no longer holds '" + from + "' exactly once (--object needs it)");
+  }
+  text.replace(at, from.size(), to);
+}
+
+std::string number(double v) {
+  std::ostringstream out;
+  out << std::setprecision(17) << v + 0.0;  // + 0.0: -0 prints as 0
+  return out.str();
+}
+
+ObjectScene write_object_scene(const GraspCliOptions& o, const fs::path& dir) {
+  // The mesh as graspcd reads it (an error names FILE): its bounding box places and fits it.
+  const TriangleMesh mesh = io::load_mesh(o.object);
+  Vec3 lo = mesh.vertices.front(), hi = lo;
+  for (const Vec3& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  const Vec3 size = hi - lo;
+  ObjectScene out;
+  out.file = o.object;
+  out.fitted = o.scale <= 0;
+  out.scale = o.scale;
+  if (out.fitted) {
+    const double width = std::max(size.x(), size.y());
+    out.scale = std::numeric_limits<double>::infinity();
+    if (width > 0) out.scale = kFitWidth / width;
+    if (size.z() > 0) out.scale = std::min(out.scale, kFitHeight / size.z());
+  }
+  const std::string mjcf = GRASPCD_MJCF_DIR;
+  const std::string template_path = mjcf + "/example1.xml";
+  std::string xml = read_text(template_path);
+  const std::string s = number(out.scale);
+  replace_once(xml, "meshdir=\"meshes\"", "meshdir=\"" + xml_escape(mjcf + "/meshes") + "\"",
+               template_path);
+  replace_once(xml, "<mesh name=\"cup\" file=\"cup.obj\"/>",
+               "<mesh name=\"user_object\" file=\"" +
+                   xml_escape(fs::absolute(o.object).lexically_normal().string()) + "\" scale=\"" +
+                   s + ' ' + s + ' ' + s + "\"/>",
+               template_path);
+  replace_once(xml, "mesh=\"cup\"", "mesh=\"user_object\"", template_path);
+  // Room for the contacts of a fine mesh (example 1's cup has a few hundred faces).
+  replace_once(xml, "<size nconmax=\"300\" njmax=\"900\"/>",
+               "<size nconmax=\"1000\" njmax=\"4000\"/>", template_path);
+  const Vec3 at = -out.scale * Vec3(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()), lo.z());
+  replace_once(xml, "<body name=\"object\" pos=\"0.000000 0.000000 0.000000\">",
+               "<body name=\"object\" pos=\"" + number(at.x()) + ' ' + number(at.y()) + ' ' +
+                   number(at.z()) + "\">",
+               template_path);
+  fs::create_directories(dir);
+  const std::string stem = fs::path(o.object).stem().string();
+  out.scene = (dir / (stem + ".xml")).string();
+  std::ofstream(out.scene, std::ios::binary) << xml;
+  std::ofstream((dir / (stem + ".pairs.json")).string(), std::ios::binary)
+      << read_text(mjcf + "/example1.pairs.json");
+  return out;
+}
+
+// A temporary folder, removed with everything in it when it goes out of scope.
+class TempFolder {
+ public:
+  TempFolder() {
+    std::string pattern = (fs::temp_directory_path() / "graspcd-object-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) {
+      throw std::runtime_error("cannot create a temporary folder in " +
+                               fs::temp_directory_path().string());
+    }
+    path_ = pattern;
+  }
+  ~TempFolder() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::string segments_text(const bridge::GraspResult& g, const bridge::GraspStepRecord& r) {
+  std::string out;
+  for (std::size_t s = 0; s < r.touching.size(); ++s) {
+    if (!r.touching[s]) continue;
+    if (!out.empty()) out += ',';
+    out += g.segments[s];
+  }
+  return out.empty() ? "-" : out;
+}
+
+void print_text(const bridge::GraspResult& r, const std::optional<ObjectScene>& object) {
+  std::ostringstream out;
+  out << "step contacts detection_ns box_tests triangle_tests object_z segments\n";
+  out << std::fixed;
+  for (const bridge::GraspStepRecord& s : r.steps) {
+    out << s.step << ' ' << s.contacts << ' ' << s.detection_ns << ' ' << s.box_tests << ' '
+        << s.triangle_tests << ' ' << std::setprecision(6) << s.object_z << ' '
+        << segments_text(r, s) << '\n';
+  }
+  out << "# method " << r.method << "; first contact (grasp step):";
+  for (std::size_t s = 0; s < r.first_contact.size(); ++s) {
+    out << ' ' << r.segments[s] << '=';
+    if (r.first_contact[s] > 0) {
+      out << r.first_contact[s];
+    } else {
+      out << '-';
+    }
+  }
+  out << '\n';
+  out << std::setprecision(4) << "# gripped " << (r.gripped ? "yes" : "no") << "; held "
+      << (r.held ? "yes" : "no") << "; object z " << r.object_z_initial << " -> "
+      << r.object_z_gripped << " (gripped) -> " << r.object_z_final << " m (final), lowest "
+      << r.hold_min_z << " m and drift " << r.hold_drift << " m in the hold\n";
+  out << "# detection ns " << r.detection_ns_close << " closing, " << r.detection_ns_total
+      << " total; " << r.physics_steps << " physics steps, " << std::setprecision(2) << r.sim_time
+      << " s simulated, " << std::setprecision(4) << r.step_wall_ms << " ms per physics step; "
+      << r.contained_calls << " containment findings; " << r.nonfinite_skips
+      << " non-finite skips\n";
+  if (object) {
+    out << "# object " << object->file << " at scale " << std::defaultfloat << std::setprecision(6)
+        << object->scale << (object->fitted ? " (fitted)" : " (given)")
+        << " in the template scene\n";
+  }
+  std::cout << out.str();
+}
+
+void print_json(const bridge::GraspResult& r, const std::optional<ObjectScene>& object) {
+  nlohmann::json steps = nlohmann::json::array();
+  for (const bridge::GraspStepRecord& s : r.steps) {
+    nlohmann::json segments = nlohmann::json::array();
+    for (std::size_t i = 0; i < s.touching.size(); ++i) {
+      if (s.touching[i]) segments.push_back(r.segments[i]);
+    }
+    steps.push_back({{"step", s.step},
+                     {"contacts", s.contacts},
+                     {"detection_ns", s.detection_ns},
+                     {"box_tests", s.box_tests},
+                     {"triangle_tests", s.triangle_tests},
+                     {"served_calls", s.served_calls},
+                     {"contained", s.contained},
+                     {"nonfinite_skips", s.nonfinite_skips},
+                     {"object_z", s.object_z},
+                     {"segments", segments}});
+  }
+  nlohmann::json first = nlohmann::json::object();
+  for (std::size_t i = 0; i < r.first_contact.size(); ++i) {
+    const std::string& name = r.segments[i];
+    if (r.first_contact[i] > 0) {
+      first[name] = r.first_contact[i];
+    } else {
+      first[name] = nullptr;
+    }
+  }
+  nlohmann::json doc = {{"scene", r.scene},
+                        {"method", r.method},
+                        {"native", r.native},
+                        {"steps", steps},
+                        {"first_contact", first},
+                        {"gripped", r.gripped},
+                        {"held", r.held},
+                        {"object_z_initial", r.object_z_initial},
+                        {"object_z_gripped", r.object_z_gripped},
+                        {"object_z_final", r.object_z_final},
+                        {"hold_min_z", r.hold_min_z},
+                        {"hold_drift", r.hold_drift},
+                        {"detection_ns_close", r.detection_ns_close},
+                        {"detection_ns_total", r.detection_ns_total},
+                        {"physics_steps", r.physics_steps},
+                        {"sim_time", r.sim_time},
+                        {"ms_per_physics_step", r.step_wall_ms},
+                        {"max_contacts", r.max_contacts},
+                        {"contained_calls", r.contained_calls},
+                        {"nonfinite_skips", r.nonfinite_skips},
+                        {"warnings", r.warnings}};
+  if (object) {
+    doc["object"] = {{"file", object->file}, {"scale", object->scale}, {"fitted", object->fitted}};
+  }
+  std::cout << doc.dump(2) << '\n';
+}
+
+void run_grasp_command(GraspCliOptions& options, const CLI::App& app) {
+  finish_method_options(options.method);
+  bridge::GraspOptions grasp;
+  grasp.config_path = options.config;
+  grasp.native = options.native;
+  grasp.max_steps = options.max_steps;
+  if (app.count("--method") > 0) grasp.method = options.method.method;
+  if (app.count("--cap") > 0) grasp.cap = options.method.cap;
+  if (app.count("--switch") > 0) grasp.switch_passes = options.method.switch_passes;
+  if (options.object.empty() == options.scene.empty()) {
+    throw UsageError("grasp: give either SCENE or --object FILE");
+  }
+  if (options.object.empty() && (app.count("--scale") > 0 || !options.write_scene.empty())) {
+    throw UsageError("grasp: --scale and --write-scene go with --object");
+  }
+  std::optional<TempFolder> temp;
+  std::optional<ObjectScene> object;
+  std::string scene = options.scene;
+  if (!options.object.empty()) {
+    if (options.write_scene.empty()) temp.emplace();
+    object = write_object_scene(options, temp ? temp->path() : fs::path(options.write_scene));
+    scene = object->scene;
+  }
+  bridge::GraspResult result;
+  try {
+    result = bridge::run_grasp(scene, grasp);
+  } catch (const bridge::GraspInputError& e) {
+    throw io::InputError(e.file(), 0, e.message());
+  }
+  if (object && !temp) result.scene = object->scene;
+  if (object && temp) result.scene = options.object;
+  // The registry's findings (e.g. an open mesh whose containment cannot be decided), one line
+  // each on stderr before the answer.
+  for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << '\n';
+  if (options.json) {
+    print_json(result, object);
+  } else {
+    print_text(result, object);
+  }
+}
+
+}  // namespace
+
+Command add_grasp_command(CLI::App& parent) {
+  auto options = std::make_shared<GraspCliOptions>();
+  CLI::App* app = parent.add_subcommand(
+      "grasp", "Run a grasp (paper section 9): per grasp step, contacts and detection time");
+  CLI::Option* scene =
+      app->add_option("SCENE", options->scene, "The scene: an MJCF file of mjcf/ (or --object)");
+  app->add_option("--object", options->object,
+                  "A mesh (OBJ or binary STL) grasped in the template scene instead of SCENE")
+      ->excludes(scene);
+  app->add_option("--scale", options->scale,
+                  "--object: the mesh's scale (default: fitted to the cup's size)")
+      ->check(CLI::PositiveNumber);
+  app->add_option("--write-scene", options->write_scene,
+                  "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder "
+                  "and keep it (default: a temporary folder, removed)");
+  add_method_options(*app, options->method, MethodDefaults::kSceneConfig);
+  app->add_flag("--native", options->native,
+                "MuJoCo's own collision (convex hulls) instead of graspcd's callback");
+  app->add_flag("--json", options->json, "Print one JSON document instead of text");
+  app->add_option("--config", options->config,
+                  "Pair config (JSON); default SCENE.pairs.json beside the scene");
+  app->add_option("--max-steps", options->max_steps, "Most closing grasp steps")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app->footer(wrap_help(
+      "The fingers close in grasp steps of 0.003 rad (5 physics steps each, computed-torque "
+      "control of every joint); a finger segment stops at its first contact with the object "
+      "(graspcd's detector for the registered pairs, or MuJoCo's with --native). When every "
+      "finger touches (or after --max-steps), the hand squeezes, the arm lifts the wrist by 6 cm "
+      "over 1 s and holds for 2 s. --method, --cap and --switch override the config's.\n"
+      "Text output: a header line 'step contacts detection_ns box_tests triangle_tests object_z "
+      "segments', then one line per grasp step: its number, the finger-object contacts after "
+      "it, the tree query time in ns summed over its physics steps and all registered pairs "
+      "(0 with --native), the box and triangle tests, the object's height in m, and the "
+      "segments in contact (comma-separated, '-' for none). Then three summary lines starting "
+      "with '#': the first-contact grasp step of each segment ('-' for never); gripped and held "
+      "(the object rose >= 3 cm and stayed within 1 cm of its place in the hand during the "
+      "2 s hold) with its heights; the detection time of the closing steps and of the whole "
+      "run, the physics steps, simulated seconds and wall ms per physics step, the "
+      "containment findings (served calls whose surfaces did not meet but a segment lay wholly "
+      "inside the closed object: a contact the surface test cannot see), and the non-finite "
+      "skips (served calls whose geom placement held NaN, inf or a number beyond 1e10: no "
+      "contacts, no query).\n"
+      "--json: one document with the same: scene, method, native, steps (step, contacts, "
+      "detection_ns, box_tests, triangle_tests, served_calls, contained, nonfinite_skips, "
+      "object_z, segments), first_contact (segment -> step or null), gripped, held, "
+      "object_z_initial, object_z_gripped, object_z_final, hold_min_z, hold_drift, "
+      "detection_ns_close, detection_ns_total, physics_steps, sim_time, ms_per_physics_step, "
+      "max_contacts, contained_calls, nonfinite_skips, warnings.\n"
+      "Warnings: the pair registry's findings that do not stop the grasp (a served geom with a "
+      "margin, an open mesh inside which containment is not checked), one line 'warning: "
+      "CONFIG: message' each on stderr, and in the JSON's warnings.\n"
+      "Errors: a missing or unreadable scene or config, a bad MJCF (MuJoCo's message on one "
+      "line, e.g. a mesh file it cannot find), a config that is bad or whose pattern matches no "
+      "geom, print one line 'FILE: message' on stderr and exit with code 2. A simulation that "
+      "goes non-finite (MuJoCo finds NaN or a number beyond 1e10 in qpos, qvel, qacc or ctrl and "
+      "resets) stops the grasp with one line 'graspcd: error: SCENE: the simulation went "
+      "non-finite ...' and exit code 2.\n"
+      "--object FILE: a new object without writing a scene. The template is example 1 "
+      "(mjcf/example1.xml: the project's arm and 4-finger hand) with the cup replaced by FILE "
+      "(its z axis up), centred under the hand, its lowest point on the floor, scaled by --scale "
+      "or, without it, "
+      "to fit where the cup stands: its wider horizontal extent 7 cm (the cup's diameter) and "
+      "its height at most 8 cm (the cup's), whichever is smaller. Pairs: the fingers against "
+      "the object (example1.pairs.json). The output names FILE as the scene and adds a last "
+      "line '# object FILE at scale S (fitted|given) in the template scene' (JSON: 'object': "
+      "file, scale, fitted). --write-scene DIR keeps the scene (DIR/STEM.xml and its "
+      ".pairs.json) for graspcd validate or study; a bad FILE is one line 'FILE: message', "
+      "exit code 2.\n"
+      "Examples:\n"
+      "  graspcd grasp mjcf/example1.xml --method perceptron\n"
+      "  graspcd grasp --object my_mug.obj --write-scene /tmp/my_mug"));
+  return Command{app, [options, app] { run_grasp_command(*options, *app); }};
+}
+
+}  // namespace graspcd::cli

@@ -1,0 +1,84 @@
+// graspcd: the command line of the project (docs/design.md, "The command line"). Each subcommand
+// lives in its own file; this file parses, dispatches, and turns every error into one line on
+// stderr and exit code 2.
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "graspcd/io/text_input.h"
+#include "graspcd/version.h"
+#include "graspcd/version/provenance.h"
+
+namespace {
+
+constexpr int kExitError = 2;
+
+std::string trimmed(std::string s) {
+  const auto first = s.find_first_not_of(' ');
+  if (first == std::string::npos) return "";
+  const auto last = s.find_last_not_of(' ');
+  return s.substr(first, last - first + 1);
+}
+
+std::string version_text() {
+  return std::string("graspcd ") + GRASPCD_VERSION + "\nMuJoCo " + GRASPCD_MUJOCO_VERSION +
+         "\nEigen " + GRASPCD_EIGEN_VERSION + "\nCGAL " + GRASPCD_CGAL_VERSION +
+         "\nbuild type: " + GRASPCD_BUILD_TYPE + "\ncompiler: " + GRASPCD_CXX_COMPILER +
+         "\nflags: " + trimmed(GRASPCD_BUILD_FLAGS) + "\ncommit: " + graspcd::provenance().commit;
+}
+
+// Prints one line on stderr, after whatever answers are already on stdout.
+int report_error(const std::string& message) {
+  std::cout.flush();
+  std::string line = message;
+  for (char& c : line) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  std::cerr << line << '\n';
+  std::cerr.flush();
+  return kExitError;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::ios::sync_with_stdio(false);
+  CLI::App app{"graspcd: exact OBB-tree collision detection for robotic grasping.", "graspcd"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", version_text(),
+                       "Print the version and the versions built with");
+  app.footer("Run 'graspcd SUBCOMMAND --help' for the input format of each subcommand.");
+  const std::vector<graspcd::cli::Command> commands = {
+      graspcd::cli::add_tritri_command(app),   graspcd::cli::add_boxbox_command(app),
+      graspcd::cli::add_meshpair_command(app), graspcd::cli::add_grasp_command(app),
+      graspcd::cli::add_study_command(app),    graspcd::cli::add_stress_command(app),
+      graspcd::cli::add_validate_command(app), graspcd::cli::add_trajectory_command(app),
+  };
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version: CLI11 prints them, exit 0. Every usage error: one line, exit 2.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    return report_error(std::string("graspcd: ") + e.what() + " (run with --help for usage)");
+  }
+
+  try {
+    int exit_code = 0;
+    for (const graspcd::cli::Command& command : commands) {
+      if (!command.app->parsed()) continue;
+      command.run();
+      if (command.exit_code) exit_code = *command.exit_code;
+    }
+    std::cout.flush();
+    return exit_code;
+  } catch (const graspcd::io::InputError& e) {
+    return report_error(e.what());
+  } catch (const graspcd::cli::UsageError& e) {
+    return report_error(std::string("graspcd: ") + e.what());
+  } catch (const std::exception& e) {
+    return report_error(std::string("graspcd: error: ") + e.what());
+  }
+}

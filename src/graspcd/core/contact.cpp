@@ -1,0 +1,244 @@
+#include "graspcd/core/contact.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <utility>
+
+#include "graspcd/core/tolerances.h"
+
+namespace graspcd {
+namespace {
+
+// A triangle clipped by three planes: 6 vertices in exact arithmetic, room for rounding.
+struct Polygon {
+  std::array<Vec3, 24> v;  // each clip at most doubles the count: 3, 6, 12, 24
+  int n = 0;
+};
+
+// One side of a plane through `o` with normal `m`: keeps m.(p - o) >= 0 (Sutherland-Hodgman).
+Polygon clip(const Polygon& in, const Vec3& o, const Vec3& m) {
+  Polygon out;
+  for (int i = 0; i < in.n; ++i) {
+    const Vec3& p = in.v[static_cast<std::size_t>(i)];
+    const Vec3& q = in.v[static_cast<std::size_t>((i + 1) % in.n)];
+    const double sp = m.dot(p - o), sq = m.dot(q - o);
+    if (sp >= 0) out.v[static_cast<std::size_t>(out.n++)] = p;
+    if ((sp >= 0) != (sq >= 0))
+      out.v[static_cast<std::size_t>(out.n++)] = p + (sp / (sp - sq)) * (q - p);
+  }
+  return out;
+}
+
+struct Direction {
+  bool valid = false;
+  double depth = 0;  // deepest point below the reference plane, >= 0
+  Vec3 deepest = Vec3::Zero();
+  Vec3 crossing_sum =
+      Vec3::Zero();  // sum of the points where the clipped polygon crosses the plane
+  int crossings = 0;
+};
+
+// `moving` clipped to the prism over `ref` and measured below `ref`'s plane (unit normal n).
+Direction measure(const Triangle& ref, const Vec3& n, const Triangle& moving) {
+  Direction d;
+  Polygon poly;
+  poly.n = 3;
+  for (std::size_t k = 0; k < 3; ++k) poly.v[k] = moving.v[k];
+  // The three edge planes of `ref`, inward normals n x (edge).
+  for (std::size_t k = 0; k < 3 && poly.n > 0; ++k) {
+    const Vec3& o = ref.v[k];
+    const Vec3 edge = ref.v[(k + 1) % 3] - o;
+    poly = clip(poly, o, n.cross(edge));
+  }
+  if (poly.n == 0) return d;
+  d.valid = true;
+  d.deepest = poly.v[0];
+  double best = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < poly.n; ++i) {
+    const Vec3& p = poly.v[static_cast<std::size_t>(i)];
+    const Vec3& q = poly.v[static_cast<std::size_t>((i + 1) % poly.n)];
+    const double sp = n.dot(p - ref.v[0]), sq = n.dot(q - ref.v[0]);
+    if (-sp > best) {
+      best = -sp;
+      d.deepest = p;
+    }
+    if ((sp <= 0) != (sq <= 0)) {
+      d.crossing_sum += p + (sp / (sp - sq)) * (q - p);
+      ++d.crossings;
+    }
+  }
+  d.depth = std::max(best, 0.0);
+  return d;
+}
+
+// The smallest overlap of the triangles' projections on the edge-edge axes ea_i x eb_j of their
+// sharp edges (the SAT axes of gim_tri_collision). The sign comes from the solids where their
+// faces say something: the normal N = +-L must point out of A and into B, so N.(n_a - n_b) >= 0
+// (unit outward face normals, zero for a degenerate face), and the push is one-sided:
+// max(A.N) - min(B.N). When L is perpendicular to n_a - n_b (|L.(n_a - n_b)| <=
+// tol::kContactSignCosine), the faces do not decide and the smaller of the two sides does. Returns
+// false when no sharp edge pair has a cross-product axis.
+bool min_edge_axis(const Triangle& a, const Triangle& b, const Vec3& na, const Vec3& nb,
+                   std::uint8_t sharp_a, std::uint8_t sharp_b, Vec3& normal, double& depth) {
+  const Vec3 out_of_a = na - nb;
+  bool found = false;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!(sharp_a >> i & 1u)) continue;
+    const Vec3 ea = a.v[(i + 1) % 3] - a.v[i];
+    for (std::size_t j = 0; j < 3; ++j) {
+      if (!(sharp_b >> j & 1u)) continue;
+      const Vec3 eb = b.v[(j + 1) % 3] - b.v[j];
+      Vec3 axis = ea.cross(eb);
+      const double len = axis.norm();
+      if (!(len > tol::kContactParallelEdgeSine * ea.norm() * eb.norm())) continue;
+      axis /= len;
+      double amin = axis.dot(a.v[0]), amax = amin, bmin = axis.dot(b.v[0]), bmax = bmin;
+      for (std::size_t k = 1; k < 3; ++k) {
+        const double pa = axis.dot(a.v[k]), pb = axis.dot(b.v[k]);
+        amin = std::min(amin, pa);
+        amax = std::max(amax, pa);
+        bmin = std::min(bmin, pb);
+        bmax = std::max(bmax, pb);
+      }
+      const double up = amax - bmin, down = bmax - amin;  // push B along +L, along -L
+      const double w = axis.dot(out_of_a);
+      const bool plus = std::abs(w) > tol::kContactSignCosine ? w > 0 : up <= down;
+      const double d = std::max(plus ? up : down, 0.0);
+      if (!found || d < depth) {
+        found = true;
+        depth = d;
+        normal = plus ? axis : Vec3(-axis);
+      }
+    }
+  }
+  return found;
+}
+
+}  // namespace
+
+TriContact triangle_pair_contact(const Triangle& a, const Triangle& b, double max_depth,
+                                 const Vec3& fallback_normal, std::uint8_t sharp_a,
+                                 std::uint8_t sharp_b) {
+  const Vec3 na = (a.v[1] - a.v[0]).cross(a.v[2] - a.v[0]);
+  const Vec3 nb = (b.v[1] - b.v[0]).cross(b.v[2] - b.v[0]);
+  const double la = na.norm(), lb = nb.norm();
+  Direction da, db;
+  // A zero or non-finite normal gives no direction (the triangle is a segment or a point).
+  const bool a_flat = la > 0 && std::isfinite(la), b_flat = lb > 0 && std::isfinite(lb);
+  const Vec3 ua = a_flat ? Vec3(na / la) : Vec3::Zero(), ub = b_flat ? Vec3(nb / lb) : Vec3::Zero();
+  if (a_flat) da = measure(a, ua, b);
+  if (b_flat) db = measure(b, ub, a);
+  TriContact c;
+  // The smallest push among the face directions (one-sided, measured inside the prism)...
+  double depth = std::numeric_limits<double>::infinity();
+  if (da.valid) {
+    depth = da.depth;
+    c.normal = ua;
+  }
+  if (db.valid && db.depth < depth) {
+    depth = db.depth;
+    c.normal = -ub;
+  }
+  // ...and the edge-edge directions of sharp edges, which catch pairs where two faces cross along
+  // edges of the solids and neither face normal is the direction of penetration.
+  Vec3 edge_normal;
+  double edge_depth = 0;
+  if (min_edge_axis(a, b, ua, ub, sharp_a, sharp_b, edge_normal, edge_depth) &&
+      edge_depth < depth) {
+    depth = edge_depth;
+    c.normal = edge_normal;
+  }
+  if (!std::isfinite(depth)) {
+    // No direction: both triangles degenerate, no sharp non-parallel edge pair.
+    c.normal = fallback_normal;
+    depth = 0;
+  }
+  c.depth = std::min(depth, max_depth);
+  // Position: the midpoint of the intersection segment, on both surfaces.
+  if (da.crossings > 0) {
+    c.pos = da.crossing_sum / da.crossings;
+  } else if (db.crossings > 0) {
+    c.pos = db.crossing_sum / db.crossings;
+  } else if (da.valid) {
+    c.pos = da.deepest + (0.5 * c.depth) * c.normal;
+  } else if (db.valid) {
+    c.pos = db.deepest - (0.5 * c.depth) * c.normal;
+  } else {
+    c.pos = (a.v[0] + a.v[1] + a.v[2] + b.v[0] + b.v[1] + b.v[2]) / 6.0;
+  }
+  return c;
+}
+
+std::vector<std::size_t> select_contacts(const std::vector<TriContact>& contacts, std::size_t k) {
+  const std::size_t n = contacts.size();
+  std::vector<std::size_t> chosen;
+  if (n == 0 || k == 0) return chosen;
+  // The deepest first.
+  std::size_t first = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    if (contacts[i].depth > contacts[first].depth) first = i;
+  }
+  if (n <= k) {
+    chosen.resize(n);
+    for (std::size_t i = 0; i < n; ++i) chosen[i] = i;
+    std::swap(chosen[0], chosen[first]);
+    return chosen;
+  }
+  // Farthest-point sampling: dist2[i] is the squared distance of i to the chosen set.
+  std::vector<double> dist2(n, std::numeric_limits<double>::infinity());
+  chosen.push_back(first);
+  for (std::size_t round = 1; round < k; ++round) {
+    const Vec3& last = contacts[chosen.back()].pos;
+    std::size_t next = n;
+    for (std::size_t i = 0; i < n; ++i) {
+      dist2[i] = std::min(dist2[i], (contacts[i].pos - last).squaredNorm());
+      if (dist2[i] <= 0) continue;  // chosen already, or at a chosen position
+      if (next == n || dist2[i] > dist2[next] ||
+          (dist2[i] == dist2[next] && contacts[i].depth > contacts[next].depth)) {
+        next = i;
+      }
+    }
+    if (next == n) break;  // every remaining contact sits on a chosen position
+    chosen.push_back(next);
+  }
+  return chosen;
+}
+
+// Feature edges by dihedral angle: weld vertices by exact coordinates, gather the faces of each
+// undirected edge, and compare the unit normals of edges with exactly two faces.
+std::vector<std::uint8_t> sharp_edge_masks(const std::vector<Triangle>& faces) {
+  using Point = std::array<double, 3>;
+  using EdgeKey = std::pair<Point, Point>;
+  const auto point = [](const Vec3& v) { return Point{v[0], v[1], v[2]}; };
+  std::map<EdgeKey, std::vector<std::pair<std::size_t, unsigned>>> edges;
+  std::vector<Vec3> normals(faces.size());
+  std::vector<std::uint8_t> masks(faces.size(), 0);
+  const double cos_sharp = std::cos(tol::kSharpEdgeAngle);
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const Triangle& t = faces[f];
+    const Vec3 n = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
+    const double len = n.norm();
+    normals[f] = len > 0 && std::isfinite(len) ? Vec3(n / len) : Vec3::Zero();
+    for (unsigned k = 0; k < 3; ++k) {
+      Point p = point(t.v[k]), q = point(t.v[(k + 1) % 3]);
+      if (q < p) std::swap(p, q);
+      edges[{p, q}].emplace_back(f, k);
+    }
+  }
+  for (const auto& [key, users] : edges) {
+    bool sharp = users.size() != 2;
+    if (!sharp) {
+      const Vec3& n0 = normals[users[0].first];
+      const Vec3& n1 = normals[users[1].first];
+      sharp = n0.isZero() || n1.isZero() || n0.dot(n1) < cos_sharp;
+    }
+    if (!sharp) continue;
+    for (const auto& [f, k] : users) masks[f] = static_cast<std::uint8_t>(masks[f] | (1u << k));
+  }
+  return masks;
+}
+
+}  // namespace graspcd

@@ -1,0 +1,156 @@
+// The grasp of paper section 9 on our scenes (mjcf/, study/scenes/generate_scenes.py): the fingers
+// close in grasp steps of 0.003 rad until their segments' detectors report contact with the
+// object, the hand squeezes, the arm lifts the object with gravity on, and holds it.
+//
+// Scene contract (the header comment of mjcf/example1.xml): hinge joints arm1..arm3 and
+// finger{1..4}_{A,B,C}, one motor per joint named after it, finger geoms named after their
+// segment, increasing a finger angle closes it, the object is the body `object` (free joint).
+//
+// Phases, all under one ComputedTorqueController on every joint (eq. (12)-(16)), physics steps as
+// mj_step1 -> apply -> mj_step2:
+//   1. Close (docs/design.md "Semantics"): grasp step k raises the target of every segment that has
+//   not
+//      stopped by 0.003 rad (with the matching velocity feed-forward) and runs
+//      `physics_steps_per_grasp_step` physics steps. A segment touches when a contact between its
+//      geom and an object geom appears in any physics step of the grasp step (with the bridge those
+//      contacts are the output of the segment's served pairs, which get no native contacts; with
+//      `native` they are MuJoCo's own). A touching segment stops, and so do the segments proximal
+//      to it on its finger (GraspIt's autoGrasp rule; the paper does not say: a proximal joint
+//      that kept closing pushes the object away with the touching segment, which on the C-block
+//      drove the object 2.5 cm off); distal segments keep closing. A segment also stops at its
+//      joint's upper limit. Closing ends when every finger has a segment that touched (the grip)
+//      or after `max_steps` grasp steps.
+//   2. Squeeze: every finger target rises by `squeeze` rad over `squeeze_time` s and is then held
+//      (the grip force is D kp e of eq. (12)-(13) on the blocked joints), then `settle_time` s.
+//   3. Lift: arm2 -> -a and arm3 -> +a along a cosine ramp over `lift_time` s (with velocity and
+//      acceleration feed-forward), a = asin(lift_height / L) with L the arm2-arm3 distance: the
+//      wrist rises by lift_height and the hand keeps its orientation (arm2 + arm3 = 0).
+//   4. Hold `hold_time` s. The object is held when its final height is >= 0.03 m above its
+//      initial height, stays so during the hold, and its position relative to the palm moves by
+//      less than 0.01 m during the hold.
+//
+// Non-finite state: after every physics step the driver reads MuJoCo's warnings for a bad number
+// (NaN, or beyond mjMAXVAL = 1e10) in qpos, qvel, qacc or ctrl (mjWARN_BADQPOS, mjWARN_BADQVEL,
+// mjWARN_BADQACC, mjWARN_BADCTRL). MuJoCo 2.2 answers the first three by resetting the state to
+// qpos0 (mj_checkPos, mj_checkVel, mj_checkAcc) and the last by zeroing the controls, so a grasp
+// that went on would silently start over or drop its torques: run_grasp stops instead with a
+// std::runtime_error, "SCENE: the simulation went non-finite ...", naming the phase, the grasp
+// step or time, and the warning (the command line prints it on one line and exits with code 2).
+// Served pairs that reach graspcd's callback with a bad placement are skipped and counted
+// (BridgeStats::nonfinite_skips, per grasp step and in total).
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "graspcd/core/separators.h"
+#include "graspcd/mujoco/mujoco_ptr.h"
+
+namespace graspcd::bridge {
+
+inline constexpr double kGraspStepRad = 0.003;  // the paper's grasp step
+inline constexpr int kFingerSegments = 12;      // finger{1..4}_{A,B,C}
+
+// A scene or config that cannot be used: what() is one line, "FILE: MESSAGE".
+class GraspInputError : public std::runtime_error {
+ public:
+  GraspInputError(const std::string& file, const std::string& message)
+      : std::runtime_error(file + ": " + message), file_(file), message_(message) {}
+  const std::string& file() const { return file_; }
+  const std::string& message() const { return message_; }
+
+ private:
+  std::string file_;
+  std::string message_;
+};
+
+struct GraspOptions {
+  std::string config_path;  // pair config; empty: SCENE.pairs.json beside the scene
+  std::optional<Method> method;
+  std::optional<int> cap;            // perceptron pass cap override
+  std::optional<int> switch_passes;  // Neuro-SAT switch override
+  bool native = false;               // MuJoCo's own collision, no registry
+  int max_steps = 400;               // most closing grasp steps
+  // 5 steps of 2 ms per grasp step: a target ramp of 0.3 rad/s, tracked with the velocity
+  // feed-forward within a few 1e-4 rad at omega = 40 rad/s.
+  int physics_steps_per_grasp_step = 5;
+  double omega = 40;  // eq. (15) critically damped, rad/s: kp = omega^2, kv = 2 omega
+  double squeeze = 0.12;
+  double squeeze_time = 0.1;
+  double settle_time = 0.3;
+  double lift_height = 0.06;
+  double lift_time = 1.0;
+  double hold_time = 2.0;
+  // Called after each closing grasp step with the model, the state after the step's last physics
+  // step and the 1-based step number (the study records the poses it replays, src/graspcd/study).
+  std::function<void(const mjModel*, const mjData*, int)> on_grasp_step;
+};
+
+// One closing grasp step.
+struct GraspStepRecord {
+  int step = 0;                    // 1-based
+  int contacts = 0;                // finger-object contacts after the step's last physics step
+  std::vector<bool> touching;      // by GraspResult::segments: those with such a contact then
+  std::uint64_t detection_ns = 0;  // tree query time over the step's physics steps (bridge)
+  std::uint64_t box_tests = 0;
+  std::uint64_t triangle_tests = 0;
+  std::uint64_t served_calls = 0;
+  std::uint64_t contained = 0;        // served calls that found a segment wholly inside the object
+  std::uint64_t nonfinite_skips = 0;  // served calls skipped on a non-finite placement
+  double object_z = 0;                // object body height after the step, m
+};
+
+struct GraspResult {
+  std::string scene;
+  bool native = false;
+  std::string method;  // method name, or "native"
+  std::vector<GraspStepRecord> steps;
+  // What "touching" is reported for: the finger segments (finger_segment_names()) on our hands,
+  // the "touch" patterns of the config's "grasp" section on a driven real hand (registry.h).
+  std::vector<std::string> segments;
+  std::vector<int> first_contact;  // by segments: grasp step, -1 when never
+  bool gripped = false;            // every finger touched before max_steps
+  // Heights are along -gravity (z for gravity along -z), relative to the support body of a
+  // driven real hand (the world on our hands).
+  double object_z_initial = 0;
+  double object_z_gripped = 0;  // after the squeeze and settle
+  double object_z_final = 0;
+  double hold_min_z = 0;  // lowest object height during the final hold
+  double hold_drift = 0;  // largest move of the object relative to the palm in the hold, m
+  bool held = false;
+  double sim_time = 0;  // simulated seconds, all phases
+  long physics_steps = 0;
+  double step_wall_ms = 0;  // mean wall time per physics step (mj_step1 + control + mj_step2)
+  std::uint64_t detection_ns_close = 0;  // summed over the closing grasp steps
+  std::uint64_t detection_ns_total = 0;  // all phases
+  int max_contacts = 0;                  // most finger-object contacts in one physics step
+  std::uint64_t contained_calls = 0;     // containment findings over all phases (registry.h)
+  std::uint64_t nonfinite_skips = 0;  // served calls skipped on a non-finite placement, all phases
+  // The registry's warnings (registry.h, Registry::warnings()), one line each.
+  std::vector<std::string> warnings;
+};
+
+// The segment names in record order: finger1_A, finger1_B, ..., finger4_C.
+const std::array<std::string, kFingerSegments>& finger_segment_names();
+
+// Loads `scene_path` and runs the grasp. Throws GraspInputError for a missing or bad MJCF (the
+// message "FILE: <MuJoCo's message on one line>"), or a missing or bad pair config (the
+// registry's message, which starts with the config's name); std::runtime_error for a scene that
+// breaks the scene contract, and for a simulation that goes non-finite (see above).
+GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options = {});
+
+// Loads an MJCF file. A missing file or MuJoCo's error become a GraspInputError whose message is
+// "FILE: <MuJoCo's message on one line>" (mujoco-2.2-notes.md "Errors").
+ModelPtr load_model(const std::string& path);
+
+// Joins MuJoCo's multi-line error text into one line (line breaks become "; ", blanks trimmed).
+std::string join_lines(const std::string& text);
+
+}  // namespace graspcd::bridge

@@ -1,0 +1,380 @@
+#include "graspcd/io/mesh_io.h"
+
+#include <sys/stat.h>
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "graspcd/core/mesh_hygiene.h"
+#include "graspcd/core/tolerances.h"
+
+namespace graspcd::io {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& message, std::size_t line = 0) {
+  throw InputError(path, line, message);
+}
+
+// Fails unless `path` names a readable regular file (a directory opens but cannot be read).
+void require_readable(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) fail(path, std::string("cannot open: ") + std::strerror(errno));
+  struct stat info {};
+  const bool is_dir = ::fstat(::fileno(file), &info) == 0 && S_ISDIR(info.st_mode);
+  std::fclose(file);
+  if (is_dir) fail(path, std::string("cannot open: ") + std::strerror(EISDIR));
+}
+
+bool in_exact_range(double x) {
+  const double m = std::fabs(x);
+  return x == 0.0 || (m >= tol::kMinCoordinate && m <= tol::kMaxCoordinate);
+}
+
+// Checks that a vertex is finite and inside the exact-arithmetic range of tolerances.h.
+void check_vertex(const std::string& path, const std::string& which, const Vec3& p) {
+  for (int i = 0; i < 3; ++i) {
+    if (in_exact_range(p[i])) continue;
+    std::ostringstream out;
+    out << which << " has coordinate " << p[i];
+    if (std::isfinite(p[i])) {
+      out << ", outside the exact-arithmetic range (0 or " << tol::kMinCoordinate
+          << " <= |x| <= " << tol::kMaxCoordinate << ")";
+    } else {
+      out << " (coordinates must be finite)";
+    }
+    fail(path, out.str());
+  }
+}
+
+std::string lower_extension(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  const std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+// The first line of a tinyobjloader message, without its trailing newline.
+std::string first_line(const std::string& text) {
+  std::string line = text.substr(0, text.find('\n'));
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  return line;
+}
+
+// tinyobjloader's number parser reads what it does not understand as 0 or as a prefix of the token
+// ("nan" and "x" become 0, "0x1p3" becomes 0, "1,5" becomes 1) and an overflowing literal as inf,
+// without naming a line. So every vertex line is first read here with the command line's number
+// grammar (text_input.h, parse_number), and a bad coordinate is reported at its line before
+// tinyobjloader reads the file. A vertex line is what tinyobjloader takes for one: after leading
+// spaces or tabs, 'v' followed by a space or a tab. It must hold x y z, optionally followed by w
+// (4 numbers) or a colour r g b (6 numbers); a '#' ends the line's content. Hexadecimal floats,
+// which strtod reads but tinyobjloader does not, are refused. The values read here are then
+// compared with tinyobjloader's (check_obj_vertices), so that no other misreading goes unnoticed.
+struct ObjVertexLine {
+  std::size_t line = 0;  // 1-based physical line
+  Vec3 position;         // x y z as strtod reads them
+};
+
+// The scan also collects the names of the file's objects ('o NAME' lines): MuJoCo 2.2 loads only
+// the first object of an OBJ file, silently.
+std::vector<ObjVertexLine> read_obj_vertex_lines(const std::string& path,
+                                                 std::vector<std::string>& objects) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open");
+  const auto blank = [](char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+  };
+  std::vector<ObjVertexLine> vertices;
+  std::string line;
+  std::vector<std::string> tokens;
+  for (std::size_t line_number = 1; std::getline(in, line); ++line_number) {
+    std::size_t pos = 0;
+    while (pos < line.size() && (line[pos] == ' ' || line[pos] == '\t')) ++pos;
+    if (pos + 1 < line.size() && line[pos] == 'o' &&
+        (line[pos + 1] == ' ' || line[pos + 1] == '\t')) {
+      std::string name = line.substr(pos + 2);
+      while (!name.empty() && blank(name.back())) name.pop_back();
+      while (!name.empty() && blank(name.front())) name.erase(name.begin());
+      objects.push_back(name);
+      continue;
+    }
+    if (pos + 1 >= line.size() || line[pos] != 'v' ||
+        (line[pos + 1] != ' ' && line[pos + 1] != '\t')) {
+      continue;
+    }
+    const std::string which = "vertex " + std::to_string(vertices.size() + 1);
+    const std::size_t end = std::min(line.find('#', pos), line.size());
+    tokens.clear();
+    for (pos += 1; pos < end;) {
+      while (pos < end && blank(line[pos])) ++pos;
+      std::size_t stop = pos;
+      while (stop < end && !blank(line[stop])) ++stop;
+      if (stop > pos) tokens.push_back(line.substr(pos, stop - pos));
+      pos = stop;
+    }
+    if (tokens.size() != 3 && tokens.size() != 4 && tokens.size() != 6) {
+      fail(path,
+           which + ": expected x y z (optionally followed by w, or by r g b), got " +
+               std::to_string(tokens.size()) + " numbers",
+           line_number);
+    }
+    ObjVertexLine vertex;
+    vertex.line = line_number;
+    for (std::size_t k = 0; k < tokens.size(); ++k) {
+      const std::string& token = tokens[k];
+      const std::size_t digits = token[0] == '+' || token[0] == '-' ? 1 : 0;
+      if (token.size() > digits + 1 && token[digits] == '0' &&
+          (token[digits + 1] == 'x' || token[digits + 1] == 'X')) {
+        fail(path, which + ": hexadecimal number \"" + token + "\" (OBJ files take decimals)",
+             line_number);
+      }
+      try {
+        const double x = parse_number(token);
+        if (k < 3) vertex.position[static_cast<Eigen::Index>(k)] = x;
+      } catch (const ValueError& e) {
+        fail(path, which + ": " + e.what(), line_number);
+      }
+    }
+    vertices.push_back(vertex);
+  }
+  if (in.bad()) fail(path, "read error");
+  return vertices;
+}
+
+// tinyobjloader's number parser is not correctly rounded (docs/stress.md, "Known limitations"): its
+// values may differ from strtod's by a few ulps, never by more than this relative amount.
+constexpr double kObjParserRelativeError = 1e-12;
+
+// Checks that tinyobjloader read the vertices the scan found, with the same values up to its
+// rounding: the guard against a misreading the scan does not foresee.
+void check_obj_vertices(const std::string& path, const std::vector<ObjVertexLine>& scanned,
+                        const std::vector<tinyobj::real_t>& read) {
+  if (read.size() != 3 * scanned.size()) {
+    fail(path, "the OBJ parser read " + std::to_string(read.size() / 3) + " vertices from " +
+                   std::to_string(scanned.size()) + " vertex lines");
+  }
+  for (std::size_t i = 0; i < scanned.size(); ++i) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double ours = scanned[i].position[static_cast<Eigen::Index>(k)];
+      const double theirs = read[3 * i + k];
+      if (std::fabs(theirs - ours) <= kObjParserRelativeError * std::fabs(ours)) continue;
+      std::ostringstream out;
+      out.precision(17);
+      out << "vertex " << i + 1 << ": the OBJ parser read coordinate " << k + 1 << " as " << theirs
+          << " where strtod reads " << ours;
+      fail(path, out.str(), scanned[i].line);
+    }
+  }
+}
+
+TriangleMesh load_obj(const std::string& path, std::vector<std::string>& objects) {
+  const std::vector<ObjVertexLine> scanned = read_obj_vertex_lines(path, objects);
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config)) {
+    // tinyobjloader names the line inside its message, as "line N".
+    const std::string message = first_line(reader.Error());
+    std::smatch match;
+    std::size_t line = 0;
+    if (std::regex_search(message, match, std::regex("line (\\d+)"))) {
+      line = static_cast<std::size_t>(std::stoul(match[1].str()));
+    }
+    fail(path, "OBJ parse error: " + message, line);
+  }
+  // tinyobjloader only warns when it drops a face; here that is bad input.
+  const std::string& warning = reader.Warning();
+  if (warning.find("Degenerated face") != std::string::npos) {
+    fail(path, "a face has fewer than 3 vertices");
+  }
+  if (warning.find("invalid vertex index") != std::string::npos) {
+    fail(path, "a face references a vertex index out of range");
+  }
+
+  TriangleMesh mesh;
+  const auto& v = reader.GetAttrib().vertices;
+  check_obj_vertices(path, scanned, v);
+  const std::size_t vertex_count = v.size() / 3;
+  if (vertex_count > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+    fail(path, "too many vertices");
+  }
+  mesh.vertices.reserve(vertex_count);
+  for (std::size_t i = 0; i < vertex_count; ++i) {
+    mesh.vertices.emplace_back(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+    check_vertex(path, "vertex " + std::to_string(i + 1), mesh.vertices.back());
+  }
+
+  // Concatenate every shape's triangles.
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const auto& indices = shape.mesh.indices;
+    std::size_t offset = 0;
+    for (const unsigned char arity : shape.mesh.num_face_vertices) {
+      if (arity != 3 || offset + 3 > indices.size()) {
+        fail(path, "tinyobjloader returned a face that is not a triangle");
+      }
+      std::array<std::int32_t, 3> face{};
+      for (std::size_t k = 0; k < 3; ++k) {
+        const int index = indices[offset + k].vertex_index;
+        if (index < 0 || static_cast<std::size_t>(index) >= vertex_count) {
+          std::ostringstream out;
+          out << "face " << mesh.faces.size() + 1
+              << " references a vertex out of range (the file has " << vertex_count << " vertices)";
+          fail(path, out.str());
+        }
+        face[k] = static_cast<std::int32_t>(index);
+      }
+      mesh.faces.push_back(face);
+      offset += 3;
+    }
+  }
+  return mesh;
+}
+
+std::uint32_t read_u32_le(const unsigned char* p) {
+  return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
+         static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
+}
+
+double read_f32_le(const unsigned char* p) {
+  const std::uint32_t bits = read_u32_le(p);
+  float value = 0.0f;
+  static_assert(sizeof(value) == sizeof(bits), "IEEE single precision float expected");
+  std::memcpy(&value, &bits, sizeof(value));
+  return static_cast<double>(value);
+}
+
+TriangleMesh load_stl(const std::string& path) {
+  constexpr std::uint64_t kHeaderBytes = 84;  // 80-byte header + uint32 triangle count
+  constexpr std::uint64_t kRecordBytes = 50;  // normal, 3 vertices (12 floats), uint16 attribute
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open");
+  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                         std::istreambuf_iterator<char>());
+  if (in.bad()) fail(path, "read error");
+
+  // Size check; an ASCII STL begins with "solid" and (almost surely) fails it.
+  const bool starts_solid = bytes.size() >= 5 && std::memcmp(bytes.data(), "solid", 5) == 0;
+  const char* const ascii = "ASCII STL is not supported; convert it to binary STL";
+  if (bytes.size() < kHeaderBytes) {
+    if (starts_solid) fail(path, ascii);
+    fail(path, "too short for a binary STL (" + std::to_string(bytes.size()) +
+                   " bytes; header and count take 84)");
+  }
+  const std::uint64_t count = read_u32_le(bytes.data() + 80);
+  const std::uint64_t expected = kHeaderBytes + kRecordBytes * count;
+  if (bytes.size() != expected) {
+    if (starts_solid) fail(path, ascii);
+    std::ostringstream out;
+    out << "binary STL size mismatch: the header says " << count << " triangles (" << expected
+        << " bytes) but the file has " << bytes.size() << " bytes";
+    fail(path, out.str());
+  }
+
+  // Read the triangles; every face gets its own three vertices (load_mesh welds them).
+  TriangleMesh mesh;
+  mesh.faces.reserve(count);
+  mesh.vertices.reserve(3 * count);
+  for (std::uint64_t t = 0; t < count; ++t) {
+    const unsigned char* record = bytes.data() + kHeaderBytes + kRecordBytes * t;
+    std::array<std::int32_t, 3> face{};
+    for (int k = 0; k < 3; ++k) {
+      const unsigned char* p = record + 12 + 12 * k;  // skip the facet normal
+      const Vec3 vertex(read_f32_le(p), read_f32_le(p + 4), read_f32_le(p + 8));
+      check_vertex(path, "triangle " + std::to_string(t + 1) + " vertex " + std::to_string(k + 1),
+                   vertex);
+      face[k] = static_cast<std::int32_t>(mesh.vertices.size());
+      mesh.vertices.push_back(vertex);
+    }
+    mesh.faces.push_back(face);
+  }
+  return mesh;
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const std::string& path, MeshStats* stats) {
+  require_readable(path);
+  const std::string ext = lower_extension(path);
+  TriangleMesh read;
+  MeshStats local;
+  MeshStats& s = stats != nullptr ? *stats : local;
+  s = MeshStats{};
+  if (ext == "obj") {
+    read = load_obj(path, s.obj_objects);
+  } else if (ext == "stl") {
+    read = load_stl(path);
+  } else {
+    fail(path, "unknown mesh format (expected a .obj or .stl file)");
+  }
+  if (read.faces.empty()) fail(path, "the mesh has no faces");
+
+  // Hygiene (core/mesh_hygiene.h): weld equal vertices, drop zero-area faces.
+  HygieneReport hygiene;
+  TriangleMesh mesh = clean_mesh(read, &hygiene);
+  if (mesh.faces.empty()) {
+    fail(path, "every face has zero area (" + std::to_string(read.faces.size()) +
+                   " faces, each a segment or a point)");
+  }
+  s.zero_area_faces = hygiene.dropped_faces.size();
+  s.dropped_faces = std::move(hygiene.dropped_faces);
+  s.source_face = std::move(hygiene.source_face);
+  s.welded_vertices = hygiene.welded_vertices;
+  s.file_vertices = hygiene.input_vertices;
+  if (stats != nullptr) s.closedness = closedness(mesh);
+  return mesh;
+}
+
+std::vector<std::string> mesh_warnings(const std::string& path, const MeshStats& stats,
+                                       bool changes_only) {
+  std::vector<std::string> out;
+  const std::string head = path + ": ";
+  if (stats.welded_vertices > 0 && !changes_only) {
+    out.push_back(head + "welded " + std::to_string(stats.welded_vertices) +
+                  " duplicate vertices (" + std::to_string(stats.file_vertices) + " in the file, " +
+                  std::to_string(stats.file_vertices - stats.welded_vertices) + " distinct)");
+  }
+  if (!stats.dropped_faces.empty()) {
+    std::string ids;
+    const std::size_t shown = std::min<std::size_t>(stats.dropped_faces.size(), 5);
+    for (std::size_t i = 0; i < shown; ++i) {
+      ids += (i ? ", " : "") + std::to_string(stats.dropped_faces[i] + 1);
+    }
+    if (shown < stats.dropped_faces.size()) ids += ", ...";
+    out.push_back(head + "dropped " + std::to_string(stats.dropped_faces.size()) +
+                  " zero-area faces (file faces " + ids + "; each spans a segment or a point)");
+  }
+  if (stats.closedness.faces > 0 && !stats.closedness.closed() && !changes_only) {
+    out.push_back(head + "the mesh is " + stats.closedness.describe() +
+                  "; containment inside it cannot be checked (surface contacts only)");
+  }
+  if (stats.obj_objects.size() > 1) {
+    std::string names;
+    for (std::size_t i = 0; i < stats.obj_objects.size() && i < 5; ++i) {
+      names += (i ? ", '" : "'") + stats.obj_objects[i] + "'";
+    }
+    if (stats.obj_objects.size() > 5) names += ", ...";
+    out.push_back(head + std::to_string(stats.obj_objects.size()) + " objects (" + names +
+                  "): graspcd reads them all, but MuJoCo 2.2 keeps only the first ('" +
+                  stats.obj_objects[0] + "'); merge them into one object for a scene");
+  }
+  return out;
+}
+
+}  // namespace graspcd::io

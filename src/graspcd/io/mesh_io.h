@@ -1,0 +1,63 @@
+// Mesh files: Wavefront OBJ (tinyobjloader, double precision) and binary STL, read in their own
+// file coordinates into a TriangleMesh.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "graspcd/core/containment.h"
+#include "graspcd/core/geometry.h"
+#include "graspcd/io/text_input.h"
+
+namespace graspcd::io {
+
+// Facts about a loaded mesh that the caller may want to report (mesh_warnings() words them).
+struct MeshStats {
+  // Zero-area faces (three vertices exactly collinear or coincident, after welding) dropped on
+  // load: their count, and their 0-based face ids in the file's face order (triangulated).
+  std::size_t zero_area_faces = 0;
+  std::vector<std::int32_t> dropped_faces;
+  // For each face of the loaded mesh, its 0-based face id in the file: loaded faces map back.
+  std::vector<std::int32_t> source_face;
+  // Vertices merged into an equal earlier vertex (core/mesh_hygiene.h), of `file_vertices`.
+  std::size_t welded_vertices = 0;
+  std::size_t file_vertices = 0;
+  // The surface after welding (core/containment.h): the containment check needs a closed mesh.
+  Closedness closedness;
+  // OBJ: the names of the file's objects ('o' lines), in order. MuJoCo 2.2 loads only the first.
+  std::vector<std::string> obj_objects;
+};
+
+// One line per finding of a load, each starting with "PATH: ": vertices welded, zero-area faces
+// dropped, an open mesh, an OBJ file with more than one object. Empty for a clean, closed mesh.
+// `changes_only`: only the findings that change what a surface query answers or what MuJoCo
+// loads (dropped faces, several objects), for commands without a containment check.
+std::vector<std::string> mesh_warnings(const std::string& path, const MeshStats& stats,
+                                       bool changes_only = false);
+
+// Loads an OBJ (".obj") or binary STL (".stl") file; the format comes from the extension, case
+// insensitive.
+//  - OBJ: every object and group is concatenated into one mesh; polygons are triangulated
+//    (tinyobjloader's triangulation); normals, texture coordinates and materials are ignored.
+//    Coordinates are the doubles tinyobjloader's own number parser gives (its double build). That
+//    parser reads a word such as "nan" as 0 and "1e999" as inf, so every vertex line ('v' then a
+//    blank) is first read with the command line's number grammar (text_input.h, parse_number):
+//    3, 4 (x y z w) or 6 (x y z r g b) numbers, no hexadecimal floats (tinyobjloader cannot read
+//    them); a bad one is reported at its line, "FILE:LINE: vertex N: <parse_number's message>".
+//    tinyobjloader's values must then equal those to within its rounding (relative 1e-12), or
+//    the line is reported.
+//  - STL: binary only (80-byte header, uint32 count, 50-byte records; the file size must be
+//    84 + 50 * count). An ASCII STL is rejected.
+// Hygiene (core/mesh_hygiene.h), after reading either format: equal vertices are welded, and
+// zero-area faces are dropped (docs/design.md "Semantics"); `stats` says what was done, and maps
+// every loaded face to its face id in the file. A mesh whose faces all have zero area is an error.
+// Throws InputError, "FILE: message" (or "FILE:LINE: message" when the line is known), on: a file
+// that cannot be opened, an unknown extension, a parse error, a face with fewer than three
+// vertices or a vertex index out of range, a non-finite coordinate (nan, inf, an overflowing
+// literal, a NaN or infinite STL float) or one outside the exact-arithmetic range of
+// tolerances.h, and a mesh without faces.
+TriangleMesh load_mesh(const std::string& path, MeshStats* stats = nullptr);
+
+}  // namespace graspcd::io

@@ -1,0 +1,93 @@
+// The text grammar of the command line (docs/design.md, "The command line"): one case per line, a
+// fixed count of whitespace-separated numbers; blank lines and '#' comment lines skipped; CRLF
+// accepted. Every number is read by strtod (decimal or hex float) and must be finite and inside the
+// range in which the exact predicates stay exact (tolerances.h): 0, or kMinCoordinate <= |x| <=
+// kMaxCoordinate. Bad input is reported as an InputError located at its file and physical line.
+#pragma once
+
+#include <cstddef>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "graspcd/core/geometry.h"
+#include "graspcd/core/obb.h"
+
+namespace graspcd::io {
+
+// Bad input, located: what() is "FILE:LINE: message", or "FILE: message" when line() is 0 (no
+// particular line, e.g. a file that cannot be opened).
+class InputError : public std::runtime_error {
+ public:
+  InputError(std::string file, std::size_t line, std::string message);
+
+  const std::string& file() const { return file_; }
+  std::size_t line() const { return line_; }  // 1-based physical line; 0 = the file as a whole
+  const std::string& message() const { return message_; }
+
+ private:
+  std::string file_;
+  std::size_t line_;
+  std::string message_;
+};
+
+// A value that is well formed as numbers but not as the object they describe (a non-orthonormal R,
+// a negative half-extent). Carries no location: the caller knows the line and rethrows it as an
+// InputError (see TextReader::fail).
+class ValueError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// The name of standard input in messages.
+inline constexpr const char* kStdinName = "<stdin>";
+
+// Reads cases from a file, or from standard input when the path is "-".
+class TextReader {
+ public:
+  // Opens `path` ("-" = stdin). Throws InputError "FILE: cannot open: <reason>" on failure.
+  explicit TextReader(const std::string& path);
+  ~TextReader();
+  TextReader(const TextReader&) = delete;
+  TextReader& operator=(const TextReader&) = delete;
+
+  // Reads the next case line into `values`: exactly `count` numbers. Returns false at the end of
+  // the input. Throws InputError on a malformed, non-finite or out-of-range number, on a wrong
+  // count, and on a read error.
+  bool next(std::size_t count, std::vector<double>& values);
+
+  // The file name used in messages ("<stdin>" for "-").
+  const std::string& name() const { return name_; }
+  // The physical line (1-based) of the case last returned by next(); 0 before the first.
+  std::size_t line() const { return line_; }
+
+  // Throws InputError with `message` at the current line.
+  [[noreturn]] void fail(const std::string& message) const;
+
+ private:
+  std::string name_;
+  std::FILE* file_ = nullptr;
+  bool owns_file_ = false;
+  std::size_t line_ = 0;
+  char* line_buffer_ = nullptr;  // POSIX getline's buffer (malloc'd)
+  std::size_t line_capacity_ = 0;
+  std::string buffer_;
+};
+
+// Parses one number token as the grammar demands. Throws ValueError (no location) with a message
+// naming the token on: a malformed number or trailing garbage, nan or inf in any spelling,
+// overflow, and a nonzero magnitude outside [tol::kMinCoordinate, tol::kMaxCoordinate].
+double parse_number(const std::string& token);
+
+// Builders from a case's numbers. Each reads the stated count starting at `values` and throws
+// ValueError (message prefixed with `name`) when the object is invalid.
+//   18 numbers: p0 p1 p2 (x y z each).
+Triangle triangle_from_numbers(const double* values);
+//   15 numbers: centre (3), R row-major (9), half-extents (3). R must be a rotation to within
+//   tol::kOrthonormalTol (graspcd::is_rotation); half-extents must be >= 0.
+Obb obb_from_numbers(const double* values, const std::string& name);
+//   12 numbers: R row-major (9), t (3). R must be a rotation to within tol::kOrthonormalTol.
+Pose pose_from_numbers(const double* values, const std::string& name);
+
+}  // namespace graspcd::io

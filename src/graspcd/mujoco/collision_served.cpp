@@ -1,0 +1,149 @@
+// The served paths of the seam (collision_served.h): the tree query with its contacts, and the
+// exact box-box path.
+#include "graspcd/mujoco/collision_served.h"
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "graspcd/core/clock.h"
+#include "graspcd/core/contact.h"
+#include "graspcd/mujoco/collision_pose.h"
+#include "graspcd/mujoco/collision_table.h"
+
+namespace graspcd::bridge {
+namespace {
+
+// Writes one contact in the world frame: frame[0..2] the normal, frame[3..5] and [6..8] a
+// right-handed tangent basis (the axis least aligned with the normal, crossed with it).
+void write_contact(const TriContact& c, const Mat3& R1, const Vec3& p1, mjContact& out) {
+  const Vec3 pos = R1 * c.pos + p1;
+  const Vec3 n = (R1 * c.normal).normalized();
+  Vec3 axis = Vec3::Zero();
+  axis[static_cast<Eigen::Index>(std::abs(n[0]) <= std::abs(n[1])
+                                     ? (std::abs(n[0]) <= std::abs(n[2]) ? 0 : 2)
+                                     : (std::abs(n[1]) <= std::abs(n[2]) ? 1 : 2))] = 1;
+  const Vec3 t1 = n.cross(axis).normalized();
+  const Vec3 t2 = n.cross(t1);
+  out.dist = -c.depth;
+  for (int k = 0; k < 3; ++k) {
+    out.pos[k] = pos[k];
+    out.frame[k] = n[k];
+    out.frame[3 + k] = t1[k];
+    out.frame[6 + k] = t2[k];
+  }
+}
+
+// Tree path: tree query (paper sections 2-6 through core's Detector, all contacts), one contact
+// per intersecting triangle pair (contact.h, after Bullet's GImpact clip method), reduction to
+// mjMAXCONPAIR by deepest-then-farthest-point sampling, written in the world frame.
+int collide_trees(Registry& registry, ServedPair& served, const mjData* d, mjContact* con, int g1,
+                  int g2) {
+  thread_local std::vector<TrianglePair> tri_pairs;
+  thread_local std::vector<TriContact> candidates;
+  const MeshTree* t1 = registry.geom_tree(g1);
+  const MeshTree* t2 = registry.geom_tree(g2);
+  BridgeStats& stats = registry.stats();
+  if (!t1 || !t2) return 0;
+
+  // The tree query with geom2 placed in geom1's frame.
+  const Pose pose = relative_pose(d, g1, g2);
+  tri_pairs.clear();
+  const Clock::time_point start = Clock::now();
+  served.detector->collide(t1->tree, t2->tree, pose, QueryMode::kAllContacts, stats.counters,
+                           &tri_pairs);
+  const Clock::time_point queried = Clock::now();
+  stats.detection_ns += elapsed_ns(start, queried);
+  served.contained = false;
+  if (tri_pairs.empty()) {
+    // The separate containment check: only closed solids contain, and only when the root boxes
+    // overlap can one lie inside the other.
+    if ((t1->closedness.closed() || t2->closedness.closed()) &&
+        sat_separating_axis(t1->tree.root().box, transform(pose, t2->tree.root().box)) ==
+            kSatNoAxis) {
+      const MeshContainment c = mesh_containment(t1->tree, t1->closedness, pose, t2->tree,
+                                                 t2->closedness, /*surfaces_intersect=*/false);
+      served.contained = c.a_inside_b || c.b_inside_a;
+      stats.contained += served.contained;
+      stats.containment_ns += elapsed_ns(queried, Clock::now());
+    }
+    return 0;
+  }
+
+  // One contact per intersecting triangle pair, in geom1's frame.
+  const double tn = pose.t.norm();
+  const Vec3 fallback = tn > 0 ? Vec3(pose.t / tn) : Vec3(Vec3::UnitZ());
+  candidates.clear();
+  for (const TrianglePair& tp : tri_pairs) {
+    const Triangle& a = t1->face(tp.a);
+    const Triangle b = apply_pose(pose, t2->face(tp.b));
+    candidates.push_back(triangle_pair_contact(a, b, registry.config().max_depth, fallback,
+                                               t1->sharp(tp.a), t2->sharp(tp.b)));
+  }
+
+  // At most mjMAXCONPAIR: the deepest and a spread.
+  const std::vector<std::size_t> keep = select_contacts(candidates, mjMAXCONPAIR);
+  if (candidates.size() > static_cast<std::size_t>(mjMAXCONPAIR)) ++stats.capped_pairs;
+  const Mat3 R1 = from_row_major(d->geom_xmat + 9 * g1);
+  const Vec3 p1 = geom_position(d, g1);
+  int n = 0;
+  for (std::size_t i : keep) write_contact(candidates[i], R1, p1, con[n++]);
+  stats.contacts += static_cast<std::uint64_t>(n);
+  stats.contact_ns += elapsed_ns(queried, Clock::now());
+  return n;
+}
+
+// Box-box path: the pair's box separator (core/separators.h: SAT after Gottschalk, Lin, Manocha
+// 1996, or the paper's perceptron / Neuro-SAT, each exact in its "disjoint" answer) on the two
+// geoms' boxes, geom2 placed in geom1's frame; when it cannot prove them disjoint, MuJoCo's own
+// box-box routine (mjc_BoxBox of engine_collision_box.c, the saved original entry) makes the
+// contacts with margin 0, and only touching or penetrating ones (dist <= 0) are kept.
+int collide_box_box(Registry& registry, ServedPair& served, const mjData* d, mjContact* con, int g1,
+                    int g2) {
+  const mjModel* m = registry.model();
+  BridgeStats& stats = registry.stats();
+  ++stats.box_box_calls;
+  const Pose pose = relative_pose(d, g1, g2);
+  Obb a;
+  a.half = Vec3(m->geom_size[3 * g1], m->geom_size[3 * g1 + 1], m->geom_size[3 * g1 + 2]);
+  Obb b_local;
+  b_local.half = Vec3(m->geom_size[3 * g2], m->geom_size[3 * g2 + 1], m->geom_size[3 * g2 + 2]);
+  const Clock::time_point start = Clock::now();
+  const bool disjoint = served.detector->box_disjoint(a, transform(pose, b_local), stats.counters);
+  const Clock::time_point tested = Clock::now();
+  stats.detection_ns += elapsed_ns(start, tested);
+  if (disjoint) return 0;
+
+  mjfCollision box_box = original_collision(mjGEOM_BOX, mjGEOM_BOX);
+  if (!box_box) box_box = mjCOLLISIONFUNC[mjGEOM_BOX][mjGEOM_BOX];  // not installed
+  if (!box_box || box_box == &collide_geoms) return 0;
+  const int found = box_box(m, d, con, g1, g2, 0);
+  int n = 0;
+  for (int i = 0; i < found && n < mjMAXCONPAIR; ++i) {
+    if (con[i].dist > 0) continue;
+    if (n != i) con[n] = con[i];
+    ++n;
+  }
+  stats.contacts += static_cast<std::uint64_t>(n);
+  stats.contact_ns += elapsed_ns(tested, Clock::now());
+  return n;
+}
+
+}  // namespace
+
+int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
+                        int g2) {
+  ServedPair& served = registry.pair(pair_index);
+  BridgeStats& stats = registry.stats();
+  ++stats.calls;
+  // A NaN or infinite placement: no query on a meaningless pose, no contacts, counted.
+  if (bad_geom_placement(d, g1) || bad_geom_placement(d, g2)) {
+    ++stats.nonfinite_skips;
+    served.contained = false;
+    return 0;
+  }
+  return served.path == PairPath::kBoxBox ? collide_box_box(registry, served, d, con, g1, g2)
+                                          : collide_trees(registry, served, d, con, g1, g2);
+}
+
+}  // namespace graspcd::bridge

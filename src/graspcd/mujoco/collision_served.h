@@ -1,0 +1,20 @@
+// The served paths of the seam: what graspcd answers for a pair its registry serves (registry.h).
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include "graspcd/mujoco/registry.h"
+
+namespace graspcd::bridge {
+
+// Runs a served pair by its path (registry.h); a pair whose placement in `d` holds a bad number
+// is skipped and counted (collision.h, "Non-finite state"). Trees: the tree query with the pair's
+// detector in all-contacts mode, contacts from the intersecting triangle pairs
+// (graspcd/core/contact.h). Box-box: the detector's box test, then MuJoCo's box-box function with
+// margin 0 (the saved original; the current table entry when not installed) unless the boxes were
+// proven disjoint. At most mjMAXCONPAIR contacts written to `con`. Returns the count. Updates the
+// registry's statistics.
+int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
+                        int g2);
+
+}  // namespace graspcd::bridge

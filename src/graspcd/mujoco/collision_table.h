@@ -1,0 +1,60 @@
+// graspcd's entries in MuJoCo's collision table and the model -> registry table (collision.h says
+// how the seam works as a whole).
+//
+// install() puts collide_geoms() into mjCOLLISIONFUNC[t1][t2] for every t1 <= t2 among the served
+// types, saving each original; uninstall() puts each saved one back. MuJoCo's function gets no user
+// pointer, so registries are attached per model in a process-wide table and looked up from the
+// `const mjModel*` of each call. Attaching and detaching take a mutex; a call's lookup does not
+// (a fixed table of atomic slots, scanned). Not thread-safe for concurrent install/uninstall while
+// models step; attach/detach may run while other models step.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include "graspcd/mujoco/registry.h"
+
+namespace graspcd::bridge {
+
+// The most registries attached at once (one per live model using the bridge).
+inline constexpr int kMaxAttachedModels = 64;
+
+// True for the types whose entries install() replaces: sphere, capsule, ellipsoid, cylinder, box,
+// mesh.
+bool installable_type(int geom_type);
+// Installs graspcd's function in every non-NULL entry of the installable type pairs (idempotent).
+// Returns false when already installed.
+bool install();
+// Restores every saved original entry (idempotent). Returns false when not installed.
+bool uninstall();
+bool installed();
+// The original entry of the type pair (either order) saved by install(); nullptr when not
+// installed, when the pair is not installable, or when the entry was NULL. Lock-free.
+mjfCollision original_collision(int type1, int type2);
+// graspcd's collision function itself (what install() puts into the table): a pair its model's
+// registry serves runs collide_served_pair (collision_served.h); every other call goes to the
+// saved original of its own type pair, unchanged, with the same arguments.
+int collide_geoms(const mjModel* m, const mjData* d, mjContact* con, int g1, int g2, mjtNum margin);
+
+// Attaches `registry` to its model (replacing any registry attached to the same model). Throws
+// std::runtime_error when kMaxAttachedModels registries are attached already.
+void attach(Registry& registry);
+// Detaches `registry` if it is the one attached to its model (the Registry destructor calls it).
+void detach(const Registry& registry);
+// The registry attached to `m`, or nullptr.
+Registry* find_registry(const mjModel* m);
+
+// RAII: install() on construction, uninstall() on destruction if this object installed it.
+class ScopedInstall {
+ public:
+  ScopedInstall() : owner_(install()) {}
+  ~ScopedInstall() {
+    if (owner_) uninstall();
+  }
+  ScopedInstall(const ScopedInstall&) = delete;
+  ScopedInstall& operator=(const ScopedInstall&) = delete;
+
+ private:
+  bool owner_;
+};
+
+}  // namespace graspcd::bridge

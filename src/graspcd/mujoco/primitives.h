@@ -1,0 +1,82 @@
+// Triangle meshes of MuJoCo's primitive geoms, for the bridge's triangle path (docs/design.md, "The
+// seam with MuJoCo": primitives are served "through a tessellated mesh with its tolerance
+// documented"). Every mesh is closed, outward-oriented (counter-clockwise seen from outside),
+// convex, and in the geom frame (centre at the origin; capsule and cylinder axes along z), as
+// MuJoCo places the primitive: geom_size holds the box half-extents, the sphere radius, the
+// capsule's and cylinder's radius and half-length, the ellipsoid's three radii.
+//
+// Box: exact. 8 corners at (+-hx, +-hy, +-hz), 12 triangles, tolerance 0.
+//
+// Curved primitives are CIRCUMSCRIBED: the true solid lies inside the tessellation's solid, so a
+// tessellation can only report extra contacts, never miss one. Construction (a surface of
+// revolution about z, polygonised twice):
+//   1. The meridian profile, a polygon in the (rho, z) half-plane circumscribing the true profile:
+//      for the sphere, the half of a regular 2M-gon around the circle of radius r, its vertices
+//      at angles -pi/2 + k pi/M (k = 0..M) and radius r / cos(pi/(2M)), so its edges are tangent
+//      to the circle. M is odd, so the edge at the equator is vertical and tangent at rho = r.
+//      Capsule: the sphere's profile with the lower half moved down by the half-length h and the
+//      upper half moved up by h (the Minkowski sum with the axis segment; its side is exactly the
+//      cylinder rho = r). Cylinder: the rectangle rho <= r, |z| <= h, exact.
+//   2. Around z, every profile vertex (rho, z) with rho > 0 becomes a ring of N vertices at
+//      angles 2 pi j / N and radius rho / cos(pi/N) (the regular N-gon circumscribing the circle
+//      of radius rho); profile vertices on the axis (rho = 0) are single pole vertices. Adjacent
+//      rings share their angles, so each band is made of planar trapezoids (two triangles each)
+//      and every horizontal section of the solid is the N-gon around that section of the
+//      revolved profile, which contains the true section.
+//   Ellipsoid: the unit sphere's tessellation scaled by the three radii; an affine map keeps
+//   "contains", so it circumscribes the ellipsoid.
+//   All curved radii are multiplied by (1 + kTessPad) against rounding of sines and cosines.
+//
+// Resolution: N = kTessAround = 32 around the axis, M = kTessProfile = 15 profile segments over
+// the half circle. Triangles: sphere, ellipsoid, capsule 2 N (M - 1) = 896; cylinder 4 N = 128.
+// Adjacent facets meet at 360/N = 11.25 and 180/M = 12 degrees, below contact.h's sharp-edge
+// angle (30), so only box edges and cylinder rims are sharp edges for contact generation.
+//
+// Tolerance: every point of the tessellation's surface lies outside the true surface (or on it)
+// and within this distance of it (the maximum is reached at vertices, since the distance to a
+// convex solid is convex along each flat facet), in metres:
+//   sphere, capsule:  r (k_round - 1)       k_round  = (1 + 2 kTessPad) / (cos(pi/2M) cos(pi/N))
+//   cylinder:         r (k_around - 1)      k_around = (1 + 2 kTessPad) / cos(pi/N)
+//   ellipsoid:        max(radii) (k_round - 1)
+//   box:              0
+// With N = 32, M = 15: k_round - 1 = 0.0103735 (1.04 % of the radius: 0.083 mm for an 8 mm
+// fingertip) and k_around - 1 = 0.0048386 (0.48 %). tessellation_tolerance() computes these.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include "graspcd/core/geometry.h"
+
+namespace graspcd::bridge {
+
+inline constexpr int kTessAround = 32;     // N: vertices per ring around the axis
+inline constexpr int kTessProfile = 15;    // M: profile segments over the half circle (odd)
+inline constexpr double kTessPad = 1e-12;  // relative outward pad of curved radii
+
+// The factors of the tolerance formulas above.
+double tess_round_factor();   // k_round
+double tess_around_factor();  // k_around
+
+// The tessellations of the table above, in the geom frame; sizes in metres, as MuJoCo's geom_size
+// gives them (box half-extents, radii, half-lengths). Each throws std::invalid_argument for a size
+// that is not positive and finite.
+TriangleMesh tessellate_box(const Vec3& half);
+TriangleMesh tessellate_sphere(double radius);
+TriangleMesh tessellate_ellipsoid(const Vec3& radii);
+TriangleMesh tessellate_capsule(double radius, double half_length);
+TriangleMesh tessellate_cylinder(double radius, double half_height);
+
+// True for the geom types the bridge tessellates or serves exactly: sphere, capsule, ellipsoid,
+// cylinder, box.
+bool is_primitive(int geom_type);
+// "plane", "hfield", "sphere", "capsule", "ellipsoid", "cylinder", "box", "mesh", or "type N".
+const char* geom_type_name(int geom_type);
+
+// The tessellation of a primitive of MuJoCo's `geom_type` with its geom_size (3 numbers), in the
+// geom frame. Throws std::invalid_argument for a type that is not a primitive or a size that is
+// not positive and finite.
+TriangleMesh tessellate_primitive(int geom_type, const mjtNum* size);
+// The documented tolerance (metres) of that tessellation: see the table above.
+double tessellation_tolerance(int geom_type, const mjtNum* size);
+
+}  // namespace graspcd::bridge

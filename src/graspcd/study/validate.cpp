@@ -1,0 +1,380 @@
+#include "graspcd/study/validate.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+
+#include "graspcd/core/clock.h"
+#include "graspcd/exact/exact.h"
+#include "graspcd/grasp/grasp.h"
+#include "graspcd/mujoco/collision.h"
+#include "graspcd/mujoco/registry.h"
+
+namespace graspcd::study {
+
+namespace {
+
+class DetectorTester : public PairTester {
+ public:
+  DetectorTester(Method method, const DetectorOptions& options, std::size_t pairs)
+      : detectors_(pairs, Detector(method, options)) {}
+  bool tree_query(std::size_t pair, const ObbTree& a, const ObbTree& b, const Pose& b_in_a,
+                  std::vector<TrianglePair>& tri_pairs) override {
+    QueryCounters counters;
+    tri_pairs.clear();
+    return detectors_[pair]
+        .collide(a, b, b_in_a, QueryMode::kAllContacts, counters, &tri_pairs)
+        .intersect;
+  }
+  bool box_disjoint(std::size_t pair, const Obb& a, const Obb& b) override {
+    QueryCounters counters;
+    return detectors_[pair].box_disjoint(a, b, counters);
+  }
+
+ private:
+  std::vector<Detector> detectors_;
+};
+
+std::string geom_label(const mjModel* m, int g) {
+  const char* name = mj_id2name(m, mjOBJ_GEOM, g);
+  return name && *name ? std::string(name) : "geom" + std::to_string(g);
+}
+
+// A served pair as MuJoCo calls it, and what the check needs of it.
+struct CheckedPair {
+  int geom1 = 0;
+  int geom2 = 0;
+  bool box_box = false;
+  const bridge::MeshTree* tree1 = nullptr;
+  const bridge::MeshTree* tree2 = nullptr;
+  const std::vector<Triangle>* faces1 = nullptr;  // face order (the tree's face ids)
+  const std::vector<Triangle>* faces2 = nullptr;
+  Vec3 half1 = Vec3::Zero();  // box-box pairs: the geom boxes' half-extents
+  Vec3 half2 = Vec3::Zero();
+};
+
+// Text of a double that reads back (strtod) as the same double.
+std::string exact_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.17g", v);
+  return buf;
+}
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+// Writes the triangles as an OBJ with three vertices per face, so that face i of the file is
+// face i of the tree, every coordinate printed so that it reads back as the same double.
+void write_obj(const std::filesystem::path& path, const std::vector<Triangle>& faces,
+               const std::string& comment) {
+  std::ofstream out(path);
+  out << "# " << comment << "\n";
+  for (const Triangle& t : faces) {
+    for (const Vec3& p : t.v) {
+      out << "v " << exact_text(p.x()) << ' ' << exact_text(p.y()) << ' ' << exact_text(p.z())
+          << '\n';
+    }
+  }
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    out << "f " << 3 * f + 1 << ' ' << 3 * f + 2 << ' ' << 3 * f + 3 << '\n';
+  }
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+void append_matrix(std::string& line, const Mat3& R) {
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) line += ' ' + exact_text(R(i, j));
+  }
+}
+
+void append_vector(std::string& line, const Vec3& v) {
+  for (int i = 0; i < 3; ++i) line += ' ' + exact_text(v[i]);
+}
+
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+std::string file_stem(const std::string& method, const std::string& pair, int step) {
+  std::string s = method + "_" + pair + "_step" + std::to_string(step);
+  for (char& c : s) {
+    if (c == '/' || c == ' ') c = '-';
+  }
+  return s;
+}
+
+// Sizes of a \ b and b \ a of two sorted sequences.
+std::pair<std::uint64_t, std::uint64_t> set_differences(const std::vector<TrianglePair>& a,
+                                                        const std::vector<TrianglePair>& b) {
+  std::uint64_t only_a = 0;
+  std::uint64_t only_b = 0;
+  std::size_t i = 0;
+  std::size_t j = 0;
+  while (i < a.size() || j < b.size()) {
+    if (j == b.size() || (i < a.size() && a[i] < b[j])) {
+      ++only_a;
+      ++i;
+    } else if (i == a.size() || b[j] < a[i]) {
+      ++only_b;
+      ++j;
+    } else {
+      ++i;
+      ++j;
+    }
+  }
+  return {only_a, only_b};
+}
+
+class Validator {
+ public:
+  Validator(const std::vector<TesterSpec>& specs, const ValidateOptions& options)
+      : specs_(specs), options_(options) {}
+
+  void check_step(const mjModel* m, const mjData* d, int step) {
+    bridge::Registry* registry = bridge::find_registry(m);
+    if (!registry) throw std::runtime_error("validate: no pair registry is attached to the model");
+    if (pairs_.empty()) set_up(*registry);
+    for (std::size_t i = 0; i < pairs_.size(); ++i) {
+      const CheckedPair& p = pairs_[i];
+      const Pose pose = bridge::relative_pose(d, p.geom1, p.geom2);
+      if (p.box_box) {
+        check_boxes(i, pose, step);
+      } else {
+        check_trees(i, pose, step);
+      }
+    }
+    report_.steps = step;
+    if (options_.on_step) options_.on_step(step);
+  }
+
+  ValidationReport finish(const bridge::GraspResult& grasp) {
+    report_.grasp_method = grasp.method;
+    report_.gripped = grasp.gripped;
+    return std::move(report_);
+  }
+
+  ValidationReport& report() { return report_; }
+
+ private:
+  void set_up(const bridge::Registry& registry) {
+    const mjModel* m = registry.model();
+    for (const bridge::ServedPair& s : registry.pairs()) {
+      CheckedPair p;
+      // MuJoCo's order (mj_collision): the geom of the lower type first, then the lower id.
+      const bool swap = m->geom_type[s.geom_lo] > m->geom_type[s.geom_hi];
+      p.geom1 = swap ? s.geom_hi : s.geom_lo;
+      p.geom2 = swap ? s.geom_lo : s.geom_hi;
+      p.box_box = s.path == bridge::PairPath::kBoxBox;
+      if (p.box_box) {
+        p.half1 = Vec3(m->geom_size[3 * p.geom1], m->geom_size[3 * p.geom1 + 1],
+                       m->geom_size[3 * p.geom1 + 2]);
+        p.half2 = Vec3(m->geom_size[3 * p.geom2], m->geom_size[3 * p.geom2 + 1],
+                       m->geom_size[3 * p.geom2 + 2]);
+      } else {
+        p.tree1 = registry.geom_tree(p.geom1);
+        p.tree2 = registry.geom_tree(p.geom2);
+        if (!p.tree1 || !p.tree2) throw std::runtime_error("validate: a tree pair without trees");
+        p.faces1 = &faces_of(*p.tree1);
+        p.faces2 = &faces_of(*p.tree2);
+      }
+      pairs_.push_back(p);
+    }
+    for (const TesterSpec& spec : specs_) {
+      testers_.push_back(spec.make(pairs_.size()));
+      MethodTable table;
+      table.method = spec.name;
+      for (const CheckedPair& p : pairs_) {
+        PairRow row;
+        row.pair = geom_label(m, p.geom1) + "/" + geom_label(m, p.geom2);
+        row.geom1 = p.geom1;
+        row.geom2 = p.geom2;
+        row.box_box = p.box_box;
+        table.rows.push_back(row);
+      }
+      report_.methods.push_back(std::move(table));
+    }
+  }
+
+  const std::vector<Triangle>& faces_of(const bridge::MeshTree& tree) {
+    auto it = faces_.find(&tree);
+    if (it == faces_.end()) {
+      std::vector<Triangle> f(tree.slot_of_face.size());
+      for (std::size_t i = 0; i < f.size(); ++i) f[i] = tree.face(static_cast<std::int32_t>(i));
+      it = faces_.emplace(&tree, std::move(f)).first;
+    }
+    return it->second;
+  }
+
+  void check_trees(std::size_t i, const Pose& pose, int step) {
+    const CheckedPair& p = pairs_[i];
+    Clock::time_point start = Clock::now();
+    std::vector<Triangle> moved = *p.faces2;
+    for (Triangle& t : moved) t = apply_pose(pose, t);
+    const std::vector<TrianglePair> truth = exact::mesh_mesh_pairs(*p.faces1, moved);
+    report_.exact_seconds += seconds_since(start);
+    for (std::size_t k = 0; k < testers_.size(); ++k) {
+      start = Clock::now();
+      const bool hit = testers_[k]->tree_query(i, p.tree1->tree, p.tree2->tree, pose, found_);
+      add_time(k, start);
+      std::sort(found_.begin(), found_.end());
+      PairRow& row = report_.methods[k].rows[i];
+      const auto [missed, extra] = set_differences(truth, found_);
+      const bool agree = hit == !truth.empty() && missed == 0 && extra == 0;
+      tally(row, !truth.empty(), hit, agree);
+      row.missed_tri_pairs += missed;
+      row.false_tri_pairs += extra;
+      if (!agree && !row.disagreed) {
+        row.disagreed = true;
+        row.first = Disagreement{step, !truth.empty(), hit, truth.size(), found_.size(), {}, {}};
+        if (!options_.out_dir.empty()) write_tree_case(k, row, p, pose, step);
+      }
+    }
+  }
+
+  void check_boxes(std::size_t i, const Pose& pose, int step) {
+    const CheckedPair& p = pairs_[i];
+    Obb a;
+    a.half = p.half1;
+    Obb b_local;
+    b_local.half = p.half2;
+    const Obb b = transform(pose, b_local);
+    Clock::time_point start = Clock::now();
+    const bool truth = exact::box_box_overlap(a, b);
+    report_.exact_seconds += seconds_since(start);
+    for (std::size_t k = 0; k < testers_.size(); ++k) {
+      start = Clock::now();
+      const bool hit = !testers_[k]->box_disjoint(i, a, b);
+      add_time(k, start);
+      PairRow& row = report_.methods[k].rows[i];
+      tally(row, truth, hit, hit == truth);
+      if (hit != truth && !row.disagreed) {
+        row.disagreed = true;
+        row.first = Disagreement{step, truth, hit, 0, 0, {}, {}};
+        if (!options_.out_dir.empty()) write_box_case(k, row, a, b, step);
+      }
+    }
+  }
+
+  void add_time(std::size_t k, Clock::time_point start) {
+    const double s = seconds_since(start);
+    report_.methods[k].seconds += s;
+    report_.tester_seconds += s;
+  }
+
+  static void tally(PairRow& row, bool truth, bool hit, bool agree) {
+    ++row.steps;
+    row.agree += agree;
+    row.truth_hits += truth;
+    row.missed += truth && !hit;
+    row.false_contacts += hit && !truth;
+    row.pair_mismatch += truth && hit && !agree;
+  }
+
+  std::filesystem::path out_dir() const {
+    const std::filesystem::path dir(options_.out_dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+  }
+
+  void write_tree_case(std::size_t k, PairRow& row, const CheckedPair& p, const Pose& pose,
+                       int step) {
+    const std::filesystem::path dir = out_dir();
+    const std::string stem = file_stem(specs_[k].name, row.pair, step);
+    const std::filesystem::path a = dir / (stem + "_a.obj");
+    const std::filesystem::path b = dir / (stem + "_b.obj");
+    const std::filesystem::path poses = dir / (stem + "_pose.txt");
+    const std::string where = " at closing grasp step " + std::to_string(step) + " of " +
+                              report_.scene +
+                              ": MuJoCo's vertices in the geom frame, face order "
+                              "kept, each coordinate printed to read back as the same double";
+    const std::string name1 = row.pair.substr(0, row.pair.find('/'));
+    const std::string name2 = row.pair.substr(row.pair.find('/') + 1);
+    write_obj(a, *p.faces1, "graspcd validate: geom " + name1 + where);
+    write_obj(b, *p.faces2, "graspcd validate: geom " + name2 + where);
+    std::string line;
+    append_matrix(line, pose.R);
+    append_vector(line, pose.t);
+    write_text(poses, "# graspcd validate: " + name2 + " in " + name1 + "'s frame at step " +
+                          std::to_string(step) + ": R row-major (9), t (3)\n" + line.substr(1) +
+                          "\n");
+    row.first.files = {a.string(), b.string(), poses.string()};
+    row.first.command = "graspcd meshpair " + quoted(a.string()) + " " + quoted(b.string()) + " " +
+                        specs_[k].cli_args + " --poses " + quoted(poses.string());
+  }
+
+  void write_box_case(std::size_t k, PairRow& row, const Obb& a, const Obb& b, int step) {
+    const std::filesystem::path file =
+        out_dir() / (file_stem(specs_[k].name, row.pair, step) + "_boxes.txt");
+    std::string line;
+    for (const Obb* box : {&a, &b}) {
+      append_vector(line, box->center);
+      append_matrix(line, box->axes);
+      append_vector(line, box->half);
+    }
+    write_text(file, "# graspcd validate: the boxes of " + row.pair + " at closing grasp step " +
+                         std::to_string(step) + " of " + report_.scene +
+                         " in the first geom's frame: centre, R row-major, half-extents of each\n" +
+                         line.substr(1) + "\n");
+    row.first.files = {file.string()};
+    row.first.command = "graspcd boxbox " + specs_[k].cli_args + " " + quoted(file.string());
+  }
+
+  const std::vector<TesterSpec>& specs_;
+  const ValidateOptions& options_;
+  ValidationReport report_;
+  std::vector<CheckedPair> pairs_;
+  std::vector<std::unique_ptr<PairTester>> testers_;
+  std::map<const bridge::MeshTree*, std::vector<Triangle>> faces_;
+  std::vector<TrianglePair> found_;
+};
+
+}  // namespace
+
+TesterSpec detector_tester(Method method, const DetectorOptions& options) {
+  TesterSpec spec;
+  spec.name = method_name(method);
+  spec.cli_args = std::string("--method ") + method_name(method);
+  if (uses_perceptron(method)) spec.cli_args += " --cap " + std::to_string(options.cap);
+  if (method == Method::kNeuroSat || method == Method::kNeuroSatSticky) {
+    spec.cli_args += " --switch " + std::to_string(options.switch_passes);
+  }
+  spec.make = [method, options](std::size_t pairs) -> std::unique_ptr<PairTester> {
+    return std::make_unique<DetectorTester>(method, options, pairs);
+  };
+  return spec;
+}
+
+bool MethodTable::missed_any() const {
+  return std::any_of(rows.begin(), rows.end(),
+                     [](const PairRow& r) { return r.missed > 0 || r.missed_tri_pairs > 0; });
+}
+
+bool ValidationReport::missed_any() const {
+  return std::any_of(methods.begin(), methods.end(),
+                     [](const MethodTable& t) { return t.missed_any(); });
+}
+
+ValidationReport validate_scene(const std::string& scene, const std::vector<TesterSpec>& testers,
+                                const ValidateOptions& options) {
+  Validator validator(testers, options);
+  validator.report().scene = scene;
+  bridge::GraspOptions grasp;
+  grasp.config_path = options.config_path;
+  grasp.max_steps = options.max_steps;
+  grasp.on_grasp_step = [&validator](const mjModel* m, const mjData* d, int step) {
+    validator.check_step(m, d, step);
+  };
+  const std::string config =
+      options.config_path.empty() ? bridge::pair_config_path(scene) : options.config_path;
+  const bridge::GraspResult result = bridge::run_grasp(scene, grasp);
+  ValidationReport report = validator.finish(result);
+  report.config = config;
+  return report;
+}
+
+}  // namespace graspcd::study

@@ -1,0 +1,156 @@
+// Contact generation from intersecting triangle pairs, and the reduction to mjMAXCONPAIR.
+#include "graspcd/core/contact.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "graspcd/support/meshes.h"
+
+namespace graspcd {
+namespace {
+
+Triangle tri(Vec3 a, Vec3 b, Vec3 c) { return Triangle{{a, b, c}}; }
+
+// A large floor triangle (normal +z) pierced by a small vertical one dipping 1 cm below it: the
+// smaller push is along the floor's normal, 1 cm, and the position is on the segment's midpoint.
+TEST(TrianglePairContact, VerticalTrianglePiercingAFloorUsesTheFloorNormal) {
+  const Triangle floor = tri({-1, -1, 0}, {1, -1, 0}, {0, 1, 0});
+  const Triangle blade = tri({-0.1, 0, 0.05}, {0.1, 0, 0.05}, {0, 0, -0.01});
+  const TriContact c = triangle_pair_contact(floor, blade, 1.0, Vec3::UnitX());
+  EXPECT_NEAR(c.normal.dot(Vec3::UnitZ()), 1.0, 1e-12);
+  EXPECT_NEAR(c.depth, 0.01, 1e-12);
+  EXPECT_NEAR(c.pos.z(), 0.0, 1e-12);
+  EXPECT_NEAR(c.pos.x(), 0.0, 1e-12);
+  // Swapped roles: the floor is geom2 now, its outward normal +z points toward geom1, so the
+  // normal from geom1 to geom2 is -z.
+  const TriContact s = triangle_pair_contact(blade, floor, 1.0, Vec3::UnitX());
+  EXPECT_NEAR(s.normal.dot(-Vec3::UnitZ()), 1.0, 1e-12);
+  EXPECT_NEAR(s.depth, 0.01, 1e-12);
+}
+
+// Two faces crossing along the edges of two solids (a's +y side and b's -x side of two boxes that
+// overlap 1 cm in z): neither face normal is the penetration direction; the edge axis z is.
+TEST(TrianglePairContact, CrossingSideFacesUseTheEdgeAxis) {
+  const Triangle a = tri({-0.04, 0.04, -0.04}, {-0.04, 0.04, 0.04}, {0.04, 0.04, 0.04});   // +y
+  const Triangle b = tri({-0.01, -0.03, 0.03}, {-0.01, 0.05, 0.11}, {-0.01, 0.05, 0.03});  // -x
+  // The diagonals (a's edge 2, b's edge 0) are not edges of the boxes.
+  const TriContact c = triangle_pair_contact(a, b, 1.0, Vec3::UnitX(), 0b011, 0b110);
+  EXPECT_NEAR(c.normal.z(), 1.0, 1e-12);
+  EXPECT_NEAR(c.depth, 0.01, 1e-12);
+  // Without the face orientation, the axis a's x edge x b's z edge (a's face normal) would
+  // separate the triangles with a 1 cm push along -y, into box a; the sign from the faces
+  // rules that out, even with every edge taken as sharp.
+  const TriContact all = triangle_pair_contact(a, b, 1.0, Vec3::UnitX());
+  EXPECT_NEAR(all.normal.z(), 1.0, 1e-12);
+  EXPECT_NEAR(all.depth, 0.01, 1e-12);
+}
+
+TEST(TrianglePairContact, DepthIsClippedToTheCap) {
+  const Triangle floor = tri({-1, -1, 0}, {1, -1, 0}, {0, 1, 0});
+  const Triangle blade = tri({-0.1, 0, 0.05}, {0.1, 0, 0.05}, {0, 0, -0.2});
+  const TriContact c = triangle_pair_contact(floor, blade, 0.003, Vec3::UnitX());
+  EXPECT_DOUBLE_EQ(c.depth, 0.003);
+}
+
+// Only the part of the blade over the floor triangle counts: a blade whose deep tip lies beyond
+// the floor's edge measures the depth inside the floor's prism only.
+TEST(TrianglePairContact, DepthIsMeasuredInsideThePrism) {
+  const Triangle floor = tri({0, -1, 0}, {1, -1, 0}, {0, 1, 0});  // x >= 0 only
+  // Dips to -0.01 at x = 0.05 (inside) and to -0.1 at x = -0.05 (outside the prism).
+  const Triangle blade = tri({0.05, 0, -0.01}, {-0.05, 0, -0.1}, {0.0, 0, 0.1});
+  const TriContact c = triangle_pair_contact(floor, blade, 1.0, Vec3::UnitX());
+  EXPECT_GT(c.depth, 0.0);
+  EXPECT_LT(c.depth, 0.06);  // the clipped polygon reaches x = 0 at most: depth <= 0.055
+}
+
+// Two crossing segments (zero-area triangles): no face normal, the edge axis is their common
+// perpendicular, with no penetration.
+TEST(TrianglePairContact, CrossingSegmentsUseTheirCommonPerpendicular) {
+  const Triangle a = tri({0, 0, 0}, {1, 0, 0}, {2, 0, 0});
+  const Triangle b = tri({0.5, -1, 0}, {0.5, 1, 0}, {0.5, 0, 0});
+  const TriContact c = triangle_pair_contact(a, b, 1.0, Vec3::UnitY());
+  EXPECT_NEAR(std::abs(c.normal.z()), 1.0, 1e-15);
+  EXPECT_EQ(c.depth, 0.0);
+}
+
+// Overlapping collinear segments: every edge pair is parallel, so the fallback normal is used.
+TEST(TrianglePairContact, CollinearSegmentsUseTheFallbackNormal) {
+  const Triangle a = tri({0, 0, 0}, {1, 0, 0}, {2, 0, 0});
+  const Triangle b = tri({0.5, 0, 0}, {3, 0, 0}, {1.5, 0, 0});
+  const TriContact c = triangle_pair_contact(a, b, 1.0, Vec3::UnitY());
+  EXPECT_EQ(c.normal, Vec3::UnitY());
+  EXPECT_EQ(c.depth, 0.0);
+}
+
+TEST(SelectContacts, KeepsAllWhenFewAndPutsTheDeepestFirst) {
+  std::vector<TriContact> cs(5);
+  for (int i = 0; i < 5; ++i) {
+    cs[static_cast<std::size_t>(i)].pos = Vec3(i, 0, 0);
+    cs[static_cast<std::size_t>(i)].depth = i == 3 ? 0.5 : 0.1;
+  }
+  const auto keep = select_contacts(cs, 50);
+  ASSERT_EQ(keep.size(), 5u);
+  EXPECT_EQ(keep[0], 3u);
+  EXPECT_EQ(std::set<std::size_t>(keep.begin(), keep.end()).size(), 5u);
+}
+
+// 200 contacts along a segment: 50 distinct ones, the deepest first, both ends of the segment
+// kept (farthest-point sampling reaches the extremes first), and no two chosen closer than half
+// the best possible spacing (Gonzalez's 2-approximation of max-min dispersion).
+TEST(SelectContacts, CapsAtKWithTheDeepestAndASpread) {
+  std::vector<TriContact> cs(200);
+  for (std::size_t i = 0; i < cs.size(); ++i) {
+    cs[i].pos = Vec3(static_cast<double>(i) * 0.001, 0, 0);
+    cs[i].depth = i == 77 ? 0.01 : 0.001;
+  }
+  const auto keep = select_contacts(cs, 50);
+  ASSERT_EQ(keep.size(), 50u);
+  EXPECT_EQ(keep[0], 77u);
+  const std::set<std::size_t> set(keep.begin(), keep.end());
+  EXPECT_EQ(set.size(), 50u);
+  EXPECT_TRUE(set.count(0));
+  EXPECT_TRUE(set.count(199));
+  double min_gap = 1e9;
+  for (std::size_t i : keep) {
+    for (std::size_t j : keep) {
+      if (i != j) min_gap = std::min(min_gap, (cs[i].pos - cs[j].pos).norm());
+    }
+  }
+  // The best 50 of these points are 4 mm apart (floor(199 / 49) grid steps): at least 2 mm.
+  EXPECT_GE(min_gap, 0.002 - 1e-12);
+}
+
+// Contacts at one position are kept once: fewer than k when the positions run out.
+TEST(SelectContacts, DuplicatePositionsAreNotChosenTwice) {
+  std::vector<TriContact> cs(120);
+  for (std::size_t i = 0; i < cs.size(); ++i) cs[i].pos = Vec3(static_cast<double>(i % 3), 0, 0);
+  EXPECT_EQ(select_contacts(cs, 50).size(), 3u);
+}
+
+// A box's face diagonals are not feature edges, its 12 edges are; a finely tessellated sphere has
+// none.
+TEST(SharpEdges, BoxEdgesAreSharpDiagonalsAndSmoothSurfacesAreNot) {
+  const TriangleMesh box = testing::make_box_mesh(0.01, 0.02, 0.03);
+  std::vector<Triangle> faces;
+  for (std::size_t f = 0; f < box.faces.size(); ++f) faces.push_back(box.triangle(f));
+  const auto masks = sharp_edge_masks(faces);
+  ASSERT_EQ(masks.size(), 12u);
+  int sharp = 0;
+  for (std::uint8_t m : masks) {
+    const int bits = (m & 1) + (m >> 1 & 1) + (m >> 2 & 1);
+    EXPECT_EQ(bits, 2);  // two box edges and the diagonal
+    sharp += bits;
+  }
+  EXPECT_EQ(sharp, 24);  // 12 edges, each seen from its two faces
+  const TriangleMesh sphere = testing::make_uv_sphere(0.05, 24, 48);
+  faces.clear();
+  for (std::size_t f = 0; f < sphere.faces.size(); ++f) faces.push_back(sphere.triangle(f));
+  for (std::uint8_t m : sharp_edge_masks(faces)) EXPECT_EQ(m, 0);
+  // An open triangle: every edge is a boundary.
+  EXPECT_EQ(sharp_edge_masks({tri({0, 0, 0}, {1, 0, 0}, {0, 1, 0})})[0], 7);
+}
+
+}  // namespace
+}  // namespace graspcd
