@@ -7,7 +7,10 @@
 //   0: raw IEEE doubles, 8 bytes each (little endian);
 //   1: signed bytes, each a coordinate on the integer grid -128..127;
 //   2: signed 16-bit integers times 2^-k, k from the second byte (0..63): fine grids at any scale;
-//   3: a shared vertex: as 2, then T2's p0 is T1's p0 (touching pairs).
+//   3: a shared vertex: as 2, then T2's p0 is T1's p0 (touching pairs);
+//   4: a seed: the next 8 bytes seed the project's generator (graspcd/support/random_geometry.h),
+//      which builds one of its adversarial pairs (the class and placement from the next two bytes),
+//      the same constructions the tests use, now explored by the fuzzer's choice of seeds.
 // Missing bytes read as zero. A coordinate outside the exact-arithmetic range of tolerances.h
 // (non-finite, or nonzero with |x| outside [kMinCoordinate, kMaxCoordinate]) is input the parsers
 // reject, so the case is skipped.
@@ -20,6 +23,7 @@
 #include "graspcd/core/tolerances.h"
 #include "graspcd/core/tritri.h"
 #include "graspcd/exact/exact.h"
+#include "graspcd/support/random_geometry.h"
 
 namespace {
 
@@ -45,9 +49,23 @@ bool in_exact_range(double x) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   Bytes bytes(data, size);
-  const int mode = bytes.next() % 4;
+  const int mode = bytes.next() % 5;
   double c[kCoordinates];
-  if (mode == 0) {
+  int expected = -1;  // known by construction (mode 4), else -1
+  if (mode == 4) {
+    std::uint64_t seed = 0;
+    for (int k = 0; k < 8; ++k) seed |= static_cast<std::uint64_t>(bytes.next()) << (8 * k);
+    namespace gt = graspcd::testing;
+    const auto cls = static_cast<gt::PairClass>(bytes.next() % gt::kPairClassCount);
+    const auto placement = static_cast<gt::Placement>(bytes.next() % 4);
+    gt::Rng rng(seed);
+    const gt::AdversarialPair pair = gt::make_adversarial(cls, placement, 1.0, rng);
+    expected = pair.expected;
+    for (int k = 0; k < 9; ++k) {
+      c[k] = pair.t1.v[k / 3][k % 3];
+      c[9 + k] = pair.t2.v[k / 3][k % 3];
+    }
+  } else if (mode == 0) {
     for (double& x : c) {
       std::uint64_t bits = 0;
       for (int k = 0; k < 8; ++k) bits |= static_cast<std::uint64_t>(bytes.next()) << (8 * k);
@@ -78,6 +96,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const bool fast = graspcd::tri_tri_intersect(t1, t2);
   if (fast != graspcd::exact::tri_tri_intersect(t1, t2)) {
     graspcd::fuzz::disagreement("tri_tri_intersect disagrees with CGAL");
+  }
+  if (expected >= 0 && fast != (expected == 1)) {
+    graspcd::fuzz::disagreement("tri_tri_intersect disagrees with the pair's known answer");
   }
   if (fast != graspcd::tri_tri_intersect_predicates(t1, t2)) {
     graspcd::fuzz::disagreement("tri_tri_intersect disagrees with tri_tri_intersect_predicates");

@@ -23,28 +23,26 @@ constexpr int kInputs = 1 << 16;
 // Random box pairs of size ~1 with the centre distance drawn so that `overlap_share` of them
 // roughly overlap.
 std::vector<std::pair<Obb, Obb>> make_box_pairs(double spread, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0.1, 1.0), c(-spread, spread);
+  testing::Rng rng(seed);
   std::vector<std::pair<Obb, Obb>> pairs(kInputs);
   for (auto& [a, b] : pairs) {
     a.axes = testing::random_rotation(rng);
     b.axes = testing::random_rotation(rng);
-    a.half = Vec3(u(rng), u(rng), u(rng));
-    b.half = Vec3(u(rng), u(rng), u(rng));
-    b.center = Vec3(c(rng), c(rng), c(rng));
+    a.half = testing::uniform_vec3(rng, 0.1, 1.0);
+    b.half = testing::uniform_vec3(rng, 0.1, 1.0);
+    b.center = testing::uniform_vec3(rng, -spread, spread);
   }
   return pairs;
 }
 
 // Triangle pairs of size ~1 cm whose centres are within `spread` (hit rate ~40 % at 0.01).
 std::vector<std::pair<Triangle, Triangle>> make_triangle_pairs(double spread, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-0.01, 0.01), c(-spread, spread);
+  testing::Rng rng(seed);
   std::vector<std::pair<Triangle, Triangle>> pairs(kInputs);
   for (auto& [a, b] : pairs) {
-    const Vec3 offset(c(rng), c(rng), c(rng));
-    for (Vec3& v : a.v) v = Vec3(u(rng), u(rng), u(rng));
-    for (Vec3& v : b.v) v = offset + Vec3(u(rng), u(rng), u(rng));
+    const Vec3 offset = testing::uniform_vec3(rng, -spread, spread);
+    for (Vec3& v : a.v) v = testing::uniform_vec3(rng, -0.01, 0.01);
+    for (Vec3& v : b.v) v = offset + testing::uniform_vec3(rng, -0.01, 0.01);
   }
   return pairs;
 }
@@ -102,7 +100,7 @@ BENCHMARK_TEMPLATE(BM_TriTri, tri_tri_intersect_predicates)
 // overlapping). Boxes of ~2 cm at 0.3 m from the origin: grasp scale. Consecutive calls are
 // coherent, so the cached and warm methods are measured as a grasp would use them.
 std::vector<std::pair<Obb, Obb>> make_trajectory(double gap_fraction, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
+  testing::Rng rng(seed);
   Obb a;
   a.center = Vec3(0.3, -0.1, 0.2);
   a.axes = testing::random_rotation(rng);
@@ -110,8 +108,8 @@ std::vector<std::pair<Obb, Obb>> make_trajectory(double gap_fraction, std::uint6
   Obb b;
   b.half = Vec3(0.012, 0.007, 0.005);
   const Mat3 b0 = testing::random_rotation(rng);
-  const Vec3 n = testing::random_unit_vector(rng);
-  const Vec3 axis = testing::random_unit_vector(rng);
+  const Vec3 n = testing::random_unit(rng);
+  const Vec3 axis = testing::random_unit(rng);
   // The corner of `box` furthest along `dir`, relative to its centre.
   const auto extreme = [](const Obb& box, const Vec3& dir) -> Vec3 {
     const Vec3 s = (box.axes.transpose() * dir).cwiseSign();

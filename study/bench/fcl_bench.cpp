@@ -78,8 +78,8 @@ struct Scene {
     if (!contact.empty()) return;
     testing::Rng rng(5);
     const Mat3 r0 = testing::random_rotation(rng);
-    const Vec3 axis = testing::random_unit_vector(rng);
-    dir = testing::random_unit_vector(rng);
+    const Vec3 axis = testing::random_unit(rng);
+    dir = testing::random_unit(rng);
     scale = 2 * ta.root().box.half.maxCoeff();
     const double reach = 2 * (ta.root().box.half.norm() + tb.root().box.half.norm());
     const auto hits = [&](int step, double s) {
@@ -241,7 +241,8 @@ BoxPairSet make_box_pairs(double lo, double hi, std::uint64_t seed) {
     a.axes = Mat3::Identity();
     Obb b = testing::random_box(rng, Vec3::Zero(), 0.2, 1.0);
     const double reach = a.half.norm() + b.half.norm();
-    b.center = testing::random_unit_vector(rng) * reach * testing::uniform(rng, lo, hi);
+    const Vec3 dir = testing::random_unit(rng);
+    b.center = dir * reach * testing::uniform(rng, lo, hi);
     const bool ours = obb_disjoint(ObbTester::kOurs, a, b);
     if (ours != obb_disjoint(ObbTester::kOursBoxes, a, b)) {
       std::fprintf(stderr, "BM_ObbTest: our two forms disagree on pair %d\n", i);
@@ -290,7 +291,7 @@ struct SpherePair {
         fcl(std::make_unique<peer::FclMesh>(mesh, peer::FclBv::kObb)) {
     testing::Rng rng(17);
     rotation = testing::random_rotation(rng);
-    dir = testing::random_unit_vector(rng);
+    dir = testing::random_unit(rng);
     // Convex solids: they overlap on an interval of s around 0; at 5 cm the surfaces cross, at
     // 10.01 cm (the circumscribed spheres apart) they do not.
     double lo = 0.05, hi = 0.1001;

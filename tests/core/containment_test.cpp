@@ -1,6 +1,6 @@
-// Containment (src/graspcd/core/containment.h): closedness after welding, the exact point-in-solid query
-// against CGAL's Side_of_triangle_mesh (src/graspcd/exact) on points inside, outside, exactly on faces,
-// edges and vertices, and on rays through edges and vertices, and the mesh-in-mesh check.
+// Containment (src/graspcd/core/containment.h): closedness after welding, the exact point-in-solid
+// query against CGAL's Side_of_triangle_mesh (src/graspcd/exact) on points inside, outside, exactly
+// on faces, edges and vertices, and on rays through edges and vertices, and the mesh-in-mesh check.
 #include "graspcd/core/containment.h"
 
 #include <gtest/gtest.h>
@@ -305,12 +305,11 @@ std::vector<Vec3> probe_points(const std::vector<Triangle>& tris, Rng& rng, int 
   hi += pad;
   const auto any_triangle = [&]() -> const Triangle& {
     return tris[static_cast<std::size_t>(
-        testing::uniform_int(rng, 0, static_cast<std::int64_t>(tris.size()) - 1))];
+        testing::uniform_int<std::size_t>(rng, 0, tris.size() - 1))];
   };
   std::vector<Vec3> pts;
   for (int i = 0; i < n; ++i) {
-    pts.emplace_back(uniform(rng, lo[0], hi[0]), uniform(rng, lo[1], hi[1]),
-                     uniform(rng, lo[2], hi[2]));
+    pts.push_back(testing::uniform_in_box(rng, lo, hi));
   }
   for (int i = 0; i < n / 4; ++i) {
     const Triangle& t = any_triangle();
@@ -427,7 +426,7 @@ TEST(PointSide, GeneratedMeshesAgreeWithCgal) {
       Pose pose;
       if (placed) {
         pose.R = testing::random_rotation(rng);
-        pose.t = Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+        pose.t = testing::uniform_vec3(rng, -1, 1);
       }
       Tally tally;
       ASSERT_NO_FATAL_FAILURE(check_points(

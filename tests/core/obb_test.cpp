@@ -24,14 +24,15 @@ void expect_valid_box(const Obb& box, const std::vector<Triangle>& tris) {
 double volume(const Obb& b) { return 8 * b.half.prod(); }
 
 TEST(FitObb, ContainsEveryVertexOfRandomMeshesBothFits) {
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  testing::Rng rng(3);
   for (int trial = 0; trial < 200; ++trial) {
     const double scale = std::pow(10.0, trial % 8 - 4);  // 1e-4 .. 1e3 m
-    const Vec3 offset = Vec3(u(rng), u(rng), u(rng)) * scale * 1000;
+    const Vec3 offset = testing::uniform_vec3(rng, -1.0, 1.0) * scale * 1000;
     std::vector<Triangle> tris(1 + trial % 30);
     for (Triangle& t : tris) {
-      for (Vec3& v : t.v) v = offset + scale * Vec3(u(rng), 0.3 * u(rng), 0.1 * u(rng));
+      for (Vec3& v : t.v) {
+        v = offset + scale * testing::uniform_in_box(rng, Vec3(-1, -0.3, -0.1), Vec3(1, 0.3, 0.1));
+      }
     }
     expect_valid_box(fit_obb(tris, ObbFit::kCovariance), tris);
     expect_valid_box(fit_obb(tris, ObbFit::kHullArea), tris);
@@ -62,7 +63,7 @@ TEST(FitObb, DegenerateInputGivesAFrameAndNonNegativeExtents) {
 // covariance tilts, the hull-area covariance (Gottschalk 1996) does not, so the hull fit is the
 // tight box and the vertex fit is looser.
 TEST(FitObb, HullFitIgnoresVertexCrowding) {
-  std::mt19937_64 rng(5);
+  testing::Rng rng(5);
   const Mat3 R = testing::random_rotation(rng);
   const Vec3 half(2, 1, 0.5);
   const auto corner = [&](int k) -> Vec3 {

@@ -26,15 +26,13 @@ struct SeparatedPair {
   double gap;
 };
 
-SeparatedPair make_separated(std::mt19937_64& rng, double size, double gap, const Vec3& where) {
-  std::uniform_real_distribution<double> u(0.2, 1.0);
-  std::normal_distribution<double> g;
+SeparatedPair make_separated(testing::Rng& rng, double size, double gap, const Vec3& where) {
   SeparatedPair p;
   p.a.axes = testing::random_rotation(rng);
   p.b.axes = testing::random_rotation(rng);
-  p.a.half = size * Vec3(u(rng), u(rng), u(rng));
-  p.b.half = size * Vec3(u(rng), u(rng), u(rng));
-  p.n = Vec3(g(rng), g(rng), g(rng)).normalized();
+  p.a.half = size * testing::uniform_vec3(rng, 0.2, 1.0);
+  p.b.half = size * testing::uniform_vec3(rng, 0.2, 1.0);
+  p.n = testing::random_unit(rng);
   const auto support = [&p](const Obb& box) {
     return (box.axes.transpose() * p.n).cwiseAbs().dot(box.half);
   };
@@ -45,7 +43,7 @@ SeparatedPair make_separated(std::mt19937_64& rng, double size, double gap, cons
 }
 
 TEST(Perceptron, EveryProofHoldsExactlyOnAllFrames) {
-  std::mt19937_64 rng(1);
+  testing::Rng rng(1);
   int proofs = 0;
   for (int i = 0; i < testing::scaled(4000); ++i) {
     const double size = std::pow(10.0, i % 6 - 4);  // 0.1 mm .. 10 m
@@ -73,7 +71,7 @@ TEST(Perceptron, EveryProofHoldsExactlyOnAllFrames) {
 // (w, d) of them. The plane at mid-gap normal to n is such a separator; its margin is a lower
 // bound of the best one, so (R / gamma_mid)^2 bounds the updates.
 TEST(Perceptron, UpdatesNeverExceedNovikoffsBound) {
-  std::mt19937_64 rng(2);
+  testing::Rng rng(2);
   int checked = 0;
   for (int i = 0; i < testing::scaled(3000); ++i) {
     const double size = 0.01 * (1 + i % 10);
@@ -120,8 +118,7 @@ TEST(Perceptron, UpdatesNeverExceedNovikoffsBound) {
 }
 
 TEST(Perceptron, OverlappingBoxesRunToTheCapAndNeverProve) {
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  testing::Rng rng(3);
   int overlapping = 0;
   for (int i = 0; i < testing::scaled(2000); ++i) {
     Obb a, b;
@@ -129,7 +126,7 @@ TEST(Perceptron, OverlappingBoxesRunToTheCapAndNeverProve) {
     b.axes = testing::random_rotation(rng);
     a.half = Vec3(0.5, 0.4, 0.3);
     b.half = Vec3(0.3, 0.2, 0.6);
-    b.center = Vec3(u(rng), u(rng), u(rng)) * 2.0;
+    b.center = testing::uniform_vec3(rng, -0.5, 0.5) * 2.0;
     if (!exact::box_box_overlap(a, b)) continue;
     ++overlapping;
     for (PerceptronFrame frame :
@@ -159,7 +156,7 @@ TEST(Perceptron, TouchingBoxesAreNeverProvenDisjoint) {
 }
 
 TEST(Perceptron, WarmStartFromASeparatingPlaneNeedsOnePassAndNoUpdate) {
-  std::mt19937_64 rng(4);
+  testing::Rng rng(4);
   for (int i = 0; i < 200; ++i) {
     // At centimetre scale the bias input 1 dwarfs the coordinates: (R / gamma)^2 is ~1e4 here.
     const SeparatedPair p = make_separated(rng, 0.02, 0.02, Vec3(0.3, -0.2, 0.1));
@@ -176,7 +173,7 @@ TEST(Perceptron, WarmStartFromASeparatingPlaneNeedsOnePassAndNoUpdate) {
 // The paper's section 5 claim, measured: far from the origin, learning in the displaced frame takes
 // fewer passes than in the original one.
 TEST(Perceptron, DisplacementReducesPassesFarFromTheOrigin) {
-  std::mt19937_64 rng(5);
+  testing::Rng rng(5);
   std::vector<int> displaced, original;
   for (int i = 0; i < 300; ++i) {
     const SeparatedPair p = make_separated(rng, 0.02, 0.01, Vec3(0.5, 0.4, 0.3));

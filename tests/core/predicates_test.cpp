@@ -7,6 +7,8 @@
 #include <cmath>
 #include <random>
 
+#include "graspcd/support/seeded.h"
+
 namespace graspcd::predicates {
 namespace {
 
@@ -37,8 +39,8 @@ TEST(Orient2d, KettnerGridMatchesTheExactSign) {
 // then the fourth point moved by one ulp off the plane: the sign is that of the normal's
 // component along the move.
 TEST(Orient3d, CoplanarAndOneUlpOffThePlane) {
-  std::mt19937_64 rng(20261122);
-  std::uniform_int_distribution<int> coord(-1000, 1000);
+  seeded::Rng rng(20261122);
+  const auto coord = [&rng] { return seeded::uniform_int(rng, -1000, 1000); };
   int zeros = 0, moved = 0;
   for (int trial = 0; trial < 20000; ++trial) {
     const double offset = std::ldexp(1.0, trial % 40);  // up to 2^39 m from the origin
@@ -46,9 +48,10 @@ TEST(Orient3d, CoplanarAndOneUlpOffThePlane) {
       const double x = ix / 64.0, y = iy / 64.0;
       return Vec3(x + offset, y + offset, (8 - x - 2 * y) / 4.0 - 0.75 * offset);
     };
-    const Vec3 a = on_plane(coord(rng), coord(rng)), b = on_plane(coord(rng), coord(rng));
-    const Vec3 c = on_plane(coord(rng), coord(rng));
-    Vec3 d = on_plane(coord(rng), coord(rng));
+    std::array<int, 8> k;
+    for (int& ki : k) ki = coord();
+    const Vec3 a = on_plane(k[0], k[1]), b = on_plane(k[2], k[3]), c = on_plane(k[4], k[5]);
+    Vec3 d = on_plane(k[6], k[7]);
     const Vec3 normal = (b - a).cross(c - a);  // exact here: small dyadic differences
     if (normal.z() == 0) continue;
     ASSERT_EQ(orient3d(a, b, c, d), 0);
@@ -66,15 +69,17 @@ TEST(Orient3d, CoplanarAndOneUlpOffThePlane) {
 // The sign is antisymmetric under swapping two points and invariant under cyclic shifts of
 // (a, b, c); filtered and exact agree on random near-degenerate inputs.
 TEST(Orient3d, FilterAgreesWithExactAndPermutationRules) {
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  seeded::Rng rng(7);
   std::uint64_t exact_before = filter_stats().orient3d_exact_calls;
   for (int trial = 0; trial < 100000; ++trial) {
-    const Vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
+    const Vec3 a = seeded::uniform_vec3(rng, -1.0, 1.0);
+    const Vec3 b = seeded::uniform_vec3(rng, -1.0, 1.0);
+    const Vec3 c = seeded::uniform_vec3(rng, -1.0, 1.0);
     // d near the plane: an affine combination plus a tiny offset that may vanish in rounding.
-    const double s = u(rng), t = u(rng);
-    const Vec3 d = a + s * (b - a) + t * (c - a) +
-                   std::ldexp(u(rng), -50 - trial % 8) * Vec3(u(rng), u(rng), u(rng));
+    const double s = seeded::uniform(rng, -1.0, 1.0);
+    const double t = seeded::uniform(rng, -1.0, 1.0);
+    const double tiny = std::ldexp(seeded::uniform(rng, -1.0, 1.0), -50 - trial % 8);
+    const Vec3 d = a + s * (b - a) + t * (c - a) + tiny * seeded::uniform_vec3(rng, -1.0, 1.0);
     const int o = orient3d(a, b, c, d);
     ASSERT_EQ(o, orient3d_exact(a, b, c, d));
     ASSERT_EQ(orient3d(b, c, a, d), o);
@@ -85,10 +90,11 @@ TEST(Orient3d, FilterAgreesWithExactAndPermutationRules) {
 }
 
 TEST(Orient2d, EachDropAxisMatchesTheCrossProductComponent) {
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(-10.0, 10.0);
+  seeded::Rng rng(11);
   for (int trial = 0; trial < 10000; ++trial) {
-    const Vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
+    const Vec3 a = seeded::uniform_vec3(rng, -10.0, 10.0);
+    const Vec3 b = seeded::uniform_vec3(rng, -10.0, 10.0);
+    const Vec3 c = seeded::uniform_vec3(rng, -10.0, 10.0);
     const Vec3 n = (b - a).cross(c - a);
     for (int k = 0; k < 3; ++k) {
       // Away from zero the plain product has the right sign.

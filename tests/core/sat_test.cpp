@@ -1,6 +1,6 @@
-// The separating axis test (src/graspcd/core/sat.h) against the exact box test (src/graspcd/exact): random,
-// near-parallel, near-touching and exactly touching box pairs at sizes 1 mm .. 100 m, near and far
-// from the origin.
+// The separating axis test (src/graspcd/core/sat.h) against the exact box test (src/graspcd/exact):
+// random, near-parallel, near-touching and exactly touching box pairs at sizes 1 mm .. 100 m, near
+// and far from the origin.
 //
 // What is asserted:
 //  - SAT never calls overlapping boxes separated (a false "separated" would lose a collision);
@@ -99,7 +99,8 @@ void perturb_axes(testing::Rng& rng, Mat3& axes) {
 
 Vec3 random_center(testing::Rng& rng, double size, bool far) {
   if (!far) return testing::random_in_cube(rng, Vec3::Zero(), 10 * size);
-  return testing::log_uniform(rng, 1e3, 1e5) * size * testing::random_unit_vector(rng);
+  const double distance = testing::log_uniform(rng, 1e3, 1e5) * size;
+  return distance * testing::random_unit(rng);
 }
 
 // The candidate axis (sat.h numbering, in the world frame) with the largest normalised gap, in
@@ -162,7 +163,7 @@ BoxPair make_pair(Kind kind, testing::Rng& rng) {
     case Kind::kNearParallel: {
       p.a = testing::random_box(rng, random_center(rng, size, far), 0.05 * size, size);
       p.b = p.a;
-      p.b.axes = p.a.axes * testing::rotation_about(testing::random_unit_vector(rng),
+      p.b.axes = p.a.axes * testing::rotation_about(testing::random_unit(rng),
                                                     testing::log_uniform(rng, 1e-12, 1e-3));
       for (int i = 0; i < 3; ++i) p.b.half[i] = testing::log_uniform(rng, 0.05 * size, size);
       const int face = static_cast<int>(testing::uniform_int(rng, 0, 2));
@@ -217,8 +218,9 @@ BoxPair make_pair(Kind kind, testing::Rng& rng) {
         const double sign = testing::uniform_int(rng, 0, 1) ? 1.0 : -1.0;
         const auto steps = static_cast<std::int64_t>(sum / step);
         const double offset =
-            n < contacts ? sum
-                         : step * static_cast<double>(testing::uniform_int(rng, 0, steps - 1));
+            n < contacts
+                ? sum
+                : step * static_cast<double>(testing::uniform_int<std::int64_t>(rng, 0, steps - 1));
         p.b.center[k] = p.a.center[k] + sign * offset;
       }
       // Exactly touching, or moved out (disjoint) or in (overlapping) by 2^-k steps on the first

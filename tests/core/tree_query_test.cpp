@@ -1,5 +1,5 @@
-// The tree query against CGAL's brute force (src/graspcd/exact): same collision answers and the same
-// intersecting triangle pairs, in first-contact and all-contacts modes, on generated and real
+// The tree query against CGAL's brute force (src/graspcd/exact): same collision answers and the
+// same intersecting triangle pairs, in first-contact and all-contacts modes, on generated and real
 // non-convex meshes, at poses in deep overlap, shallow contact, touching and near miss.
 #include "graspcd/core/tree_query.h"
 
@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "graspcd/support/seeded.h"
 #include "support/real_models.h"
 #include "support/tree_agreement.h"
 
@@ -51,15 +52,14 @@ TEST(TreeQuery, LeafSizeAndHullFitDoNotChangeAnswers) {
   const TriangleMesh torus = testing::make_torus(0.04, 0.012, 30, 16);
   const TriangleMesh sphere = testing::make_uv_sphere(0.015, 12, 16);
   const ObbTree ref_a = ObbTree::build(torus), ref_b = ObbTree::build(sphere);
-  std::mt19937_64 rng(9);
-  std::uniform_real_distribution<double> u(-0.06, 0.06);
+  testing::Rng rng(9);
   for (const ObbTreeOptions& options :
        {ObbTreeOptions{4, ObbFit::kCovariance}, ObbTreeOptions{8, ObbFit::kHullArea}}) {
     const ObbTree ta = ObbTree::build(torus, options), tb = ObbTree::build(sphere, options);
     for (int i = 0; i < scaled(200); ++i) {
       Pose pose;
       pose.R = testing::random_rotation(rng);
-      pose.t = Vec3(u(rng), u(rng), 0.3 * u(rng));
+      pose.t = testing::uniform_in_box(rng, Vec3(-0.06, -0.06, -0.018), Vec3(0.06, 0.06, 0.018));
       SatSeparator sat;
       QueryCounters c;
       std::vector<TrianglePair> p1, p2;
@@ -91,8 +91,7 @@ TEST(TreeQuery, CarriedFramesVisitTheSameNodePairsAsTheGenericDescent) {
     for (Vec3& v : torus.vertices) v += Vec3(offset, -offset, offset);
     for (Vec3& v : sphere.vertices) v += Vec3(offset, -offset, offset);
     const ObbTree ta = ObbTree::build(torus), tb = ObbTree::build(sphere);
-    std::mt19937_64 rng(21);
-    std::uniform_real_distribution<double> u(-0.06, 0.06);
+    testing::Rng rng(21);
     Detector cached(Method::kSatCached);
     int hits = 0;
     const int n = scaled(300);
@@ -101,7 +100,9 @@ TEST(TreeQuery, CarriedFramesVisitTheSameNodePairsAsTheGenericDescent) {
       Pose pose;
       pose.R = testing::rotation_about(Vec3(0.3, 0.5, 0.8).normalized(), 0.01 * i);
       const Vec3 c(offset, -offset, offset);
-      pose.t = c - pose.R * c + Vec3(0.12 * i / n - 0.06, 0.3 * u(rng), 0.2 * u(rng));
+      const double dy = 0.3 * testing::uniform(rng, -0.06, 0.06);
+      const double dz = 0.2 * testing::uniform(rng, -0.06, 0.06);
+      pose.t = c - pose.R * c + Vec3(0.12 * i / n - 0.06, dy, dz);
       for (const QueryMode mode : {QueryMode::kAllContacts, QueryMode::kFirstContact}) {
         GenericSat generic;
         SatSeparator carried;

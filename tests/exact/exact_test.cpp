@@ -1,5 +1,5 @@
-// Unit tests of the exact module (src/graspcd/exact): hand-built cases whose answers are known from the
-// construction (dyadic coordinates, so every stated contact is exact in double).
+// Unit tests of the exact module (src/graspcd/exact): hand-built cases whose answers are known from
+// the construction (dyadic coordinates, so every stated contact is exact in double).
 #include "graspcd/exact/exact.h"
 
 #include <gtest/gtest.h>
@@ -306,7 +306,7 @@ TEST(ExactBoxBox, FilteredTestAgreesWithPurelyExactGap) {
     Obb a = testing::random_box(rng, testing::random_in_cube(rng, Vec3::Zero(), 4.0), 0.25, 2.0);
     Obb b = a;
     b.axes =
-        a.axes * testing::rotation_about(testing::random_unit_vector(rng),
+        a.axes * testing::rotation_about(testing::random_unit(rng),
                                          i % 3 == 0 ? 0.0 : testing::log_uniform(rng, 1e-12, 1));
     // B's centre on A's face plane offset by B's own reach along A's axis 0, up to 2^-k.
     const double reach = (b.axes.transpose() * a.axes.col(0)).cwiseAbs().dot(b.half);

@@ -16,6 +16,7 @@
 #include <set>
 
 #include "graspcd/exact/exact.h"
+#include "graspcd/support/seeded.h"
 #include "support/scene_support.h"
 
 namespace graspcd::bridge {
@@ -501,17 +502,16 @@ TEST_P(CgalAgreement, AnswerAgreesWithCgalOnTheSamePosedVertices) {
   const std::vector<Triangle> hi = Registry::mesh_triangles(m.get(), m->geom_dataid[g_hi]);
   const int ball_q =
       m->jnt_qposadr[m->body_jntadr[m->geom_bodyid[mj_name2id(m.get(), mjOBJ_GEOM, "ball")]]];
-  std::mt19937 rng(20261122);
-  std::uniform_real_distribution<double> xy(-0.08, 0.08), z(-0.035, 0.035), q(-1, 1);
+  seeded::Rng rng(20261122);
   const DataPtr d(mj_makeData(m.get()));
   int hits = 0, misses = 0;
   for (int pose = 0; pose < 60; ++pose) {
     mj_resetData(m.get(), d.get());
     double* qp = d->qpos + ball_q;
-    qp[0] = xy(rng);
-    qp[1] = xy(rng);
-    qp[2] = z(rng);
-    for (int k = 3; k < 7; ++k) qp[k] = q(rng);
+    qp[0] = seeded::uniform(rng, -0.08, 0.08);
+    qp[1] = seeded::uniform(rng, -0.08, 0.08);
+    qp[2] = seeded::uniform(rng, -0.035, 0.035);
+    for (int k = 3; k < 7; ++k) qp[k] = seeded::uniform(rng, -1, 1);
     mju_normalize4(qp + 3);
     const std::uint64_t before = registry.stats().counters.tri_pairs;
     mj_forward(m.get(), d.get());

@@ -24,6 +24,7 @@
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/mujoco/collision.h"
 #include "graspcd/mujoco/registry.h"
+#include "graspcd/support/seeded.h"
 #include "support/scene_support.h"
 
 namespace graspcd::bridge {
@@ -229,9 +230,12 @@ TEST_P(Tessellation, ContainsTheTrueSurface) {
   for (int i = 0; i < 97; ++i) {
     for (int j = 0; j <= 60; ++j) uv.emplace_back(i / 97.0, j / 60.0);
   }
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> unit(0, 1);
-  for (int i = 0; i < 4000; ++i) uv.emplace_back(unit(rng), unit(rng));
+  seeded::Rng rng(7);
+  for (int i = 0; i < 4000; ++i) {
+    const double u = seeded::uniform01(rng);
+    const double v = seeded::uniform01(rng);
+    uv.emplace_back(u, v);
+  }
   for (int j = 0; j < kTessAround; ++j) {
     for (int k = 0; k <= 2 * kTessProfile; ++k) {
       uv.emplace_back((j + 0.5) / kTessAround, static_cast<double>(k) / (2 * kTessProfile));
@@ -353,16 +357,16 @@ TEST(ServedPrimitives, TessellatedPairsNeverMissAContactAndAddNoneBeyondTheToler
   const double tol_capsule = tessellation_tolerance(mjGEOM_CAPSULE, m->geom_size + 3 * capsule);
   ASSERT_GT(tol_ball, 0.0);
 
-  std::mt19937 rng(2024);
-  std::uniform_real_distribution<double> c1(-0.045, 0.045), c2(-0.035, 0.035), c2z(-0.06, 0.06);
+  seeded::Rng rng(2024);
   const DataPtr d(mj_makeData(m.get()));
   int touch[2] = {0, 0}, apart[2] = {0, 0}, between[2] = {0, 0};
   for (int i = 0; i < 400; ++i) {
     // The ball around the cube, centre outside it.
-    Vec3 p1(c1(rng), c1(rng), c1(rng));
+    const Vec3 p1 = seeded::uniform_vec3(rng, -0.045, 0.045);
     if (p1.cwiseAbs().maxCoeff() <= 0.03) continue;
     // The small ball around the capsule (axis z at x = 0.5), centre outside it.
-    Vec3 p2(c2(rng), c2(rng), c2z(rng));
+    const Vec3 p2 =
+        seeded::uniform_in_box(rng, Vec3(-0.035, -0.035, -0.06), Vec3(0.035, 0.035, 0.06));
     const double axis_gap = (p2 - Vec3(0, 0, std::clamp(p2[2], -0.03, 0.03))).norm();
     if (axis_gap <= 0.02) continue;
     mj_resetData(m.get(), d.get());
@@ -482,13 +486,14 @@ TEST(ServedPrimitives, BoxBoxPairsAreExactWithoutTriangles) {
                                 {});
   ASSERT_TRUE(m);
   const int a = geom_id(m.get(), "a"), b = geom_id(m.get(), "b");
-  std::mt19937 rng(99);
-  std::uniform_real_distribution<double> pos(-0.06, 0.06), q(-1, 1);
+  seeded::Rng rng(99);
   std::vector<std::pair<Vec3, std::array<double, 4>>> poses;
   for (int i = 0; i < 300; ++i) {
-    std::array<double, 4> quat{q(rng), q(rng), q(rng), q(rng)};
+    std::array<double, 4> quat{seeded::uniform(rng, -1, 1), seeded::uniform(rng, -1, 1),
+                               seeded::uniform(rng, -1, 1), seeded::uniform(rng, -1, 1)};
     mju_normalize4(quat.data());
-    poses.emplace_back(Vec3(pos(rng), pos(rng), pos(rng)), quat);
+    const Vec3 position = seeded::uniform_vec3(rng, -0.06, 0.06);
+    poses.emplace_back(position, quat);
   }
   const DataPtr d(mj_makeData(m.get()));
   const auto contacts_at = [&](std::size_t i) {

@@ -38,7 +38,7 @@ std::vector<ContactRay> contact_rays(const ObbTree& ta, const ObbTree& tb, doubl
        ++attempt) {
     ContactRay ray;
     ray.pose.R = random_rotation(rng);
-    ray.dir = random_unit_vector(rng);
+    ray.dir = random_unit(rng);
     ray.pose.t = ta.root().box.center - ray.pose.R * tb.root().box.center;
     double lo = -1, hi = 2 * size;
     for (int i = 0; i < 16 && lo < 0; ++i) {

@@ -14,69 +14,25 @@
 #include "graspcd/core/tolerances.h"
 #include "graspcd/core/tritri.h"
 #include "graspcd/exact/exact.h"
+#include "graspcd/support/seeded.h"
 
 namespace graspcd::study {
 namespace {
 
-using Rng = std::mt19937_64;
-constexpr double kPi = 3.14159265358979323846;
-
-// ---- Seeded scalars (the standard's distributions are not specified bit for bit) --------------
-//
-// Every draw is its own statement (or an element of a braced list, which C++ evaluates in order):
-// two draws in one function call's arguments or one operator's operands would come in an
-// unspecified order, and the cases would differ between compilers.
-
-double uniform01(Rng& rng) { return static_cast<double>(rng() >> 11) * 0x1p-53; }
-double uniform(Rng& rng, double lo, double hi) { return lo + (hi - lo) * uniform01(rng); }
-double log_uniform(Rng& rng, double lo, double hi) {
-  return std::exp(uniform(rng, std::log(lo), std::log(hi)));
-}
-int uniform_int(Rng& rng, int lo, int hi) {
-  return lo + static_cast<int>(rng() % static_cast<std::uint64_t>(hi - lo + 1));
-}
-double random_sign(Rng& rng) { return rng() & 1u ? 1.0 : -1.0; }
-bool chance(Rng& rng, double p) { return uniform01(rng) < p; }
-
-// Box and Muller 1958: a standard normal from two uniforms.
-double normal(Rng& rng) {
-  const double u1 = 1.0 - uniform01(rng);  // (0, 1]
-  const double u2 = uniform01(rng);
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
-}
-
-Vec3 random_unit(Rng& rng) {
-  Vec3 v;
-  do {
-    const double x = normal(rng);
-    const double y = normal(rng);
-    const double z = normal(rng);
-    v = Vec3(x, y, z);
-  } while (v.norm() < 1e-6);
-  return v.normalized();
-}
-
-// Shoemake 1992 (Graphics Gems III, "Uniform random rotations"): a normalised Gaussian
-// quaternion is uniform on S^3, and its matrix uniform on SO(3).
-Mat3 random_rotation(Rng& rng) {
-  Eigen::Quaterniond q;
-  do {
-    const double w = normal(rng);
-    const double x = normal(rng);
-    const double y = normal(rng);
-    const double z = normal(rng);
-    q = Eigen::Quaterniond(w, x, y, z);
-  } while (q.norm() < 1e-6);
-  return q.normalized().toRotationMatrix();
-}
-
-// Rodrigues' formula: the rotation by `angle` about the unit vector `axis`. About the z axis
-// its third row and column are exactly (0, 0, 1).
-Mat3 rotation_about(const Vec3& axis, double angle) {
-  Mat3 K;
-  K << 0, -axis[2], axis[1], axis[2], 0, -axis[0], -axis[1], axis[0], 0;
-  return Mat3::Identity() + std::sin(angle) * K + (1 - std::cos(angle)) * K * K;
-}
+// The project's one seeded generator (graspcd/support/seeded.h): its draws are sequenced and
+// its distributions written out, so the cases are the same on every compiler and standard library.
+using seeded::chance;
+using seeded::kPi;
+using seeded::log_uniform;
+using seeded::normal;
+using seeded::random_rotation;
+using seeded::random_sign;
+using seeded::random_unit;
+using seeded::Rng;
+using seeded::rotation_about;
+using seeded::uniform;
+using seeded::uniform01;
+using seeded::uniform_int;
 
 // The signed gap of a case, as a fraction of its size: touching (0) one time in eight, else
 // +-10^[log10 lo, log10 hi], each sign half the time.

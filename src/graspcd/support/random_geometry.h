@@ -1,104 +1,39 @@
-// Seeded random geometry shared by the tests: points, rotations, triangles, boxes, and adversarial
+// Seeded random geometry shared by the tests and the benchmarks: triangles, boxes, and adversarial
 // triangle pairs (touching, coplanar, near-coplanar, slivers, zero-area) built so that their
 // degeneracies are exact in double.
 //
-// Every generator takes the caller's std::mt19937_64, seeded explicitly by the test, so each run
-// sees the same numbers. Only <random>'s engine is relied on; the distributions and the shuffle are
-// written here (the standard's are not specified bit-for-bit across standard libraries).
+// Every generator takes the caller's generator (seeded.h, the project's one seeded generator),
+// seeded explicitly by the test, so each run on any compiler sees the same numbers.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <random>
 #include <utility>
 
 #include "graspcd/core/geometry.h"
 #include "graspcd/core/obb.h"
+#include "graspcd/support/seeded.h"
 
 namespace graspcd::testing {
 
-using Rng = std::mt19937_64;
-
-inline constexpr double kPi = 3.14159265358979323846;
-
-// ---- Scalars ----------------------------------------------------------------------------------
-
-// Uniform in [0, 1) with 53 random bits.
-inline double uniform01(Rng& rng) { return static_cast<double>(rng() >> 11) * 0x1p-53; }
-
-inline double uniform(Rng& rng, double lo, double hi) { return lo + (hi - lo) * uniform01(rng); }
-
-// Uniform integer in [lo, hi] (the modulo bias is below 2^-40 for the small ranges used here).
-inline std::int64_t uniform_int(Rng& rng, std::int64_t lo, std::int64_t hi) {
-  const auto span = static_cast<std::uint64_t>(hi - lo) + 1;
-  return lo + static_cast<std::int64_t>(rng() % span);
-}
-
-// Fisher-Yates shuffle with uniform_int (std::shuffle's use of the engine is unspecified).
-template <class T, std::size_t N>
-void shuffle(std::array<T, N>& a, Rng& rng) {
-  for (std::size_t i = N; i > 1; --i) {
-    std::swap(a[i - 1],
-              a[static_cast<std::size_t>(uniform_int(rng, 0, static_cast<std::int64_t>(i - 1)))]);
-  }
-}
-
-// Log-uniform in [lo, hi] (both > 0).
-inline double log_uniform(Rng& rng, double lo, double hi) {
-  return std::exp(uniform(rng, std::log(lo), std::log(hi)));
-}
-
-// Standard normal by Box-Muller.
-inline double normal(Rng& rng) {
-  const double u1 = 1.0 - uniform01(rng);  // (0, 1]
-  const double u2 = uniform01(rng);
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
-}
-
-// ---- Points, directions, rotations ------------------------------------------------------------
-
-inline Vec3 random_in_cube(Rng& rng, const Vec3& center, double half) {
-  return center +
-         Vec3(uniform(rng, -half, half), uniform(rng, -half, half), uniform(rng, -half, half));
-}
-
-inline Vec3 random_unit_vector(Rng& rng) {
-  Vec3 v;
-  do {
-    v = Vec3(normal(rng), normal(rng), normal(rng));
-  } while (v.norm() < 1e-6);
-  return v.normalized();
-}
-
-// A rotation uniform on SO(3): a normalised Gaussian quaternion (uniform on S^3) as a matrix.
-inline Mat3 random_rotation(Rng& rng) {
-  double w, x, y, z, n;
-  do {
-    w = normal(rng);
-    x = normal(rng);
-    y = normal(rng);
-    z = normal(rng);
-    n = std::sqrt(w * w + x * x + y * y + z * z);
-  } while (n < 1e-6);
-  w /= n;
-  x /= n;
-  y /= n;
-  z /= n;
-  Mat3 R;
-  R << 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),  //
-      2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),   //
-      2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y);
-  return R;
-}
-
-// Rotation by `angle` radians about the unit vector `axis` (Rodrigues).
-inline Mat3 rotation_about(const Vec3& axis, double angle) {
-  Mat3 K;
-  K << 0, -axis[2], axis[1], axis[2], 0, -axis[0], -axis[1], axis[0], 0;
-  return Mat3::Identity() + std::sin(angle) * K + (1 - std::cos(angle)) * K * K;
-}
+using seeded::chance;
+using seeded::kPi;
+using seeded::log_uniform;
+using seeded::normal;
+using seeded::random_in_cube;
+using seeded::random_rotation;
+using seeded::random_sign;
+using seeded::random_unit;
+using seeded::Rng;
+using seeded::rotation_about;
+using seeded::shuffle;
+using seeded::uniform;
+using seeded::uniform01;
+using seeded::uniform_in_box;
+using seeded::uniform_int;
+using seeded::uniform_vec3;
 
 // ---- Triangles and boxes ----------------------------------------------------------------------
 
@@ -254,8 +189,9 @@ inline double lattice_coordinate(Rng& rng, std::int64_t lo, std::int64_t hi) {
 // A point of the lattice box [lo, hi]^2 x {z}, coordinates multiples of `mult`.
 inline Vec3 lattice_point_2d(Rng& rng, std::int64_t lo, std::int64_t hi, std::int64_t mult,
                              double z) {
-  return Vec3(static_cast<double>(mult * uniform_int(rng, lo / mult, hi / mult)),
-              static_cast<double>(mult * uniform_int(rng, lo / mult, hi / mult)), z);
+  const std::int64_t x = mult * uniform_int(rng, lo / mult, hi / mult);
+  const std::int64_t y = mult * uniform_int(rng, lo / mult, hi / mult);
+  return Vec3(static_cast<double>(x), static_cast<double>(y), z);
 }
 
 // Twice the signed area of the canonical triangle's xy projection (exact: small integers).
@@ -276,8 +212,10 @@ inline Triangle lattice_triangle_2d(Rng& rng, std::int64_t lo, std::int64_t hi, 
 inline Vec3 centroid(const Triangle& t) { return (t.v[0] + t.v[1] + t.v[2]) / 3.0; }
 
 inline Vec3 lattice_point_3d(Rng& rng, std::int64_t lo, std::int64_t hi) {
-  return Vec3(lattice_coordinate(rng, lo, hi), lattice_coordinate(rng, lo, hi),
-              lattice_coordinate(rng, lo, hi));
+  const double x = lattice_coordinate(rng, lo, hi);
+  const double y = lattice_coordinate(rng, lo, hi);
+  const double z = lattice_coordinate(rng, lo, hi);
+  return Vec3(x, y, z);
 }
 
 // A point of closed triangle t that is a lattice point when t's coordinates are multiples of 6:
@@ -320,7 +258,9 @@ inline CanonicalPair canonical_pair(PairClass cls, Rng& rng) {
         do {
           t.v[0] = Vec3(static_cast<double>(a), lattice_coordinate(rng, 0, N), 0.0);
           for (int i = 1; i < 3; ++i) {
-            t.v[i] = Vec3(lattice_coordinate(rng, lo, hi), lattice_coordinate(rng, 0, N), 0.0);
+            const double x = lattice_coordinate(rng, lo, hi);
+            const double y = lattice_coordinate(rng, 0, N);
+            t.v[i] = Vec3(x, y, 0.0);
           }
         } while (area2_xy(t.v[0], t.v[1], t.v[2]) == 0.0);
         return t;
@@ -390,10 +330,13 @@ inline CanonicalPair canonical_pair(PairClass cls, Rng& rng) {
       const double xb = lattice_coordinate(rng, x0 + 1, N);
       const double yc = lattice_coordinate(rng, 0, y0 - 1);
       const double yd = lattice_coordinate(rng, y0 + 1, N);
-      const Vec3 r1(lattice_coordinate(rng, 0, N), lattice_coordinate(rng, 0, N),
-                    -lattice_coordinate(rng, 1, N));
-      const Vec3 r2(lattice_coordinate(rng, 0, N), lattice_coordinate(rng, 0, N),
-                    lattice_coordinate(rng, 1, N));
+      const double r1x = lattice_coordinate(rng, 0, N);
+      const double r1y = lattice_coordinate(rng, 0, N);
+      const double r1z = -lattice_coordinate(rng, 1, N);
+      const double r2x = lattice_coordinate(rng, 0, N);
+      const double r2y = lattice_coordinate(rng, 0, N);
+      const double r2z = lattice_coordinate(rng, 1, N);
+      const Vec3 r1(r1x, r1y, r1z), r2(r2x, r2y, r2z);
       const double lift = uniform_int(rng, 0, 2) == 0 ? fine_step(rng) : 0.0;
       const double y = static_cast<double>(y0), x = static_cast<double>(x0);
       c.t1 = Triangle{{Vec3(xa, y, 0), Vec3(xb, y, 0), r1}};
@@ -440,13 +383,13 @@ inline CanonicalPair canonical_pair(PairClass cls, Rng& rng) {
                          Vec3(x2, y1 + static_cast<double>(uniform_int(rng, 0, N)) + off, -z),
                          Vec3(x2 + thin, y1 + off, z)}};
       } else {  // an ordinary triangle whose plane passes near T1
-        c.t2 = Triangle{
-            {Vec3(lattice_coordinate(rng, 0, N), y1 - lattice_coordinate(rng, 0, 8),
-                  lattice_coordinate(rng, -N, N)),
-             Vec3(lattice_coordinate(rng, 0, N), y1 + thin * lattice_coordinate(rng, -2, 2),
-                  lattice_coordinate(rng, -N, N)),
-             Vec3(lattice_coordinate(rng, 0, N), y1 + lattice_coordinate(rng, 0, 8),
-                  lattice_coordinate(rng, -N, N))}};
+        const double dy[3] = {-lattice_coordinate(rng, 0, 8), thin * lattice_coordinate(rng, -2, 2),
+                              lattice_coordinate(rng, 0, 8)};
+        for (int i = 0; i < 3; ++i) {
+          const double x = lattice_coordinate(rng, 0, N);
+          const double zi = lattice_coordinate(rng, -N, N);
+          c.t2.v[i] = Vec3(x, y1 + dy[i], zi);
+        }
       }
       break;
     }
@@ -462,10 +405,12 @@ inline CanonicalPair canonical_pair(PairClass cls, Rng& rng) {
       if (d.isZero()) d = Vec3(1, 0, 0);
       Vec3 p;
       if (mode <= 1) {  // p + t d at t = 0, 1 or 2 lands on the special point
-        p = special_point(rng, c.t2) - d * static_cast<double>(uniform_int(rng, 0, 2));
+        const Vec3 on = special_point(rng, c.t2);
+        p = on - d * static_cast<double>(uniform_int(rng, 0, 2));
         c.expected = 1;
       } else if (mode == 2) {
-        p = lattice_point_2d(rng, -N / 2, 3 * N / 2, 1, 0.0) + Vec3(0, 0, fine_step(rng));
+        p = lattice_point_2d(rng, -N / 2, 3 * N / 2, 1, 0.0);
+        p[2] += fine_step(rng);
         c.expected = 0;
       } else if (mode == 3) {
         p = lattice_point_2d(rng, -N / 2, 3 * N / 2, 1, 0.0);
@@ -550,7 +495,7 @@ inline AdversarialPair make_adversarial(PairClass cls, Placement placement, doub
     }
     const double reach = far ? 1000 * size : 4 * size;
     Vec3 origin = random_in_cube(rng, Vec3::Zero(), reach);
-    if (far) origin += reach * random_unit_vector(rng);
+    if (far) origin += reach * random_unit(rng);
     for (auto& p : points) p = origin + R * (step * p);
   }
   out.t1 = Triangle{{points[0], points[1], points[2]}};
