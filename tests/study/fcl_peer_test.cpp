@@ -1,6 +1,6 @@
-// FCL, the study's peer (src/graspcd/peer/fcl_peer.h), against our tree query (graspcd::collide with
-// SatSeparator, all contacts, the exact triangle test at the leaves), on real and shipped meshes at
-// a few thousand poses around contact.
+// FCL, the study's peer (src/graspcd/peer/fcl_peer.h), against our tree query (graspcd::collide
+// with SatSeparator, all contacts, the exact triangle test at the leaves), on real and shipped
+// meshes at a few thousand poses around contact.
 //
 // FCL: Pan, Chitta, Manocha, "FCL: A General Purpose Library for Collision and Proximity Queries",
 // ICRA 2012. OBB trees: Gottschalk, Lin, Manocha, "OBBTree", SIGGRAPH 1996.
