@@ -22,6 +22,7 @@
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/text_input.h"
+#include "graspcd/version/envelope.h"
 #include "method.h"
 
 #ifndef GRASPCD_MJCF_DIR
@@ -270,11 +271,11 @@ void print_json(const bridge::GraspResult& r, const std::optional<ObjectScene>& 
                         {"ms_per_physics_step", r.step_wall_ms},
                         {"max_contacts", r.max_contacts},
                         {"contained_calls", r.contained_calls},
-                        {"nonfinite_skips", r.nonfinite_skips},
-                        {"warnings", r.warnings}};
+                        {"nonfinite_skips", r.nonfinite_skips}};
   if (object) {
     doc["object"] = {{"file", object->file}, {"scale", object->scale}, {"fitted", object->fitted}};
   }
+  add_envelope(doc);
   std::cout << doc.dump(2) << '\n';
 }
 
@@ -309,9 +310,6 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app) {
   }
   if (object && !temp) result.scene = object->scene;
   if (object && temp) result.scene = options.object;
-  // The registry's findings (e.g. an open mesh whose containment cannot be decided), one line
-  // each on stderr before the answer.
-  for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << '\n';
   if (options.json) {
     print_json(result, object);
   } else {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "command.h"
+#include "graspcd/core/warnings.h"
 #include "graspcd/io/text_input.h"
 #include "graspcd/version.h"
 #include "graspcd/version/provenance.h"
@@ -27,6 +28,15 @@ std::string version_text() {
          "\nEigen " + GRASPCD_EIGEN_VERSION + "\nCGAL " + GRASPCD_CGAL_VERSION +
          "\nbuild type: " + GRASPCD_BUILD_TYPE + "\ncompiler: " + GRASPCD_CXX_COMPILER +
          "\nflags: " + trimmed(GRASPCD_BUILD_FLAGS) + "\ncommit: " + graspcd::provenance().commit;
+}
+
+// The run's warnings (graspcd/core/warnings.h), one line each on stderr after the answers. The
+// JSON outputs carry the same list in their envelope.
+void print_warnings() {
+  std::cout.flush();
+  for (const graspcd::Warning& w : graspcd::warnings().list()) {
+    std::cerr << "warning: " << graspcd::warning_line(w) << '\n';
+  }
 }
 
 // Prints one line on stderr, after whatever answers are already on stdout.
@@ -72,7 +82,7 @@ int main(int argc, char** argv) {
       command.run();
       if (command.exit_code) exit_code = *command.exit_code;
     }
-    std::cout.flush();
+    print_warnings();
     return exit_code;
   } catch (const graspcd::io::InputError& e) {
     return report_error(e.what());

@@ -10,6 +10,7 @@
 #include "graspcd/core/clock.h"
 #include "graspcd/core/obb_tree.h"
 #include "graspcd/core/separators.h"
+#include "graspcd/core/warnings.h"
 #include "graspcd/exact/exact.h"
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/text_input.h"
@@ -81,11 +82,12 @@ void run_meshpair(MeshpairOptions& options) {
   const TriangleMesh mesh_a = io::load_mesh(options.mesh_a, &stats_a);
   auto mesh_b = std::make_shared<const TriangleMesh>(io::load_mesh(options.mesh_b, &stats_b));
   // Mesh hygiene findings that change the answers or MuJoCo's view of the file (dropped
-  // zero-area faces, an OBJ with several objects), one line each on stderr before the answers.
+  // zero-area faces, an OBJ with several objects), one line each in the run's warnings.
   for (const auto& [path, stats] :
        {std::pair{options.mesh_a, &stats_a}, {options.mesh_b, &stats_b}}) {
-    for (const std::string& w : io::mesh_warnings(path, *stats, true))
-      std::cerr << "warning: " << w << '\n';
+    for (const std::string& w : io::mesh_warnings(path, *stats, true)) {
+      warnings().add("mesh_hygiene", w);
+    }
   }
   MeshQuery query;
   if (options.exact) {

@@ -16,6 +16,7 @@
 #include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/registry.h"
 #include "graspcd/study/validate.h"
+#include "graspcd/version/envelope.h"
 #include "method.h"
 
 namespace graspcd::cli {
@@ -170,16 +171,17 @@ void print_json(const study::ValidationReport& report) {
                        {"seconds", t.seconds},
                        {"pairs", rows}});
   }
-  const nlohmann::json doc = {{"scene", report.scene},
-                              {"config", report.config},
-                              {"grasp_method", report.grasp_method},
-                              {"steps", report.steps},
-                              {"gripped", report.gripped},
-                              {"cgal", exact::cgal_version()},
-                              {"exact_seconds", report.exact_seconds},
-                              {"tester_seconds", report.tester_seconds},
-                              {"missed_any", report.missed_any()},
-                              {"methods", methods}};
+  nlohmann::json doc = {{"scene", report.scene},
+                        {"config", report.config},
+                        {"grasp_method", report.grasp_method},
+                        {"steps", report.steps},
+                        {"gripped", report.gripped},
+                        {"cgal", exact::cgal_version()},
+                        {"exact_seconds", report.exact_seconds},
+                        {"tester_seconds", report.tester_seconds},
+                        {"missed_any", report.missed_any()},
+                        {"methods", methods}};
+  add_envelope(doc);
   std::cout << doc.dump(2) << '\n';
 }
 

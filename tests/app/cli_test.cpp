@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "support/envelope_check.h"
 #include "support/temp_dir.h"
 
 namespace {
@@ -505,6 +506,7 @@ TEST_F(CliTest, GraspJsonIsOneDocumentWithTheSameRecords) {
   EXPECT_EQ(doc.at("first_contact").size(), 12u);
   EXPECT_TRUE(doc.at("first_contact").at("finger2_C").is_null());
   EXPECT_EQ(doc.at("held"), false);
+  graspcd::testing::expect_envelope(doc);
 }
 
 TEST_F(CliTest, GraspNativeHasNoDetectionTime) {
@@ -674,8 +676,10 @@ TEST_F(CliTest, GraspWithAnOpenMeshWarnsAndGoesOn) {
   EXPECT_NE(err[0].find("boundary edges"), std::string::npos) << err[0];
   EXPECT_NE(err[0].find("containment inside it is not checked"), std::string::npos) << err[0];
   const nlohmann::json doc = nlohmann::json::parse(r.out);
-  ASSERT_EQ(doc.at("warnings").size(), 1u);
-  EXPECT_EQ("warning: " + doc.at("warnings")[0].get<std::string>(), err[0]);
+  graspcd::testing::expect_envelope(doc, 1);
+  EXPECT_EQ(doc.at("warnings")[0].at("code"), "mesh_open");
+  EXPECT_EQ(doc.at("warnings")[0].at("count"), 1);
+  EXPECT_EQ("warning: " + doc.at("warnings")[0].at("message").get<std::string>(), err[0]);
   EXPECT_EQ(doc.at("steps").size(), 2u);
   EXPECT_EQ(doc.at("nonfinite_skips"), 0);
 }

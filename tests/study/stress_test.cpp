@@ -17,6 +17,7 @@
 #include <string>
 
 #include "graspcd/core/sat.h"
+#include "support/envelope_check.h"
 #include "support/temp_dir.h"
 #include "support/test_scale.h"
 
@@ -192,6 +193,7 @@ TEST_F(StressCommandTest, JsonHasEveryClassAndMethodAndExitsZero) {
   EXPECT_NE(r.err.find("[stress] box_scale: 20 cases"), std::string::npos) << "progress";
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["seed"], 3);
+  graspcd::testing::expect_envelope(j);
   EXPECT_EQ(j["contract_broken"], false);
   EXPECT_EQ(j["classes"].size(), stress_classes().size());
   EXPECT_EQ(j["rows"].size(), row_count());

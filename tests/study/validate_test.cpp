@@ -21,6 +21,7 @@
 #include "graspcd/core/sat.h"
 #include "graspcd/core/tree_query.h"
 #include "graspcd/io/mesh_io.h"
+#include "support/envelope_check.h"
 #include "support/temp_dir.h"
 #include "support/test_scale.h"
 
@@ -317,6 +318,7 @@ TEST_F(ValidateTest, CommandPrintsTheTableAndJsonAndExitsZeroOnTheBoxHand) {
               (dir_ / "cases").string() + "'");
   ASSERT_EQ(j.exit_code, 0) << j.err;
   const json doc = json::parse(j.out);
+  graspcd::testing::expect_envelope(doc);
   ASSERT_EQ(doc["methods"].size(), graspcd::all_methods().size() - 1);
   for (const json& m : doc["methods"]) {
     EXPECT_NE(m["method"], "perceptron-nodisp") << "--all-methods asks for it by name only";

@@ -9,6 +9,7 @@
 
 #include "graspcd/core/contact.h"
 #include "graspcd/core/mesh_hygiene.h"
+#include "graspcd/core/warnings.h"
 #include "graspcd/mujoco/collision.h"
 #include "graspcd/mujoco/primitives.h"
 
@@ -245,10 +246,10 @@ Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::st
   for (int g : served) {
     if (m->geom_margin[g] != 0) {
       const std::string gname = name_of(m, mjOBJ_GEOM, g);
-      warnings_.push_back(source + ": served geom " + std::to_string(g) +
-                          (gname.empty() ? "" : " '" + gname + "'") + " has margin " +
-                          std::to_string(m->geom_margin[g]) +
-                          "; served pairs report intersecting surfaces only (margin 0)");
+      warn("served_geom_margin", source + ": served geom " + std::to_string(g) +
+                                     (gname.empty() ? "" : " '" + gname + "'") + " has margin " +
+                                     std::to_string(m->geom_margin[g]) +
+                                     "; served pairs report intersecting surfaces only (margin 0)");
     }
   }
   // The path of each pair; trees for the geoms of pairs served by trees only: one per mesh, one
@@ -281,9 +282,10 @@ Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::st
               ids += (i ? ", " : "") + std::to_string(hygiene.dropped_faces[i]);
             }
             if (hygiene.dropped_faces.size() > 5) ids += ", ...";
-            warnings_.push_back(
-                source + ": " + what + ": dropped " + std::to_string(hygiene.dropped_faces.size()) +
-                " zero-area faces (MuJoCo faces " + ids + "; each spans a segment or a point)");
+            warn("mesh_zero_area_faces", source + ": " + what + ": dropped " +
+                                             std::to_string(hygiene.dropped_faces.size()) +
+                                             " zero-area faces (MuJoCo faces " + ids +
+                                             "; each spans a segment or a point)");
           }
           MeshTree built_tree = make_tree(tris);
           built_tree.source_face = std::move(hygiene.source_face);
@@ -320,10 +322,10 @@ Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::st
       const int mesh = m->geom_dataid[g];
       if (!warned.insert(mesh).second) continue;
       const std::string mname = name_of(m, mjOBJ_MESH, mesh);
-      warnings_.push_back(source + ": mesh " + std::to_string(mesh) +
-                          (mname.empty() ? "" : " '" + mname + "'") + " is " +
-                          t->closedness.describe() +
-                          "; containment inside it is not checked (surface contacts only)");
+      warn("mesh_open", source + ": mesh " + std::to_string(mesh) +
+                            (mname.empty() ? "" : " '" + mname + "'") + " is " +
+                            t->closedness.describe() +
+                            "; containment inside it is not checked (surface contacts only)");
     }
   }
 }
@@ -343,6 +345,11 @@ void Registry::add_pair(int g1, int g2) {
 
 void Registry::reset_detectors() {
   for (ServedPair& p : pairs_) p.detector->reset();
+}
+
+void Registry::warn(const std::string& code, const std::string& message) {
+  warnings_.push_back(message);
+  graspcd::warnings().add(code, message);
 }
 
 }  // namespace graspcd::bridge

@@ -194,6 +194,8 @@ class Registry {
   // closed (closedness welds MuJoCo's per-face vertices by position); a mesh with zero-area
   // faces, which its tree leaves out ("mesh N 'name': dropped K zero-area faces (MuJoCo faces
   // ...)"; MeshTree::source_face maps the rest).
+  // Each is also added to the process's sink (graspcd/core/warnings.h), which the command line
+  // prints and the JSON envelope carries.
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   BridgeStats& stats() { return stats_; }
@@ -231,6 +233,8 @@ class Registry {
   std::vector<const MeshTree*> geom_trees_;  // by geom id
   BridgeStats stats_;
   std::vector<std::string> warnings_;
+  // Adds a warning to warnings_ and to the process's sink under `code`.
+  void warn(const std::string& code, const std::string& message);
 };
 
 }  // namespace graspcd::bridge

@@ -15,6 +15,7 @@
 #include "graspcd/core/tritri.h"
 #include "graspcd/exact/exact.h"
 #include "graspcd/support/seeded.h"
+#include "graspcd/version/envelope.h"
 
 namespace graspcd::study {
 namespace {
@@ -774,13 +775,14 @@ std::string stress_json(const StressReport& report) {
                            {"perceptron_corner_factor", tol::kPerceptronCornerFactor},
                            {"perceptron_cap", tol::kPerceptronDefaultCap},
                            {"neurosat_switch", tol::kNeuroSatDefaultSwitch}};
-  const json j = {{"seed", report.seed},
-                  {"quick", report.quick},
-                  {"seconds", report.seconds},
-                  {"tolerances", tolerances},
-                  {"classes", classes},
-                  {"rows", rows},
-                  {"contract_broken", report.contract_broken()}};
+  json j = {{"seed", report.seed},
+            {"quick", report.quick},
+            {"seconds", report.seconds},
+            {"tolerances", tolerances},
+            {"classes", classes},
+            {"rows", rows},
+            {"contract_broken", report.contract_broken()}};
+  add_envelope(j);
   return j.dump(1) + "\n";
 }
 

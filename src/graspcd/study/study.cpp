@@ -26,6 +26,7 @@
 #include "graspcd/study/replay.h"
 #include "graspcd/study/trajectory.h"
 #include "graspcd/version.h"
+#include "graspcd/version/envelope.h"
 
 #ifndef GRASPCD_MJCF_DIR
 #error "GRASPCD_MJCF_DIR must name the repository's mjcf folder"
@@ -866,11 +867,13 @@ void run_study(const StudyOptions& options, const Log& log) {
     write_file(out / "box_hand.csv", box_csv(study["box_hand"]));
     write_trajectories(out / "trajectories", ex, recs, scenes, cache, box, log);
     study["seconds"] = seconds_since(start);
+    add_envelope(study);
     write_file(out / "study.json", study.dump(1) + "\n");
     log("wrote " + (out / "study.json").string() + ", table1.csv, box_hand.csv");
   }
   if (o.sweep) {
-    const json sweep = run_sweep(o, ex, recs, truths, cache, log);
+    json sweep = run_sweep(o, ex, recs, truths, cache, log);
+    add_envelope(sweep);
     const std::string base = o.shard ? "sweep.shard-" + std::to_string(o.shard->index) + "-of-" +
                                            std::to_string(o.shard->count)
                                      : std::string("sweep");
@@ -932,6 +935,7 @@ void merge_shards(const std::vector<std::string>& files, const std::string& out_
   merged["merged_from"] = files.size();
   const std::filesystem::path out(out_dir);
   std::filesystem::create_directories(out);
+  add_envelope(merged);
   write_file(out / "sweep.json", merged.dump(1) + "\n");
   write_file(out / "sweep.csv", sweep_csv(merged));
   log("merged " + std::to_string(files.size()) + " shards (" + std::to_string(n) +

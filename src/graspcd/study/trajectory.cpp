@@ -9,6 +9,7 @@
 
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/study/replay.h"
+#include "graspcd/version/envelope.h"
 
 namespace graspcd::study {
 
@@ -192,18 +193,19 @@ void write_trajectory(const std::string& path, const Recording& r, const MeshSce
   }
   json times_json = json::object();
   for (const auto& [method, ns] : times) times_json[method] = ns;
-  const json out = {{"schema", 1},
-                    {"name", r.name},
-                    {"scene", r.scene},
-                    {"recorded_with", r.native ? "native" : "bridge, " + r.grasp.method},
-                    {"grasp_steps", r.steps()},
-                    {"first_contact", r.grasp.first_contact},
-                    {"segment_names", bridge::finger_segment_names()},
-                    {"held", r.grasp.held},
-                    {"meshes", meshes},
-                    {"geoms", geoms},
-                    {"steps", steps},
-                    {"times_ns", times_json}};
+  json out = {{"schema", 1},
+              {"name", r.name},
+              {"scene", r.scene},
+              {"recorded_with", r.native ? "native" : "bridge, " + r.grasp.method},
+              {"grasp_steps", r.steps()},
+              {"first_contact", r.grasp.first_contact},
+              {"segment_names", bridge::finger_segment_names()},
+              {"held", r.grasp.held},
+              {"meshes", meshes},
+              {"geoms", geoms},
+              {"steps", steps},
+              {"times_ns", times_json}};
+  add_envelope(out);
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   std::error_code ec;
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);
