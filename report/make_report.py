@@ -608,6 +608,14 @@ def report(study, sweep, fig_dir, fig_rel, stress=None, perf=None):
     w(f"- Machine: {m['cpu']}, {m['cores']} cores, {mem}, {m['os']}, {m['kernel']}.")
     w(f"- Build: graspcd {b['graspcd']}, {b['build_type']}, {b['compiler']}, flags `{b['flags']}`;"
       f" MuJoCo {b['mujoco']}, Eigen {b['eigen']}, CGAL {b['cgal']}.")
+    # The envelope's provenance (docs/design.md, "The command line"): the commit the study's
+    # binary was built from, and whether its tree had uncommitted changes.
+    prov = study.get("graspcd")
+    if prov:
+        state = "with uncommitted changes" if prov["dirty"] else "clean tree"
+        w(f"- Commit: `{prov['commit']}` ({state}).")
+    else:
+        w("- Commit: not recorded (study.json written before graspcd 0.2.0).")
     jobs = study["table1"].get("jobs", 1)
     w(f"- Timing: every method replays the same recorded grasp steps {study['repeats']} times;"
       " times are medians with [min-max] over those repeats, wall clock of the queries alone"
@@ -642,10 +650,11 @@ def report(study, sweep, fig_dir, fig_rel, stress=None, perf=None):
     w("## Table 1: total detection time over all grasp steps (triangle hand)")
     w("")
     w(f"Mode: {t['mode']}, the exact triangle test at the leaves, the bridge's trees. Ours in ms,"
-      " median [min-max]; ratio to SAT in the same run; the paper's MATLAB seconds as ratios to"
-      " its SAT.")
+      " median [min-max]; ratio to SAT in the same run; the paper's MATLAB seconds (its Table 1)"
+      " with, in brackets, their ratio to its SAT.")
     w("")
-    head = "| method | " + " | ".join(f"{e} ms | {e} / SAT | paper / SAT" for e in t["examples"])
+    head = "| method | " + " | ".join(f"{e} ms | {e} / SAT | paper s [/ SAT]"
+                                     for e in t["examples"])
     w(head + " | answers = CGAL |")
     w("|---" * (1 + 3 * len(t["examples"]) + 1) + "|")
     for meth in t["methods"]:
@@ -654,7 +663,8 @@ def report(study, sweep, fig_dir, fig_rel, stress=None, perf=None):
             ratio = x["median_ms"] / sat["examples"][e]["median_ms"]
             paper = "-"
             if "paper_s" in meth and "paper_s" in sat:
-                paper = ratio_text(meth["paper_s"][e] / sat["paper_s"][e])
+                paper = (f"{meth['paper_s'][e]:.2f}"
+                         f" [{ratio_text(meth['paper_s'][e] / sat['paper_s'][e])}]")
             cells.append(f"{ms(x['median_ms'])} [{ms(x['min_ms'])}-{ms(x['max_ms'])}] |"
                          f" {ratio_text(ratio)} | {paper}")
         agree = all(x["agrees_with_cgal"] for x in meth["examples"])

@@ -13,6 +13,7 @@
 #include "graspcd/study/recording.h"
 #include "graspcd/study/replay.h"
 #include "support/command_test.h"
+#include "support/envelope_check.h"
 #include "support/test_scale.h"
 
 namespace {
@@ -34,6 +35,8 @@ TEST_F(StudyTest, QuickStudyWritesTheReportAndEveryMethodAgreesWithCgal) {
     EXPECT_GT(fs::file_size(out / f), 100u) << f;
 
   const json study = load(out / "study.json");
+  graspcd::testing::expect_envelope(study, -1);
+  graspcd::testing::expect_envelope(load(out / "sweep.json"), -1);
   ASSERT_EQ(study["recordings"].size(), 1u);
   const json& rec = study["recordings"][0];
   EXPECT_TRUE(rec["held"].get<bool>()) << "the recorded grasp lifts and holds the cup";
@@ -84,6 +87,10 @@ TEST_F(StudyTest, QuickStudyWritesTheReportAndEveryMethodAgreesWithCgal) {
   const std::string report = read_file(out / "REPORT.md");
   EXPECT_NE(report.find("## Table 1"), std::string::npos);
   EXPECT_NE(report.find(truth), std::string::npos) << "the report quotes CGAL's hash";
+  EXPECT_NE(report.find("- Commit: `" + graspcd::provenance().commit + "` ("), std::string::npos)
+      << "the report names the commit its study was built from";
+  // The paper's own seconds stand beside ours (its Table 1, SAT on example 1).
+  EXPECT_NE(report.find("| 75.18 [1] |"), std::string::npos);
   for (const char* f : {"fig13_time_per_step.png", "fig14_passes.png", "fig15_time_saved.png",
                         "table1_ratios.png", "sweep_pareto.png"}) {
     const fs::path png = out / "figures" / f;
