@@ -1,0 +1,138 @@
+#!/usr/bin/python3
+"""Are two runs' answers the same? Compares the JSON that graspcd wrote in two folders (or two
+files), after removing what a run may change without changing an answer: timings, the machine, the
+build and the provenance envelope.
+
+    /usr/bin/python3 study/compare_outputs.py BEFORE AFTER
+    /usr/bin/python3 study/compare_outputs.py --run GRASPCD OUT
+
+--run writes the answers a change must keep into OUT with the executable GRASPCD: `study --quick`
+(OUT/study/), `stress --quick --json` (OUT/stress.json) and `validate --json` of example1,
+example3, hand_boxes and hand_triangles (OUT/validate_SCENE.json). Run it with the executable
+before and after a change, then compare the two folders.
+
+BEFORE and AFTER are folders (every *.json below BEFORE is compared with the file of the same
+relative path below AFTER; a file missing from AFTER is a difference) or two JSON files. Removed
+before comparing, at any depth:
+  - timings: keys ending in _ms, _ns, _us, seconds or _wall_ms, and lists named repeats_ms or
+    step_ns_median; "detection_ns"-style counters of time;
+  - where and when it ran: "created", "machine", "build", "jobs";
+  - provenance: the envelope's "graspcd" object and its "warnings" array when empty (docs/design.md,
+    "The command line");
+  - absolute paths: a string with "/mjcf/" or "/data/" keeps only what follows the last such folder
+    (two checkouts in different places write the same scene).
+Numbers are compared exactly. Prints one line per difference (file, JSON path, both values) and
+a closing "N files compared, M differ" line; exit code 0 when every file matches, 1 otherwise, 2
+for bad arguments.
+"""
+
+import json
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+TIMING_KEY = re.compile(r"(_ms|_ns|_us|seconds|_wall_ms|^repeats_ms|^step_ns_median|_ns_.*)$")
+DROPPED_KEYS = {"created", "machine", "build", "jobs", "graspcd"}
+PATH_MARKERS = ("/mjcf/", "/data/")
+
+
+def normalise(value, top=False):
+    if isinstance(value, dict):
+        out = {}
+        for k, v in value.items():
+            if k in DROPPED_KEYS or TIMING_KEY.search(k):
+                continue
+            if top and k == "warnings" and v == []:
+                continue
+            out[k] = normalise(v)
+        return out
+    if isinstance(value, list):
+        return [normalise(v) for v in value]
+    if isinstance(value, str):
+        for marker in PATH_MARKERS:
+            i = value.rfind(marker)
+            if i >= 0:
+                return marker.strip("/") + "/" + value[i + len(marker):]
+    return value
+
+
+def diff(a, b, path, out, limit=20):
+    if len(out) >= limit:
+        return
+    if isinstance(a, dict) and isinstance(b, dict):
+        for k in sorted(set(a) | set(b)):
+            if k not in a or k not in b:
+                out.append(f"{path}/{k}: {'missing before' if k not in a else 'missing after'}")
+            else:
+                diff(a[k], b[k], f"{path}/{k}", out, limit)
+    elif isinstance(a, list) and isinstance(b, list):
+        if len(a) != len(b):
+            out.append(f"{path}: {len(a)} entries before, {len(b)} after")
+        for i, (x, y) in enumerate(zip(a, b)):
+            diff(x, y, f"{path}[{i}]", out, limit)
+    elif a != b or type(a) is not type(b):
+        out.append(f"{path}: {json.dumps(a)[:80]} before, {json.dumps(b)[:80]} after")
+
+
+def load(path):
+    with open(path, encoding="utf-8") as f:
+        return normalise(json.load(f), top=True)
+
+
+VALIDATED_SCENES = ("example1", "example3", "hand_boxes", "hand_triangles")
+
+
+def run_outputs(graspcd, out):
+    """Runs the commands whose answers a refactoring must keep; returns an exit code."""
+    mjcf = Path(__file__).resolve().parent.parent / "mjcf"
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    runs = [([graspcd, "study", "--quick", "--out", str(out / "study")], None),
+            ([graspcd, "stress", "--quick", "--json"], out / "stress.json")]
+    for scene in VALIDATED_SCENES:
+        runs.append(([graspcd, "validate", str(mjcf / f"{scene}.xml"), "--json",
+                      "--out", str(out / "validate_out")], out / f"validate_{scene}.json"))
+    for command, stdout_file in runs:
+        print("running " + " ".join(command[1:3]), file=sys.stderr)
+        with open(stdout_file, "w", encoding="utf-8") if stdout_file else open(
+                os.devnull, "w", encoding="utf-8") as stdout:
+            rc = subprocess.run(command, stdout=stdout, check=False).returncode
+        if rc != 0:
+            print(f"{' '.join(command)}: exit code {rc}", file=sys.stderr)
+            return 2
+    return 0
+
+
+def main(argv):
+    if len(argv) == 4 and argv[1] == "--run":
+        return run_outputs(argv[2], argv[3])
+    if len(argv) != 3:
+        print("usage: compare_outputs.py BEFORE AFTER | --run GRASPCD OUT", file=sys.stderr)
+        return 2
+    before, after = Path(argv[1]), Path(argv[2])
+    if before.is_dir() and after.is_dir():
+        pairs = [(p, after / p.relative_to(before)) for p in sorted(before.rglob("*.json"))]
+    elif before.is_file() and after.is_file():
+        pairs = [(before, after)]
+    else:
+        print(f"{argv[1]}, {argv[2]}: need two folders or two files", file=sys.stderr)
+        return 2
+    differing = 0
+    for b, a in pairs:
+        lines = []
+        if not a.exists():
+            lines.append("missing after")
+        else:
+            diff(load(b), load(a), "", lines)
+        if lines:
+            differing += 1
+            for line in lines:
+                print(f"{b.name}: {line}")
+    print(f"{len(pairs)} files compared, {differing} differ")
+    return 1 if differing else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
