@@ -9,6 +9,7 @@
 #include "command.h"
 #include "graspcd/core/warnings.h"
 #include "graspcd/io/text_input.h"
+#include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/version.h"
 #include "graspcd/version/provenance.h"
 
@@ -55,6 +56,8 @@ int report_error(const std::string& message) {
 
 int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
+  // MuJoCo's warnings go to the warning sink, never to stdout or MUJOCO_LOG.TXT.
+  graspcd::bridge::route_mujoco_warnings();
   CLI::App app{"graspcd: exact OBB-tree collision detection for robotic grasping.", "graspcd"};
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text(),

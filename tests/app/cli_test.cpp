@@ -684,6 +684,34 @@ TEST_F(CliTest, GraspWithAnOpenMeshWarnsAndGoesOn) {
   EXPECT_EQ(doc.at("nonfinite_skips"), 0);
 }
 
+// MuJoCo's own warnings (here a contact buffer too small for the grasp) go to stderr and the
+// JSON's warnings, never to stdout after the document or to MUJOCO_LOG.TXT.
+TEST_F(CliTest, MujocoWarningsGoToTheSinkNotToStdout) {
+  const std::string scene = copy_scene(dir_ / "s", "example1", "", "");
+  std::string xml = read_file(scene);
+  const std::string size = "<size nconmax=\"300\"";
+  ASSERT_NE(xml.find(size), std::string::npos);
+  xml.replace(xml.find(size), size.size(), "<size nconmax=\"1\"");
+  std::ofstream(scene, std::ios::trunc) << xml;
+  const fs::path log = fs::current_path() / "MUJOCO_LOG.TXT";  // where MuJoCo would append
+  fs::remove(log);
+  const Result r = run("grasp " + scene + " --max-steps 60 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);  // nothing after the document
+  graspcd::testing::expect_envelope(doc, -1);
+  bool buffer_full = false;
+  for (const nlohmann::json& w : doc.at("warnings")) {
+    if (w.at("code") == "mujoco_warning" &&
+        w.at("message").get<std::string>().find("contact buffer is full") != std::string::npos) {
+      buffer_full = true;
+      EXPECT_NE(r.err.find("warning: " + w.at("message").get<std::string>()), std::string::npos)
+          << r.err;
+    }
+  }
+  EXPECT_TRUE(buffer_full) << doc.at("warnings");
+  EXPECT_FALSE(fs::exists(log));
+}
+
 TEST_F(CliTest, GraspHelpDocumentsTheOutput) {
   const Result r = run("grasp --help");
   EXPECT_EQ(r.exit_code, 0);
