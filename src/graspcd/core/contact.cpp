@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <utility>
@@ -255,11 +256,16 @@ double cross2(const Point2& o, const Point2& a, const Point2& b) {
   return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
 }
 
-// Area of the convex hull of `pts` (Andrew's monotone chain, 1979).
-double hull_area(std::vector<Point2> pts) {
-  if (pts.size() < 3) return 0;
+// The convex hull of `pts` into `hull`, counter-clockwise, each corner once (Andrew's monotone
+// chain, 1979); collinear points give the segment's two ends. Sorts `pts` in place.
+void convex_hull(std::vector<Point2>& pts, std::vector<Point2>& hull) {
   std::sort(pts.begin(), pts.end());
-  std::vector<Point2> hull(2 * pts.size());
+  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+  hull.assign(2 * pts.size() + 1, Point2{});
+  if (pts.size() < 3) {
+    hull.assign(pts.begin(), pts.end());
+    return;
+  }
   std::size_t k = 0;
   for (const Point2& p : pts) {  // lower hull
     while (k >= 2 && cross2(hull[k - 2], hull[k - 1], p) <= 0) --k;
@@ -269,23 +275,50 @@ double hull_area(std::vector<Point2> pts) {
     while (k >= lower && cross2(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
     hull[k++] = pts[i];
   }
+  hull.resize(k - 1);  // the last point repeats the first
+}
+
+// The area of a convex polygon (shoelace); 0 for a point or a segment.
+double polygon_area(const std::vector<Point2>& h) {
   double twice = 0;
-  for (std::size_t i = 0; i + 1 < k; ++i) {
-    twice += hull[i][0] * hull[i + 1][1] - hull[i + 1][0] * hull[i][1];
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const Point2& a = h[i];
+    const Point2& b = h[(i + 1) % h.size()];
+    twice += a[0] * b[1] - b[0] * a[1];
   }
   return 0.5 * std::abs(twice);
 }
 
-// A vertex of a candidate's triangle on one geom, as the key that finds the candidates sharing it.
+// How much adding x enlarges the convex polygon h (counter-clockwise, or a segment taken as its
+// two directed edges): the triangles from x to the edges it sees, which lie outside h.
+double hull_gain(const std::vector<Point2>& h, const Point2& x) {
+  if (h.size() < 2) return 0;
+  double twice = 0;
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const double c = cross2(h[i], h[(i + 1) % h.size()], x);
+    if (c < 0) twice -= c;
+  }
+  return 0.5 * twice;
+}
+
+// A vertex of a candidate's triangle on one geom (side 0: geom1, 1: geom2), with the candidate.
+// Sorted, equal keys are the candidates that share the vertex.
 struct VertexKey {
   int side;
   std::array<double, 3> x;
-  bool operator<(const VertexKey& o) const { return side != o.side ? side < o.side : x < o.x; }
+  std::uint32_t candidate;
+  bool same_vertex(const VertexKey& o) const { return side == o.side && x == o.x; }
+  bool operator<(const VertexKey& o) const {
+    if (side != o.side) return side < o.side;
+    if (x != o.x) return x < o.x;
+    return candidate < o.candidate;
+  }
 };
 
-VertexKey vertex_key(int side, const Vec3& v) {
+VertexKey vertex_key(int side, const Vec3& v, std::size_t candidate) {
   // + 0.0 folds -0.0 into 0.0, which compare equal as coordinates.
-  return VertexKey{side, {v[0] + 0.0, v[1] + 0.0, v[2] + 0.0}};
+  return VertexKey{
+      side, {v[0] + 0.0, v[1] + 0.0, v[2] + 0.0}, static_cast<std::uint32_t>(candidate)};
 }
 
 // Chooses at most `k` of the patch's members (deepest first in `members`; q their positions in
@@ -303,8 +336,7 @@ std::vector<std::size_t> choose_patch_points(const std::vector<std::size_t>& mem
   };
   double extent2 = 0;  // squared largest distance from the deepest point: the patch's scale
   for (std::size_t i = 1; i < members.size(); ++i) extent2 = std::max(extent2, dist2(i, 0));
-  std::vector<Point2> hull_pts = {q[0]};
-  double area = 0;
+  std::vector<Point2> chosen_pts = {q[0]}, hull = {q[0]};
   while (chosen.size() < k) {
     // The largest hull-area gain; members are deepest first, so the strict > keeps ties deepest.
     std::size_t best = members.size();
@@ -312,9 +344,7 @@ std::vector<std::size_t> choose_patch_points(const std::vector<std::size_t>& mem
     if (chosen.size() >= 2) {
       for (std::size_t i = 0; i < members.size(); ++i) {
         if (taken[i]) continue;
-        hull_pts.push_back(q[i]);
-        const double gain = hull_area(hull_pts) - area;
-        hull_pts.pop_back();
+        const double gain = hull_gain(hull, q[i]);
         if (gain > best_gain) {
           best_gain = gain;
           best = i;
@@ -338,8 +368,9 @@ std::vector<std::size_t> choose_patch_points(const std::vector<std::size_t>& mem
     if (best == members.size()) break;  // every other member sits on a chosen point
     taken[best] = true;
     chosen.push_back(best);
-    hull_pts.push_back(q[best]);
-    area = hull_area(hull_pts);
+    chosen_pts.push_back(q[best]);
+    std::vector<Point2> sorted = chosen_pts;
+    convex_hull(sorted, hull);
   }
   return chosen;
 }
@@ -363,15 +394,29 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
     return candidates[a].depth > candidates[b].depth;
   });
 
-  // Which candidates share each triangle vertex, on geom1 (side 0) and on geom2 (side 1).
-  std::map<VertexKey, std::vector<std::size_t>> sharing;
+  // Which candidates share each triangle vertex, on geom1 (side 0) and on geom2 (side 1): the
+  // keys sorted, and each candidate's six vertices as the start of their run of equal keys.
+  thread_local std::vector<VertexKey> keys;
+  thread_local std::vector<std::uint32_t> run_of;  // 6 * candidate + k -> start of its run
+  thread_local std::vector<std::uint32_t> filled;  // per candidate: entries of run_of set
+  keys.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    for (const Vec3& v : faces_a[i].v) sharing[vertex_key(0, v)].push_back(i);
-    for (const Vec3& v : faces_b[i].v) sharing[vertex_key(1, v)].push_back(i);
+    for (const Vec3& v : faces_a[i].v) keys.push_back(vertex_key(0, v, i));
+    for (const Vec3& v : faces_b[i].v) keys.push_back(vertex_key(1, v, i));
+  }
+  std::sort(keys.begin(), keys.end());
+  run_of.assign(6 * n, 0);
+  filled.assign(n, 0);
+  for (std::size_t r = 0, begin = 0; r < keys.size(); ++r) {
+    if (r > 0 && !keys[r].same_vertex(keys[r - 1])) begin = r;
+    const std::uint32_t c = keys[r].candidate;
+    run_of[6 * c + filled[c]++] = static_cast<std::uint32_t>(begin);
   }
 
   // 1. Patches, grown breadth-first from the deepest unassigned candidate.
   std::vector<int> patch_of(n, -1);
+  thread_local std::vector<int> run_scanned;  // by run start: the last patch that scanned it
+  run_scanned.assign(keys.size(), -1);
   for (std::size_t seed : order) {
     if (patch_of[seed] >= 0) continue;
     const int id = static_cast<int>(out.patches.size());
@@ -381,15 +426,19 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
     std::vector<std::size_t> queue = {seed};
     for (std::size_t head = 0; head < queue.size(); ++head) {
       const std::size_t i = queue[head];
-      for (int side = 0; side < 2; ++side) {
-        for (const Vec3& v : (side == 0 ? faces_a[i] : faces_b[i]).v) {
-          for (std::size_t j : sharing[vertex_key(side, v)]) {
-            if (patch_of[j] >= 0 || candidates[j].normal.dot(seed_normal) < options.patch_cosine) {
-              continue;
-            }
-            patch_of[j] = id;
-            queue.push_back(j);
+      for (std::size_t k = 0; k < 6; ++k) {
+        // A run scanned once for this patch needs no second scan: whom it admits depends only on
+        // the seed's normal.
+        const std::size_t begin = run_of[6 * i + k];
+        if (run_scanned[begin] == id) continue;
+        run_scanned[begin] = id;
+        for (std::size_t r = begin; r < keys.size() && keys[r].same_vertex(keys[begin]); ++r) {
+          const std::size_t j = keys[r].candidate;
+          if (patch_of[j] >= 0 || candidates[j].normal.dot(seed_normal) < options.patch_cosine) {
+            continue;
           }
+          patch_of[j] = id;
+          queue.push_back(j);
         }
       }
     }
@@ -422,12 +471,13 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
     for (std::size_t i : patch.members) {
       q.push_back({candidates[i].pos.dot(u), candidates[i].pos.dot(w)});
     }
-    std::vector<Point2> kept;
+    std::vector<Point2> kept, hull;
     for (std::size_t pos : choose_patch_points(patch.members, q, per_patch)) {
       patch.selected.push_back(patch.members[pos]);
       kept.push_back(q[pos]);
     }
-    patch.area = hull_area(kept);
+    convex_hull(kept, hull);
+    patch.area = polygon_area(hull);
   }
   std::stable_sort(out.patches.begin(), out.patches.end(),
                    [](const ContactPatch& a, const ContactPatch& b) { return a.depth > b.depth; });
