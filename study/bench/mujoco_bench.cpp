@@ -237,6 +237,49 @@ void BM_NoopDelegated(benchmark::State& state) {
   mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH] = saved;
 }
 
+// Whole grasps, as users run them (issue 18): the scene's grasp (close, squeeze, settle, lift,
+// hold; graspcd/grasp/grasp.h) from its start, every physics step in sequence, served or native.
+// The time is the grasp driver's wall clock of its physics steps alone (mj_step1, control,
+// mj_step2; GraspResult::step_wall_ms), so loading the model and building the trees are not in
+// it, and any state carried from step to step pays its way. One iteration is one whole grasp;
+// the reported time is per physics step. Counters: physics steps, most finger-object contacts
+// in one step, and whether the object was held.
+void whole_grasp(benchmark::State& state, const std::string& scene, bool native) {
+  graspcd::bridge::GraspOptions options;
+  options.native = native;
+  long steps = 0;
+  graspcd::bridge::GraspResult r;
+  for (auto _ : state) {
+    r = graspcd::bridge::run_grasp(kMjcf + "/" + scene, options);
+    state.SetIterationTime(r.step_wall_ms / 1e3);  // seconds per physics step
+    steps = r.physics_steps;
+  }
+  state.counters["physics_steps"] = static_cast<double>(steps);
+  state.counters["max_contacts"] = r.max_contacts;
+  state.counters["held"] = r.held ? 1 : 0;
+}
+
+// The grasps of examples 1-3, the triangle hand and a real Robotiq scene (whose meshes come from
+// ../shared/models).
+const char* const kGraspScenes[] = {"example1.xml", "example2.xml", "example3.xml",
+                                    "hand_triangles.xml", "real_robotiq_cup.xml"};
+
+void register_whole_grasps() {
+  for (const char* scene : kGraspScenes) {
+    const std::string name = std::string(scene).substr(0, std::string(scene).size() - 4);
+    for (const bool native : {true, false}) {
+      benchmark::RegisterBenchmark(
+          ("BM_WholeGrasp/" + name + (native ? "/native" : "/served")).c_str(),
+          [scene, native](benchmark::State& st) { whole_grasp(st, scene, native); })
+          ->UseManualTime()
+          ->Iterations(1)
+          ->Unit(benchmark::kMicrosecond);
+    }
+  }
+}
+
+const bool kRegistered = (register_whole_grasps(), true);
+
 BENCHMARK(BM_StepPlain)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepInstalledNoRegistry)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepInstalledOtherModel)->Unit(benchmark::kMicrosecond);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <set>
 
+#include "graspcd/core/tritri.h"
 #include "graspcd/support/meshes.h"
 
 namespace graspcd {
@@ -150,6 +151,151 @@ TEST(SharpEdges, BoxEdgesAreSharpDiagonalsAndSmoothSurfacesAreNot) {
   for (std::uint8_t m : sharp_edge_masks(faces)) EXPECT_EQ(m, 0);
   // An open triangle: every edge is a boundary.
   EXPECT_EQ(sharp_edge_masks({tri({0, 0, 0}, {1, 0, 0}, {0, 1, 0})})[0], 7);
+}
+
+}  // namespace
+}  // namespace graspcd
+
+// ---- The contact manifold
+// ------------------------------------------------------------------------
+
+namespace graspcd {
+namespace {
+
+// The candidates of two meshes, B placed in A's frame by `pose`: every intersecting triangle pair
+// (brute force, in (a, b) order), its contact, and the two faces (B's in its own frame).
+struct Candidates {
+  std::vector<TriContact> contacts;
+  std::vector<Triangle> faces_a, faces_b;
+};
+
+Candidates candidates_of(const TriangleMesh& ma, const TriangleMesh& mb, const Pose& pose) {
+  std::vector<Triangle> a, b_local;
+  for (std::size_t f = 0; f < ma.faces.size(); ++f) a.push_back(ma.triangle(f));
+  for (std::size_t f = 0; f < mb.faces.size(); ++f) b_local.push_back(mb.triangle(f));
+  const std::vector<Triangle> b = posed_triangles(mb, pose);
+  const std::vector<std::uint8_t> sharp_a = sharp_edge_masks(a),
+                                  sharp_b = sharp_edge_masks(b_local);
+  Candidates c;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      if (!tri_tri_intersect(a[i], b[j])) continue;
+      c.contacts.push_back(
+          triangle_pair_contact(a[i], b[j], 1.0, Vec3::UnitZ(), sharp_a[i], sharp_b[j]));
+      c.faces_a.push_back(a[i]);
+      c.faces_b.push_back(b_local[j]);
+    }
+  }
+  return c;
+}
+
+Pose at(const Vec3& t) {
+  Pose p;
+  p.R = Mat3::Identity();
+  p.t = t;
+  return p;
+}
+
+// Every kept contact carries its patch's normal, and the pair keeps at most its budget.
+void expect_consistent(const ContactManifold& m, std::size_t budget) {
+  EXPECT_LE(m.contacts.size(), budget);
+  for (const TriContact& c : m.contacts) {
+    bool in_a_patch = false;
+    for (const ContactPatch& p : m.patches) in_a_patch |= c.normal == p.normal;
+    EXPECT_TRUE(in_a_patch);
+    EXPECT_GE(c.depth, 0.0);
+  }
+}
+
+// A U (arms' inner faces at x = +-2 cm) pinching a wall 4.1 cm wide: the wall enters each arm
+// 0.5 mm. One patch per side, the normals opposite (from the U into the wall), each 0.5 mm deep.
+TEST(ContactManifold, APinchOfAThinWallGivesTwoPatches) {
+  const TriangleMesh u = testing::make_u_mesh(0.03, 0.04, 0.01, 0.01);
+  const TriangleMesh wall = testing::make_box_mesh(0.0205, 0.01, 0.005);
+  const Candidates c = candidates_of(u, wall, at(Vec3(0, 0.025, 0)));
+  ASSERT_GT(c.contacts.size(), 8u) << "enough candidates to need a reduction";
+  const ContactManifold m = build_contact_manifold(c.contacts, c.faces_a, c.faces_b);
+  ASSERT_EQ(m.patches.size(), 2u);
+  std::set<int> sides;
+  for (const ContactPatch& p : m.patches) {
+    EXPECT_GT(std::abs(p.normal.x()), 0.999) << p.normal.transpose();
+    sides.insert(p.normal.x() > 0 ? 1 : -1);
+    EXPECT_NEAR(p.depth, 0.0005, 1e-9);
+    EXPECT_EQ(p.selected.size(), 4u);
+  }
+  EXPECT_EQ(sides.size(), 2u) << "one patch on each side of the wall";
+  ASSERT_EQ(m.contacts.size(), 8u);
+  // The first two contacts are the two patches' deepest points.
+  EXPECT_LT(m.contacts[0].normal.dot(m.contacts[1].normal), -0.99);
+  expect_consistent(m, 8);
+}
+
+// A finger segment (a 1 cm cube) pushed into the inner corner of the U, 0.5 mm into the floor
+// (normal +y from the U) and into the right arm (normal -x): two patches.
+TEST(ContactManifold, ASegmentTouchingTwoWallsOfTheCBlockGivesTwoPatches) {
+  const TriangleMesh u = testing::make_u_mesh(0.03, 0.04, 0.01, 0.01);
+  const TriangleMesh cube = testing::make_box_mesh(0.005, 0.005, 0.005);
+  const Candidates c = candidates_of(u, cube, at(Vec3(0.0155, 0.0145, 0)));
+  const ContactManifold m = build_contact_manifold(c.contacts, c.faces_a, c.faces_b);
+  ASSERT_EQ(m.patches.size(), 2u);
+  bool floor = false, arm = false;
+  for (const ContactPatch& p : m.patches) {
+    floor |= p.normal.y() > 0.999;
+    arm |= p.normal.x() < -0.999;
+    EXPECT_NEAR(p.depth, 0.0005, 1e-9);
+  }
+  EXPECT_TRUE(floor && arm);
+  expect_consistent(m, 8);
+}
+
+// A small box resting 0.5 mm deep on a large one, face on face: one patch along +z, four points
+// spanning most of the small box's 2 x 2 cm footprint.
+TEST(ContactManifold, AFlatFaceOnAFlatFaceGivesOnePatch) {
+  const TriangleMesh big = testing::make_box_mesh(0.02, 0.02, 0.01);
+  const TriangleMesh small = testing::make_box_mesh(0.01, 0.01, 0.01);
+  const Candidates c = candidates_of(big, small, at(Vec3(0.003, 0.002, 0.0195)));
+  const ContactManifold m = build_contact_manifold(c.contacts, c.faces_a, c.faces_b);
+  ASSERT_EQ(m.patches.size(), 1u);
+  EXPECT_GT(m.patches[0].normal.z(), 0.999);
+  ASSERT_EQ(m.contacts.size(), 4u);
+  EXPECT_GT(m.patches[0].area, 0.5 * 0.02 * 0.02);
+  for (const TriContact& k : m.contacts) EXPECT_NEAR(k.depth, 0.0005, 1e-9);
+  expect_consistent(m, 8);
+}
+
+// The budgets: caps per patch and per pair are honoured, and with more patches than the pair's
+// cap the deepest patches keep their deepest points.
+TEST(ContactManifold, ManyPatchesKeepTheDeepestPatchesFirst) {
+  std::vector<TriContact> cs;
+  std::vector<Triangle> fa, fb;
+  for (int i = 0; i < 10; ++i) {  // ten separate spots, no shared vertices, depths 1..10 mm
+    const Vec3 o(0.1 * i, 0, 0);
+    cs.push_back(TriContact{o, Vec3::UnitZ(), 0.001 * (i + 1)});
+    fa.push_back(tri(o, o + Vec3(0.01, 0, 0), o + Vec3(0, 0.01, 0)));
+    fb.push_back(tri(o + Vec3(0, 0, 1), o + Vec3(0.01, 0, 1), o + Vec3(0, 0.01, 1)));
+  }
+  const ContactManifold m = build_contact_manifold(cs, fa, fb);
+  ASSERT_EQ(m.patches.size(), 10u);
+  ASSERT_EQ(m.contacts.size(), 8u);
+  for (int k = 0; k < 8; ++k) EXPECT_DOUBLE_EQ(m.contacts[k].depth, 0.001 * (10 - k));
+  ManifoldOptions two;
+  two.max_per_pair = 2;
+  EXPECT_EQ(build_contact_manifold(cs, fa, fb, two).contacts.size(), 2u);
+}
+
+// The same input gives the same manifold, bit for bit, and the empty input an empty one.
+TEST(ContactManifold, IsDeterministic) {
+  const TriangleMesh u = testing::make_u_mesh(0.03, 0.04, 0.01, 0.01);
+  const TriangleMesh wall = testing::make_box_mesh(0.0205, 0.01, 0.005);
+  const Candidates c = candidates_of(u, wall, at(Vec3(0.0001, 0.025, 0.0002)));
+  const ContactManifold m1 = build_contact_manifold(c.contacts, c.faces_a, c.faces_b);
+  const ContactManifold m2 = build_contact_manifold(c.contacts, c.faces_a, c.faces_b);
+  ASSERT_EQ(m1.contacts.size(), m2.contacts.size());
+  for (std::size_t i = 0; i < m1.contacts.size(); ++i) {
+    EXPECT_EQ(m1.contacts[i].pos, m2.contacts[i].pos);
+    EXPECT_EQ(m1.contacts[i].depth, m2.contacts[i].depth);
+  }
+  EXPECT_TRUE(build_contact_manifold({}, {}, {}).contacts.empty());
 }
 
 }  // namespace

@@ -80,16 +80,27 @@ TEST(GlobMatch, StarMatchesAnyRunAndOtherCharactersThemselves) {
 TEST(RegistryConfig, ParsesEveryField) {
   const RegistryConfig c = parse_registry_config(
       R"({"method": "neurosat", "cap": 900, "switch": 40, "cache_slots": 64, "max_depth": 0.002,
-          "pairs": [{"a": "finger*", "b": "geom:cup"}]})",
+          "max_contacts": 12, "max_patch_contacts": 3,
+          "pairs": [{"a": "finger*", "b": "geom:cup"},
+                    {"a": "palm", "b": "cup", "max_contacts": 2, "max_patch_contacts": 1}]})",
       "x.json");
   EXPECT_EQ(c.method, Method::kNeuroSat);
   EXPECT_EQ(c.detector.cap, 900);
   EXPECT_EQ(c.detector.switch_passes, 40);
   EXPECT_EQ(c.detector.cache_slots, 64u);
   EXPECT_DOUBLE_EQ(c.max_depth, 0.002);
-  ASSERT_EQ(c.patterns.size(), 1u);
+  EXPECT_EQ(c.manifold.max_per_pair, 12);
+  EXPECT_EQ(c.manifold.max_per_patch, 3);
+  ASSERT_EQ(c.patterns.size(), 2u);
   EXPECT_EQ(c.patterns[0].a, "finger*");
   EXPECT_EQ(c.patterns[0].b, "geom:cup");
+  EXPECT_FALSE(c.patterns[0].max_contacts.has_value());
+  EXPECT_EQ(c.patterns[1].max_contacts, 2);
+  EXPECT_EQ(c.patterns[1].max_patch_contacts, 1);
+  // The defaults (tolerances.h): 4 per patch, 8 per pair.
+  const RegistryConfig d = parse_registry_config(R"({"pairs": []})", "d.json");
+  EXPECT_EQ(d.manifold.max_per_patch, 4);
+  EXPECT_EQ(d.manifold.max_per_pair, 8);
 }
 
 // Each bad config gives one line that starts with the config's name.
@@ -105,6 +116,11 @@ TEST(RegistryConfig, ErrorsAreOneLineAndNameTheSource) {
            R"([1, 2])",                             // not an object
            R"({"max_depth": 1e999, "pairs": []})",  // overflow: nlohmann's out_of_range 406
            R"({"cap": -1e400, "pairs": []})",
+           R"({"max_contacts": 0, "pairs": []})",                       // below 1
+           R"({"max_contacts": 51, "pairs": []})",                      // above mjMAXCONPAIR
+           R"({"max_patch_contacts": 2.5, "pairs": []})",               // not an integer
+           R"({"pairs": [{"a": "x", "b": "y", "max_contacts": -3}]})",  // per pair, below 1
+           R"({"pairs": [{"a": "x", "b": "y", "colour": 1}]})",         // unknown pair field
        }) {
     try {
       parse_registry_config(bad, "cfg/hand.json");
@@ -164,6 +180,19 @@ TEST_F(RegistryTest, DuplicatePairsCollapse) {
   c.geom_pairs = {{geom("marble"), geom("cup")}};
   const Registry r(model_.get(), c);
   EXPECT_EQ(r.pairs().size(), 2u);  // (f1, f2) and (cup, marble)
+  // Budgets: the first entry to register a pair decides.
+  for (const ServedPair& p : r.pairs()) EXPECT_EQ(p.manifold.max_per_pair, 8);
+  c.patterns[1].max_contacts = 3;
+  c.patterns[2].max_contacts = 5;
+  c.patterns[2].max_patch_contacts = 2;
+  const Registry budgets(model_.get(), c);
+  const ServedPair& fingers =
+      budgets.pairs()[static_cast<std::size_t>(budgets.find_pair(geom("f1_a"), geom("f2_a")))];
+  const ServedPair& marble =
+      budgets.pairs()[static_cast<std::size_t>(budgets.find_pair(geom("cup"), geom("marble")))];
+  EXPECT_EQ(fingers.manifold.max_per_pair, 8) << "registered first by the first entry";
+  EXPECT_EQ(marble.manifold.max_per_pair, 5);
+  EXPECT_EQ(marble.manifold.max_per_patch, 2);
   EXPECT_EQ(r.tree_count(), 3u);
   // The marble has a margin: one warning, naming it.
   ASSERT_EQ(r.warnings().size(), 1u);

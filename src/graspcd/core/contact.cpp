@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <utility>
@@ -239,6 +240,266 @@ std::vector<std::uint8_t> sharp_edge_masks(const std::vector<Triangle>& faces) {
     for (const auto& [f, k] : users) masks[f] = static_cast<std::uint8_t>(masks[f] | (1u << k));
   }
   return masks;
+}
+
+}  // namespace graspcd
+
+// ---- The contact manifold
+// -------------------------------------------------------------------------
+
+namespace graspcd {
+namespace {
+
+using Point2 = std::array<double, 2>;
+
+double cross2(const Point2& o, const Point2& a, const Point2& b) {
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+// The convex hull of `pts` into `hull`, counter-clockwise, each corner once (Andrew's monotone
+// chain, 1979); collinear points give the segment's two ends. Sorts `pts` in place.
+void convex_hull(std::vector<Point2>& pts, std::vector<Point2>& hull) {
+  std::sort(pts.begin(), pts.end());
+  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+  hull.assign(2 * pts.size() + 1, Point2{});
+  if (pts.size() < 3) {
+    hull.assign(pts.begin(), pts.end());
+    return;
+  }
+  std::size_t k = 0;
+  for (const Point2& p : pts) {  // lower hull
+    while (k >= 2 && cross2(hull[k - 2], hull[k - 1], p) <= 0) --k;
+    hull[k++] = p;
+  }
+  for (std::size_t i = pts.size() - 1, lower = k + 1; i-- > 0;) {  // upper hull
+    while (k >= lower && cross2(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
+    hull[k++] = pts[i];
+  }
+  hull.resize(k - 1);  // the last point repeats the first
+}
+
+// The area of a convex polygon (shoelace); 0 for a point or a segment.
+double polygon_area(const std::vector<Point2>& h) {
+  double twice = 0;
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const Point2& a = h[i];
+    const Point2& b = h[(i + 1) % h.size()];
+    twice += a[0] * b[1] - b[0] * a[1];
+  }
+  return 0.5 * std::abs(twice);
+}
+
+// How much adding x enlarges the convex polygon h (counter-clockwise, or a segment taken as its
+// two directed edges): the triangles from x to the edges it sees, which lie outside h.
+double hull_gain(const std::vector<Point2>& h, const Point2& x) {
+  if (h.size() < 2) return 0;
+  double twice = 0;
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const double c = cross2(h[i], h[(i + 1) % h.size()], x);
+    if (c < 0) twice -= c;
+  }
+  return 0.5 * twice;
+}
+
+// A vertex of a candidate's triangle on one geom (side 0: geom1, 1: geom2), with the candidate.
+// Sorted, equal keys are the candidates that share the vertex.
+struct VertexKey {
+  int side;
+  std::array<double, 3> x;
+  std::uint32_t candidate;
+  bool same_vertex(const VertexKey& o) const { return side == o.side && x == o.x; }
+  bool operator<(const VertexKey& o) const {
+    if (side != o.side) return side < o.side;
+    if (x != o.x) return x < o.x;
+    return candidate < o.candidate;
+  }
+};
+
+VertexKey vertex_key(int side, const Vec3& v, std::size_t candidate) {
+  // + 0.0 folds -0.0 into 0.0, which compare equal as coordinates.
+  return VertexKey{
+      side, {v[0] + 0.0, v[1] + 0.0, v[2] + 0.0}, static_cast<std::uint32_t>(candidate)};
+}
+
+// Chooses at most `k` of the patch's members (deepest first in `members`; q their positions in
+// the patch plane) by the rule of build_contact_manifold, step 2. Returns positions in `members`.
+std::vector<std::size_t> choose_patch_points(const std::vector<std::size_t>& members,
+                                             const std::vector<Point2>& q, std::size_t k) {
+  std::vector<std::size_t> chosen;  // positions in `members`
+  if (members.empty() || k == 0) return chosen;
+  chosen.push_back(0);
+  std::vector<bool> taken(members.size(), false);
+  taken[0] = true;
+  const auto dist2 = [&](std::size_t a, std::size_t b) {
+    const double dx = q[a][0] - q[b][0], dy = q[a][1] - q[b][1];
+    return dx * dx + dy * dy;
+  };
+  double extent2 = 0;  // squared largest distance from the deepest point: the patch's scale
+  for (std::size_t i = 1; i < members.size(); ++i) extent2 = std::max(extent2, dist2(i, 0));
+  std::vector<Point2> chosen_pts = {q[0]}, hull = {q[0]};
+  while (chosen.size() < k) {
+    // The largest hull-area gain; members are deepest first, so the strict > keeps ties deepest.
+    std::size_t best = members.size();
+    double best_gain = 0;
+    if (chosen.size() >= 2) {
+      for (std::size_t i = 0; i < members.size(); ++i) {
+        if (taken[i]) continue;
+        const double gain = hull_gain(hull, q[i]);
+        if (gain > best_gain) {
+          best_gain = gain;
+          best = i;
+        }
+      }
+      if (best_gain <= tol::kManifoldFlatArea * extent2) best = members.size();
+    }
+    if (best == members.size()) {
+      // The second point, or collinear points: the member farthest from the chosen ones.
+      double best_d2 = 0;
+      for (std::size_t i = 0; i < members.size(); ++i) {
+        if (taken[i]) continue;
+        double d2 = std::numeric_limits<double>::infinity();
+        for (std::size_t c : chosen) d2 = std::min(d2, dist2(i, c));
+        if (d2 > best_d2) {
+          best_d2 = d2;
+          best = i;
+        }
+      }
+    }
+    if (best == members.size()) break;  // every other member sits on a chosen point
+    taken[best] = true;
+    chosen.push_back(best);
+    chosen_pts.push_back(q[best]);
+    std::vector<Point2> sorted = chosen_pts;
+    convex_hull(sorted, hull);
+  }
+  return chosen;
+}
+
+}  // namespace
+
+ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates,
+                                       const std::vector<Triangle>& faces_a,
+                                       const std::vector<Triangle>& faces_b,
+                                       const ManifoldOptions& options) {
+  const std::size_t n = candidates.size();
+  ContactManifold out;
+  if (n == 0 || faces_a.size() != n || faces_b.size() != n) return out;
+  const auto per_patch = static_cast<std::size_t>(std::max(options.max_per_patch, 1));
+  const auto per_pair = static_cast<std::size_t>(std::max(options.max_per_pair, 1));
+
+  // Deepest first, ties in the given order.
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return candidates[a].depth > candidates[b].depth;
+  });
+
+  // Which candidates share each triangle vertex, on geom1 (side 0) and on geom2 (side 1): the
+  // keys sorted, and each candidate's six vertices as the start of their run of equal keys.
+  thread_local std::vector<VertexKey> keys;
+  thread_local std::vector<std::uint32_t> run_of;  // 6 * candidate + k -> start of its run
+  thread_local std::vector<std::uint32_t> filled;  // per candidate: entries of run_of set
+  keys.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (const Vec3& v : faces_a[i].v) keys.push_back(vertex_key(0, v, i));
+    for (const Vec3& v : faces_b[i].v) keys.push_back(vertex_key(1, v, i));
+  }
+  std::sort(keys.begin(), keys.end());
+  run_of.assign(6 * n, 0);
+  filled.assign(n, 0);
+  for (std::size_t r = 0, begin = 0; r < keys.size(); ++r) {
+    if (r > 0 && !keys[r].same_vertex(keys[r - 1])) begin = r;
+    const std::uint32_t c = keys[r].candidate;
+    run_of[6 * c + filled[c]++] = static_cast<std::uint32_t>(begin);
+  }
+
+  // 1. Patches, grown breadth-first from the deepest unassigned candidate.
+  std::vector<int> patch_of(n, -1);
+  thread_local std::vector<int> run_scanned;  // by run start: the last patch that scanned it
+  run_scanned.assign(keys.size(), -1);
+  for (std::size_t seed : order) {
+    if (patch_of[seed] >= 0) continue;
+    const int id = static_cast<int>(out.patches.size());
+    ContactPatch patch;
+    const Vec3& seed_normal = candidates[seed].normal;
+    patch_of[seed] = id;
+    std::vector<std::size_t> queue = {seed};
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const std::size_t i = queue[head];
+      for (std::size_t k = 0; k < 6; ++k) {
+        // A run scanned once for this patch needs no second scan: whom it admits depends only on
+        // the seed's normal.
+        const std::size_t begin = run_of[6 * i + k];
+        if (run_scanned[begin] == id) continue;
+        run_scanned[begin] = id;
+        for (std::size_t r = begin; r < keys.size() && keys[r].same_vertex(keys[begin]); ++r) {
+          const std::size_t j = keys[r].candidate;
+          if (patch_of[j] >= 0 || candidates[j].normal.dot(seed_normal) < options.patch_cosine) {
+            continue;
+          }
+          patch_of[j] = id;
+          queue.push_back(j);
+        }
+      }
+    }
+    patch.members = std::move(queue);
+    // The patch normal: the seed's, the penetration direction at the deepest point. (A mean over
+    // the members mixes in the edge directions of the patch's rim; on a cube resting on a cube
+    // their tilt of 0.1 degree made the cube creep 7 mm in 1.5 s.)
+    patch.normal = seed_normal;
+    out.patches.push_back(std::move(patch));
+  }
+
+  // 2. The points of each patch, in the plane across its normal.
+  std::vector<double> along(n, 0);  // each candidate's depth along its patch's normal
+  for (ContactPatch& patch : out.patches) {
+    for (std::size_t i : patch.members) {
+      along[i] = candidates[i].depth * std::clamp(candidates[i].normal.dot(patch.normal), 0.0, 1.0);
+    }
+    std::stable_sort(patch.members.begin(), patch.members.end(), [&](std::size_t a, std::size_t b) {
+      return along[a] > along[b] || (along[a] == along[b] && a < b);
+    });
+    patch.depth = along[patch.members.front()];
+    const Vec3& nrm = patch.normal;
+    Vec3 axis = Vec3::Zero();
+    axis[std::abs(nrm[0]) <= std::abs(nrm[1]) ? (std::abs(nrm[0]) <= std::abs(nrm[2]) ? 0 : 2)
+                                              : (std::abs(nrm[1]) <= std::abs(nrm[2]) ? 1 : 2)] = 1;
+    const Vec3 u = nrm.cross(axis).normalized();
+    const Vec3 w = nrm.cross(u);
+    std::vector<Point2> q;
+    q.reserve(patch.members.size());
+    for (std::size_t i : patch.members) {
+      q.push_back({candidates[i].pos.dot(u), candidates[i].pos.dot(w)});
+    }
+    std::vector<Point2> kept, hull;
+    for (std::size_t pos : choose_patch_points(patch.members, q, per_patch)) {
+      patch.selected.push_back(patch.members[pos]);
+      kept.push_back(q[pos]);
+    }
+    convex_hull(kept, hull);
+    patch.area = polygon_area(hull);
+  }
+  std::stable_sort(out.patches.begin(), out.patches.end(),
+                   [](const ContactPatch& a, const ContactPatch& b) { return a.depth > b.depth; });
+
+  // 3. The pair's budget: every patch's deepest point, then the further points by patch area.
+  const auto emit = [&](const ContactPatch& patch, std::size_t i) {
+    out.contacts.push_back(TriContact{candidates[i].pos, patch.normal, along[i]});
+  };
+  for (const ContactPatch& patch : out.patches) {
+    if (out.contacts.size() == per_pair) break;
+    emit(patch, patch.selected.front());
+  }
+  std::vector<const ContactPatch*> by_area;
+  for (const ContactPatch& patch : out.patches) by_area.push_back(&patch);
+  std::stable_sort(by_area.begin(), by_area.end(),
+                   [](const ContactPatch* a, const ContactPatch* b) { return a->area > b->area; });
+  for (const ContactPatch* patch : by_area) {
+    for (std::size_t k = 1; k < patch->selected.size() && out.contacts.size() < per_pair; ++k) {
+      emit(*patch, patch->selected[k]);
+    }
+  }
+  return out;
 }
 
 }  // namespace graspcd

@@ -98,4 +98,29 @@ inline constexpr double kContactSignCosine = 1e-6;
 // triangle pair can fling the object; smaller: the solver may not push out a real penetration.
 inline constexpr double kContactMaxDepth = 0.01;
 
+// Contact manifold (contact.h, build_contact_manifold). A patch grows from its deepest contact
+// through contacts whose triangles touch (share a vertex on either geom) and whose normal is
+// within this angle of the seed's: 35 degrees (cosine, dimensionless). Smaller splits one curved
+// contact region (a finger on a cup of radius 3.5 cm spans about 16 degrees) into several patches,
+// each spending the pair's budget on its own deepest point; larger merges the two walls of a
+// corner (90 degrees) or the two faces of a pinched wall (180) into one patch with a meaningless
+// mean normal.
+inline constexpr double kPatchNormalCosine = 0.8191520442889918;
+
+// Contacts handed to the solver per patch and per geom pair by default (a pair config's
+// "max_patch_contacts" and "max_contacts" override them). Four points span a patch's support
+// polygon (Jolt keeps four per manifold: "no more than 4 are needed for a stable solution"); eight
+// per pair leave room for two to eight patches (a pinch, a corner) while keeping MuJoCo's
+// contact and constraint buffers (nconmax, njmax) far from full. More: the solver sees redundant,
+// nearly parallel constraints (slower, less stable); fewer: a patch can rock on its points.
+inline constexpr int kManifoldPatchContacts = 4;
+inline constexpr int kManifoldPairContacts = 8;
+
+// When a patch's next point would enlarge the convex hull of the points chosen so far by less
+// than this fraction of the squared extent of the patch (dimensionless), the points are taken as
+// collinear and the next is the one farthest from the chosen instead. Smaller lets rounding noise
+// across a straight contact line pick a point near the chosen ones; larger gives up real but thin
+// support polygons.
+inline constexpr double kManifoldFlatArea = 1e-9;
+
 }  // namespace graspcd::tol

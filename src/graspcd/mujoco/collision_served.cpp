@@ -2,6 +2,7 @@
 // exact box-box path.
 #include "graspcd/mujoco/collision_served.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -34,13 +35,15 @@ void write_contact(const TriContact& c, const Mat3& R1, const Vec3& p1, mjContac
   }
 }
 
-// Tree path: tree query (paper sections 2-6 through core's Detector, all contacts), one contact
-// per intersecting triangle pair (contact.h, after Bullet's GImpact clip method), reduction to
-// mjMAXCONPAIR by deepest-then-farthest-point sampling, written in the world frame.
+// Tree path: tree query (paper sections 2-6 through core's Detector, all contacts), one candidate
+// contact per intersecting triangle pair (contact.h, after Bullet's GImpact clip method), in the
+// sorted order of the pairs, reduced to the pair's manifold (contact.h: patches, at most
+// max_patch_contacts points each and max_contacts in all), written in the world frame.
 int collide_trees(Registry& registry, ServedPair& served, const mjData* d, mjContact* con, int g1,
                   int g2) {
   thread_local std::vector<TrianglePair> tri_pairs;
   thread_local std::vector<TriContact> candidates;
+  thread_local std::vector<Triangle> faces_a, faces_b;
   const MeshTree* t1 = registry.geom_tree(g1);
   const MeshTree* t2 = registry.geom_tree(g2);
   BridgeStats& stats = registry.stats();
@@ -70,24 +73,38 @@ int collide_trees(Registry& registry, ServedPair& served, const mjData* d, mjCon
     return 0;
   }
 
-  // One contact per intersecting triangle pair, in geom1's frame.
+  // One candidate per intersecting triangle pair, in geom1's frame, in sorted pair order (the
+  // manifold is then the same whatever order the query found them in).
+  std::sort(tri_pairs.begin(), tri_pairs.end());
   const double tn = pose.t.norm();
   const Vec3 fallback = tn > 0 ? Vec3(pose.t / tn) : Vec3(Vec3::UnitZ());
   candidates.clear();
+  faces_a.clear();
+  faces_b.clear();
   for (const TrianglePair& tp : tri_pairs) {
     const Triangle& a = t1->face(tp.a);
     const Triangle b = apply_pose(pose, t2->face(tp.b));
     candidates.push_back(triangle_pair_contact(a, b, registry.config().max_depth, fallback,
                                                t1->sharp(tp.a), t2->sharp(tp.b)));
+    faces_a.push_back(a);
+    faces_b.push_back(t2->face(tp.b));  // geom2's own frame: shared vertices stay bit-equal
   }
 
-  // At most mjMAXCONPAIR: the deepest and a spread.
-  const std::vector<std::size_t> keep = select_contacts(candidates, mjMAXCONPAIR);
-  if (candidates.size() > static_cast<std::size_t>(mjMAXCONPAIR)) ++stats.capped_pairs;
+  // The manifold: a few points per patch, the pair's budget in all.
+  const ContactManifold manifold =
+      build_contact_manifold(candidates, faces_a, faces_b, served.manifold);
+  if (candidates.size() > static_cast<std::size_t>(served.manifold.max_per_pair)) {
+    ++stats.capped_pairs;
+  }
+  stats.candidates += candidates.size();
+  stats.patches += manifold.patches.size();
   const Mat3 R1 = from_row_major(d->geom_xmat + 9 * g1);
   const Vec3 p1 = geom_position(d, g1);
   int n = 0;
-  for (std::size_t i : keep) write_contact(candidates[i], R1, p1, con[n++]);
+  for (const TriContact& c : manifold.contacts) {
+    if (n == mjMAXCONPAIR) break;
+    write_contact(c, R1, p1, con[n++]);
+  }
   stats.contacts += static_cast<std::uint64_t>(n);
   stats.contact_ns += elapsed_ns(queried, Clock::now());
   return n;
@@ -123,6 +140,13 @@ int collide_box_box(Registry& registry, ServedPair& served, const mjData* d, mjC
     if (con[i].dist > 0) continue;
     if (n != i) con[n] = con[i];
     ++n;
+  }
+  // The pair's budget (MuJoCo's box-box makes at most 8): the deepest, in MuJoCo's order.
+  const int budget = served.manifold.max_per_pair;
+  if (n > budget) {
+    std::stable_sort(con, con + n,
+                     [](const mjContact& x, const mjContact& y) { return x.dist < y.dist; });
+    n = budget;
   }
   stats.contacts += static_cast<std::uint64_t>(n);
   stats.contact_ns += elapsed_ns(tested, Clock::now());

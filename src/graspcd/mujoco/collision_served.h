@@ -9,11 +9,11 @@ namespace graspcd::bridge {
 
 // Runs a served pair by its path (registry.h); a pair whose placement in `d` holds a bad number
 // is skipped and counted (collision.h, "Non-finite state"). Trees: the tree query with the pair's
-// detector in all-contacts mode, contacts from the intersecting triangle pairs
+// detector in all-contacts mode, the contact manifold of the intersecting triangle pairs
 // (graspcd/core/contact.h). Box-box: the detector's box test, then MuJoCo's box-box function with
 // margin 0 (the saved original; the current table entry when not installed) unless the boxes were
-// proven disjoint. At most mjMAXCONPAIR contacts written to `con`. Returns the count. Updates the
-// registry's statistics.
+// proven disjoint. At most the pair's max_contacts (<= mjMAXCONPAIR) written to `con`. Returns the
+// count. Updates the registry's statistics.
 int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
                         int g2);
 

@@ -79,6 +79,14 @@ std::vector<int> resolve(const mjModel* m, const std::string& pattern, const std
   return out;
 }
 
+// A contact budget of the config: an integer in 1 .. mjMAXCONPAIR (what MuJoCo takes per pair).
+int contact_budget(const nlohmann::json& v, const std::string& field, const std::string& source) {
+  if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > mjMAXCONPAIR) {
+    fail(source, "'" + field + "' must be an integer from 1 to " + std::to_string(mjMAXCONPAIR));
+  }
+  return v.get<int>();
+}
+
 }  // namespace
 
 std::vector<int> match_geoms(const mjModel* m, const std::string& pattern) {
@@ -160,6 +168,10 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
         fail(source, "'max_depth' must be a number > 0");
       }
       c.max_depth = value.get<double>();
+    } else if (field == "max_contacts") {
+      c.manifold.max_per_pair = contact_budget(value, "max_contacts", source);
+    } else if (field == "max_patch_contacts") {
+      c.manifold.max_per_patch = contact_budget(value, "max_patch_contacts", source);
     } else if (field == "grasp") {
       // How the grasp experiment drives a hand: read by graspcd_grasp (graspcd/grasp/
       // drive_config.h), not by the seam.
@@ -167,10 +179,20 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
       if (!value.is_array()) fail(source, "'pairs' must be an array");
       for (const auto& p : value) {
         if (!p.is_object() || !p.contains("a") || !p.contains("b") || !p.at("a").is_string() ||
-            !p.at("b").is_string() || p.size() != 2) {
+            !p.at("b").is_string()) {
           fail(source, "each entry of 'pairs' must be {\"a\": \"pattern\", \"b\": \"pattern\"}");
         }
-        c.patterns.push_back({p.at("a").get<std::string>(), p.at("b").get<std::string>()});
+        PairPattern pattern{p.at("a").get<std::string>(), p.at("b").get<std::string>(), {}, {}};
+        for (const auto& [key, v] : p.items()) {
+          if (key == "max_contacts") {
+            pattern.max_contacts = contact_budget(v, "max_contacts", source);
+          } else if (key == "max_patch_contacts") {
+            pattern.max_patch_contacts = contact_budget(v, "max_patch_contacts", source);
+          } else if (key != "a" && key != "b") {
+            fail(source, "unknown field '" + key + "' in an entry of 'pairs'");
+          }
+        }
+        c.patterns.push_back(std::move(pattern));
       }
     } else {
       fail(source, "unknown field '" + field + "'");
@@ -219,12 +241,15 @@ Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::st
   for (const PairPattern& p : config.patterns) {
     const std::vector<int> as = resolve(m, p.a, source);
     const std::vector<int> bs = resolve(m, p.b, source);
+    ManifoldOptions manifold = config.manifold;
+    if (p.max_contacts) manifold.max_per_pair = *p.max_contacts;
+    if (p.max_patch_contacts) manifold.max_per_patch = *p.max_patch_contacts;
     bool any = false;
     for (int a : as) {
       for (int b : bs) {
         if (a == b) continue;
         any = true;
-        add_pair(a, b);
+        add_pair(a, b, manifold);
       }
     }
     if (!any) {
@@ -238,7 +263,7 @@ Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::st
     for (int g : {a, b}) {
       if (!served_type(m->geom_type[g])) fail(source, "geom pair member " + unserved_geom(m, g));
     }
-    add_pair(a, b);
+    add_pair(a, b, config.manifold);
   }
   // Served geoms with a margin: MuJoCo would expect contacts within it; we report none.
   std::set<int> served;
@@ -332,13 +357,14 @@ Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::st
 
 Registry::~Registry() { detach(*this); }
 
-void Registry::add_pair(int g1, int g2) {
+void Registry::add_pair(int g1, int g2, const ManifoldOptions& manifold) {
   const std::uint64_t k = key(g1, g2);
   if (pair_index_.count(k)) return;
   ServedPair p;
   p.geom_lo = g1 < g2 ? g1 : g2;
   p.geom_hi = g1 < g2 ? g2 : g1;
   p.detector = std::make_unique<Detector>(config_.method, config_.detector);
+  p.manifold = manifold;
   pair_index_.emplace(k, static_cast<int>(pairs_.size()));
   pairs_.push_back(std::move(p));
 }

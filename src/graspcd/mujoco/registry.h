@@ -9,8 +9,12 @@
 //     "switch": 300,           // Neuro-SAT switch (>= 1)
 //     "cache_slots": 4096,     // per-pair temporal-coherence cache slots (>= 1)
 //     "max_depth": 0.01,       // contact penetration cap in metres (> 0), see contact.h
+//     "max_contacts": 8,       // contacts handed to MuJoCo per geom pair (1 .. mjMAXCONPAIR = 50)
+//     "max_patch_contacts": 4, // contacts per contact patch (1 .. 50), see contact.h, "manifold"
 //     "pairs": [ {"a": "finger*", "b": "body:object"} , ... ]
 //   }
+// A pair entry may carry its own "max_contacts" and "max_patch_contacts", which override the
+// top-level ones for the geom pairs it registers (the first entry to register a pair decides).
 // A pattern is a glob where '*' matches any run of characters (possibly empty) and every other
 // character matches itself. "geom:GLOB" matches geom names, "body:GLOB" the name of the geom's
 // body, and a bare "GLOB" either. Each pair entry registers every (geom of a, geom of b) pair of
@@ -24,9 +28,12 @@
 //   frame by relative_pose); proven disjoint gives 0 contacts, otherwise MuJoCo's own box-box
 //   function (the original entry saved by install(), called with margin 0) makes the contacts.
 // - kTrees, every other pair: the tree query of the two geoms' OBB trees and contacts from the
-//   intersecting triangle pairs (contact.h). A mesh's tree is built from MuJoCo's mesh (one per
-//   mesh); a primitive's from its tessellation (primitives.h: a box exactly, curved primitives
-//   circumscribed, with the documented tolerance), one per (type, size), in the geom frame.
+//   intersecting triangle pairs, reduced to a small manifold (contact.h: patches by normal and
+//   adjacency, at most max_patch_contacts points each and max_contacts per pair; the full
+//   triangle-pair list is what validate and the study check). A mesh's tree is built from MuJoCo's
+//   mesh (one per mesh); a primitive's from its tessellation (primitives.h: a box exactly, curved
+//   primitives circumscribed, with the documented tolerance), one per (type, size), in the geom
+//   frame.
 // Planes and height fields are not served (MuJoCo keeps them).
 //
 // Errors, each a std::runtime_error with a one-line message that starts with the config's name:
@@ -47,6 +54,7 @@
 #include <utility>
 #include <vector>
 
+#include "graspcd/core/contact.h"
 #include "graspcd/core/containment.h"
 #include "graspcd/core/obb_tree.h"
 #include "graspcd/core/separators.h"
@@ -54,8 +62,20 @@
 namespace graspcd::bridge {
 
 struct PairPattern {
+  PairPattern() = default;
+  // Keeps PairPattern{"a", "b"} (0.1's aggregate form) compiling without warnings.
+  PairPattern(std::string a_pattern, std::string b_pattern,
+              std::optional<int> max_contacts_override = std::nullopt,
+              std::optional<int> max_patch_contacts_override = std::nullopt)
+      : a(std::move(a_pattern)),
+        b(std::move(b_pattern)),
+        max_contacts(max_contacts_override),
+        max_patch_contacts(max_patch_contacts_override) {}
   std::string a;
   std::string b;
+  // The entry's own contact budget, overriding RegistryConfig::manifold for its pairs.
+  std::optional<int> max_contacts;
+  std::optional<int> max_patch_contacts;
 };
 
 struct RegistryConfig {
@@ -65,6 +85,9 @@ struct RegistryConfig {
   // inside the other geom says little about the local penetration, and MuJoCo's soft contacts keep
   // true penetrations at millimetres.
   double max_depth = tol::kContactMaxDepth;
+  // The contact manifold of every served pair (contact.h): points per patch and per pair, at most
+  // mjMAXCONPAIR each.
+  ManifoldOptions manifold;
   std::vector<PairPattern> patterns;
   // Geom id pairs registered directly (programmatic use), in addition to the patterns.
   std::vector<std::pair<int, int>> geom_pairs;
@@ -95,7 +118,10 @@ struct BridgeStats {
                                     // pairs: MuJoCo's box-box function)
   QueryCounters counters;           // box tests, triangle tests, intersecting triangle pairs
   std::uint64_t contacts = 0;       // contacts handed to MuJoCo
-  std::uint64_t capped_pairs = 0;   // calls whose candidates exceeded mjMAXCONPAIR
+  std::uint64_t capped_pairs = 0;   // tree-path calls with more candidates (one per
+                                    // intersecting triangle pair) than the pair's max_contacts
+  std::uint64_t candidates = 0;     // those candidates, summed (contacts before the manifold)
+  std::uint64_t patches = 0;        // contact patches of the tree-path calls, summed
   // The separate containment check (docs/design.md "Semantics"): tree-path calls whose surfaces did
   // not intersect but one geom lay wholly inside the other's closed solid (core/containment.h),
   // and the time that check took (not part of detection_ns).
@@ -138,6 +164,7 @@ struct ServedPair {
   int geom_hi = 0;  // larger geom id
   PairPath path = PairPath::kTrees;
   std::unique_ptr<Detector> detector;
+  ManifoldOptions manifold;  // the pair's contact budget (RegistryConfig, PairPattern)
   // After the pair's last call: the surfaces did not intersect and one geom lay wholly inside the
   // other's closed solid (the containment check; the pair then gets no contacts).
   bool contained = false;
@@ -220,7 +247,7 @@ class Registry {
     const auto hi = static_cast<std::uint32_t>(g1 < g2 ? g2 : g1);
     return (static_cast<std::uint64_t>(lo) << 32) | hi;
   }
-  void add_pair(int g1, int g2);
+  void add_pair(int g1, int g2, const ManifoldOptions& manifold);
 
   const mjModel* model_;
   RegistryConfig config_;
