@@ -63,7 +63,7 @@ std::vector<study::TesterSpec> testers_of(ValidateCliOptions& o, const CLI::App&
   std::vector<Method> methods;
   if (o.all_methods) {
     // perceptron-nodisp proves almost no node pair of a mesh disjoint, so its query tests nearly
-    // every triangle pair (README, "Known limitations"): asked for by name only.
+    // every triangle pair (docs/stress.md, "Known limitations"): asked for by name only.
     for (Method m : all_methods()) {
       if (m != Method::kPerceptronNoDisp) methods.push_back(m);
     }

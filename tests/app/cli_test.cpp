@@ -454,7 +454,7 @@ TEST_F(CliTest, HelpTeachesEachSubcommand) {
   EXPECT_EQ(r.err, "");
 }
 
-// The README's example inputs stay valid.
+// The example inputs of docs/design.md ("The command line") stay valid.
 TEST_F(CliTest, ExampleInputsRun) {
   const fs::path data = fs::path(GRASPCD_DATA_DIR) / "examples";
   Result r = run("tritri " + (data / "tritri.txt").string());
@@ -525,7 +525,7 @@ const char* const kUserBox =
     "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
     "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
 
-// A new object without a scene (README, "A new object"): the box is fitted to the cup's place
+// A new object without a scene (README, "A grasp of your own object"): the box is fitted to the cup's place
 // (its 60 mm height to 8 cm: scale 0.08 / 60, narrower than the 7 cm width), centred under the
 // hand, and the fingers close on it.
 TEST_F(CliTest, GraspObjectFitsANewMeshIntoTheTemplateAndTheFingersTouchIt) {

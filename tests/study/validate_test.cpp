@@ -80,7 +80,7 @@ TesterSpec broken_tester() {
 }
 
 // The methods checked per scene, at their default settings, within the suite's time budget (the
-// closing note of issue 10 and the README give the full --all-methods tables):
+// closing note of issue 10 and docs/ give the full --all-methods tables):
 // - every method on the box hand (its box pairs are cheap);
 // - on the triangle scenes, every method but the perceptron-alone ones on every scene, and those
 //   (seconds to minutes per grasp at their cap of 1,500) on example 1, perceptron-scaled also on
