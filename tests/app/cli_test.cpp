@@ -525,9 +525,9 @@ const char* const kUserBox =
     "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
     "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
 
-// A new object without a scene (README, "A grasp of your own object"): the box is fitted to the cup's place
-// (its 60 mm height to 8 cm: scale 0.08 / 60, narrower than the 7 cm width), centred under the
-// hand, and the fingers close on it.
+// A new object without a scene (README, "A grasp of your own object"): the box is fitted to the
+// cup's place (its 60 mm height to 8 cm: scale 0.08 / 60, narrower than the 7 cm width), centred
+// under the hand, and the fingers close on it.
 TEST_F(CliTest, GraspObjectFitsANewMeshIntoTheTemplateAndTheFingersTouchIt) {
   const std::string box = write("box.obj", kUserBox);
   const fs::path tmp = dir_ / "tmp";  // the command's temporary folder goes here

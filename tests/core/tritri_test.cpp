@@ -1,7 +1,7 @@
-// The core's triangle tests (src/graspcd/core/tritri.h) against the exact twin (CGAL, src/graspcd/exact): seeded
-// random pairs at four scales, adversarial pairs of every degenerate class, symmetry under
-// swapping the triangles and permuting their vertices, and the documented defects of the two
-// reference variants.
+// The core's triangle tests (src/graspcd/core/tritri.h) against the exact twin (CGAL,
+// src/graspcd/exact): seeded random pairs at four scales, adversarial pairs of every degenerate
+// class, symmetry under swapping the triangles and permuting their vertices, and the documented
+// defects of the two reference variants.
 //
 // GRASPCD_TEST_SCALE (a positive double, default 1) multiplies the number of random pairs (never
 // below 1000 per size), so that the sanitizer build can run a subset; the adversarial suite is

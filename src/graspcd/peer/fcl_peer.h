@@ -1,6 +1,6 @@
 // FCL as the peer in the study's comparisons: a thin adapter from graspcd's meshes and poses to
-// FCL 0.7's BVHModel and collide(). Used by the study and the benchmarks only, never by src/graspcd/core
-// or src/graspcd/mujoco (docs/design.md, "Layers").
+// FCL 0.7's BVHModel and collide(). Used by the study and the benchmarks only, never by
+// src/graspcd/core or src/graspcd/mujoco (docs/design.md, "Layers").
 //
 // FCL: J. Pan, S. Chitta, D. Manocha, "FCL: A General Purpose Library for Collision and Proximity
 // Queries", IEEE ICRA 2012. Its OBB trees follow S. Gottschalk, M. C. Lin, D. Manocha, "OBBTree:

@@ -1,4 +1,5 @@
-// FCL (src/graspcd/peer/fcl_peer.h) as a replay method: the peer column of Table 1 (issue 5, item 1).
+// FCL (src/graspcd/peer/fcl_peer.h) as a replay method: the peer column of Table 1
+// (issue 5, item 1).
 #pragma once
 
 #include <memory>

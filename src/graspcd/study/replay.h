@@ -1,7 +1,7 @@
 // Timed replays of recorded grasps (issue 5): every method answers the same queries, the poses of a
 // Recording, and is timed per grasp step; its answers are kept and hashed so that a timing run also
-// proves that the methods agreed, and compared with CGAL's ground truth (src/graspcd/exact) for the error
-// sweep.
+// proves that the methods agreed, and compared with CGAL's ground truth (src/graspcd/exact) for the
+// error sweep.
 #pragma once
 
 #include <cstdint>
