@@ -243,10 +243,13 @@ void BM_NoopDelegated(benchmark::State& state) {
 // mj_step2; GraspResult::step_wall_ms), so loading the model and building the trees are not in
 // it, and any state carried from step to step pays its way. One iteration is one whole grasp;
 // the reported time is per physics step. Counters: physics steps, most finger-object contacts
-// in one step, and whether the object was held.
-void whole_grasp(benchmark::State& state, const std::string& scene, bool native) {
+// in one step, and whether the object was held. Variants: "native" (MuJoCo's own collision),
+// "served" (graspcd, the config as shipped: each tree query restarted from its front) and
+// "served-roots" (the same with "front_list" off: every query from the roots).
+void whole_grasp(benchmark::State& state, const std::string& scene, const std::string& variant) {
   graspcd::bridge::GraspOptions options;
-  options.native = native;
+  options.native = variant == "native";
+  if (variant == "served-roots") options.front_list = false;
   long steps = 0;
   graspcd::bridge::GraspResult r;
   for (auto _ : state) {
@@ -267,10 +270,10 @@ const char* const kGraspScenes[] = {"example1.xml", "example2.xml", "example3.xm
 void register_whole_grasps() {
   for (const char* scene : kGraspScenes) {
     const std::string name = std::string(scene).substr(0, std::string(scene).size() - 4);
-    for (const bool native : {true, false}) {
+    for (const char* variant : {"native", "served", "served-roots"}) {
       benchmark::RegisterBenchmark(
-          ("BM_WholeGrasp/" + name + (native ? "/native" : "/served")).c_str(),
-          [scene, native](benchmark::State& st) { whole_grasp(st, scene, native); })
+          ("BM_WholeGrasp/" + name + "/" + variant).c_str(),
+          [scene, variant](benchmark::State& st) { whole_grasp(st, scene, variant); })
           ->UseManualTime()
           ->Iterations(1)
           ->Unit(benchmark::kMicrosecond);

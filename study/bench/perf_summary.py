@@ -170,6 +170,9 @@ def main():
                     name, native, 2.0, max_contacts=c.get("max_contacts"),
                     native_max_contacts=runs.get(native, {}).get("counters", {}).get(
                         "max_contacts"), held=c.get("held") == 1))
+        roots = "/".join(parts[:2] + ["served-roots"] + parts[3:])
+        add(compare(runs, "grasp", f"whole grasp {parts[1]}, front list / from the roots",
+                    name, roots, None))
     json.dump(out, sys.stdout, indent=1, sort_keys=True)
     sys.stdout.write("\n")
     # A short table on stderr.

@@ -132,6 +132,100 @@ TEST(TreeQuery, CarriedFramesVisitTheSameNodePairsAsTheGenericDescent) {
   }
 }
 
+// Temporal coherence (collide_coherent): along a path that moves a little each step, with large
+// jumps away and back (a state restore), the query restarted from the last front finds exactly
+// the triangle pairs of a descent from the roots, for the carried SAT descent and the generic one
+// (the perceptron); every 100th pose of SAT also against CGAL. Small motions restart from the front and
+// save box tests; the jumps descend from the roots.
+TEST(TreeQuery, FrontListFindsTheSameTrianglePairsAsADescentFromTheRoots) {
+  const TriangleMesh torus = testing::make_torus(0.04, 0.012, 30, 16);
+  const TriangleMesh sphere = testing::make_uv_sphere(0.015, 12, 16);
+  const ObbTree ta = ObbTree::build(torus), tb = ObbTree::build(sphere);
+  const int n = scaled(400);
+  for (const Method method : {Method::kSat, Method::kPerceptron}) {
+    testing::Rng rng(33);
+    // A short perceptron cap: its "may overlap" at the cap only sends the descent further down.
+    const DetectorOptions options{10, 10, 1u << 12};
+    Detector fresh(method, options), coherent(method, options);
+    QueryFront front;
+    QueryCounters cf, cc;
+    int restarts = 0, hits = 0, checked = 0;
+    for (int i = 0; i < n; ++i) {
+      // Along the torus's outer rim (ring radius 0.04, tube 0.012; the sphere touches at a
+      // centre 0.067 from the axis), in and out of contact, turning slowly.
+      Pose pose;
+      pose.R = testing::rotation_about(Vec3(0.3, 0.5, 0.8).normalized(), 0.004 * i);
+      const double r = 0.066 + 0.004 * std::sin(0.05 * i), angle = 0.004 * i;
+      pose.t = Vec3(r * std::cos(angle), r * std::sin(angle), 0.002);
+      if (i % 100 == 60) {
+        // A jump far away for one step (a state restore), then back on the path.
+        pose.R = testing::rotation_about(Vec3(1, 0, 0), 2.0);
+        pose.t = Vec3(0.3, -0.2, 0.1);
+      } else if (i % 100 == 80) {
+        pose.t += testing::uniform_vec3(rng, -0.02, 0.02);  // a jump within reach
+      }
+      restarts += front_applies(front, tb, pose);
+      std::vector<TrianglePair> pf, pc;
+      const QueryResult rf = fresh.collide(ta, tb, pose, QueryMode::kAllContacts, cf, &pf);
+      const QueryResult rc = coherent.collide_coherent(ta, tb, pose, cc, &pc, front);
+      std::sort(pf.begin(), pf.end());
+      std::sort(pc.begin(), pc.end());
+      ASSERT_EQ(rf.intersect, rc.intersect) << method_name(method) << " pose " << i;
+      ASSERT_EQ(rf.pair_count, rc.pair_count) << method_name(method) << " pose " << i;
+      ASSERT_EQ(pf, pc) << method_name(method) << " pose " << i;
+      hits += rf.intersect;
+      if (method == Method::kSat && i % 100 == 0) {
+        const testing::PoseCase truth = testing::make_case(torus, sphere, pose);
+        ASSERT_EQ(pc, truth.truth) << method_name(method) << " pose " << i;
+        ++checked;
+      }
+    }
+    // The path touches and misses, follows the front most of the time, and the front saves work.
+    EXPECT_GT(hits, n / 4) << method_name(method);
+    EXPECT_LT(hits, n - n / 10) << method_name(method);
+    EXPECT_GT(restarts, n * 3 / 4) << method_name(method);
+    EXPECT_LT(restarts, n - n / 100) << method_name(method);  // the jumps start from the roots
+    EXPECT_LT(cc.box_tests, cf.box_tests) << method_name(method);
+    if (method == Method::kSat) {
+      EXPECT_GE(checked, n / 100);
+    }
+    std::printf(
+        "%s front list: %d of %d queries restarted, box tests %llu vs %llu from the roots\n",
+        method_name(method), restarts, n, static_cast<unsigned long long>(cc.box_tests),
+        static_cast<unsigned long long>(cf.box_tests));
+  }
+}
+
+// Any front covers every leaf pair: one recorded at one pose and followed at a pose far away (as
+// happens after an mjData is reused) still gives the descent from the roots' pairs.
+TEST(TreeQuery, AStaleFrontStillGivesTheSameAnswer) {
+  const TriangleMesh torus = testing::make_torus(0.04, 0.012, 24, 12);
+  const TriangleMesh sphere = testing::make_uv_sphere(0.015, 12, 16);
+  const ObbTree ta = ObbTree::build(torus), tb = ObbTree::build(sphere);
+  testing::Rng rng(5);
+  Detector sat(Method::kSat);
+  for (int i = 0; i < scaled(100); ++i) {
+    QueryFront front;
+    QueryCounters c;
+    Pose first;
+    first.R = testing::random_rotation(rng);
+    first.t = testing::uniform_vec3(rng, -0.05, 0.05);
+    std::vector<TrianglePair> ignored;
+    sat.collide_coherent(ta, tb, first, c, &ignored, front);
+    Pose second;
+    second.R = testing::random_rotation(rng);
+    second.t = testing::uniform_vec3(rng, -0.05, 0.05);
+    front.pose = second;  // pretend it was recorded here, so that it is followed
+    ASSERT_TRUE(front_applies(front, tb, second));
+    std::vector<TrianglePair> pf, pc;
+    sat.collide(ta, tb, second, QueryMode::kAllContacts, c, &pf);
+    sat.collide_coherent(ta, tb, second, c, &pc, front);
+    std::sort(pf.begin(), pf.end());
+    std::sort(pc.begin(), pc.end());
+    ASSERT_EQ(pf, pc) << "pose " << i;
+  }
+}
+
 // Real non-convex meshes from ../shared/models (support/real_models.h): cube_cup_hi against the
 // mug.
 TEST(TreeQuery, RealCupAgainstMugMatchesBruteForce) {

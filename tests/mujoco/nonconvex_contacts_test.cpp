@@ -6,9 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
@@ -102,6 +104,85 @@ TEST(NonconvexContacts, StatisticsArePerStep) {
     EXPECT_EQ(contacts.stats().calls, 0u);  // taken
   }
   EXPECT_GT(total_contacts, 0u);
+}
+
+// Temporal coherence inside mj_step (registry.h, "front_list"): the same grasp (grasp.h: close,
+// squeeze, settle, lift, hold) run with each served pair's tree query restarted from its front on
+// the mjData and run with every query from the roots gives bitwise the same trajectory and the
+// same contacts at every closing grasp step, and the same result. The grasps include large jumps,
+// as a user's program makes them: after grasp step 20 the state of grasp step 10 is restored
+// (mj_copyData), after step 35 the model is reset (mj_resetData) and the state of step 25 restored
+// over it. The front saves box tests.
+TEST(NonconvexContacts, FrontListGivesBitwiseTheSameGraspWithStateRestores) {
+  for (const std::string name : {"example1", "example3"}) {
+    struct Trace {
+      std::vector<std::vector<mjtNum>> qpos;
+      std::vector<std::vector<mjContact>> contacts;
+      GraspResult result;
+    };
+    const auto run = [&](bool front_list) {
+      Trace trace;
+      DataPtr saved10, saved25;
+      GraspOptions options;
+      options.front_list = front_list;
+      options.settle_time = 0.1;
+      options.lift_time = 0.3;
+      options.hold_time = 0.3;
+      options.on_grasp_step = [&](const mjModel* m, const mjData* cd, int step) {
+        trace.qpos.emplace_back(cd->qpos, cd->qpos + m->nq);
+        trace.contacts.emplace_back(cd->contact, cd->contact + cd->ncon);
+        // The jumps: the driver hands out its state read-only; a user's program owns its mjData.
+        mjData* d = const_cast<mjData*>(cd);
+        if (step == 10) saved10.reset(mj_copyData(nullptr, m, d));
+        if (step == 25) saved25.reset(mj_copyData(nullptr, m, d));
+        if (step == 20) mj_copyData(d, m, saved10.get());
+        if (step == 35) {
+          mj_resetData(m, d);
+          mj_forward(m, d);
+          mj_copyData(d, m, saved25.get());
+        }
+      };
+      trace.result = run_grasp(kMjcf + "/" + name + ".xml", options);
+      return trace;
+    };
+    const Trace coherent = run(true);
+    const Trace fresh = run(false);
+    ASSERT_EQ(coherent.qpos.size(), fresh.qpos.size()) << name;
+    ASSERT_GT(coherent.qpos.size(), 35u) << name;
+    int touching_steps = 0;
+    for (std::size_t k = 0; k < coherent.qpos.size(); ++k) {
+      ASSERT_EQ(coherent.qpos[k], fresh.qpos[k]) << name << " grasp step " << k + 1;
+      ASSERT_EQ(coherent.contacts[k].size(), fresh.contacts[k].size()) << name << " step " << k + 1;
+      for (std::size_t i = 0; i < coherent.contacts[k].size(); ++i) {
+        const mjContact& x = coherent.contacts[k][i];
+        const mjContact& y = fresh.contacts[k][i];
+        ASSERT_TRUE(x.geom1 == y.geom1 && x.geom2 == y.geom2 && x.dist == y.dist &&
+                    std::memcmp(x.pos, y.pos, sizeof x.pos) == 0 &&
+                    std::memcmp(x.frame, y.frame, sizeof x.frame) == 0)
+            << name << " grasp step " << k + 1 << " contact " << i;
+      }
+      touching_steps += coherent.result.steps[k].contacts > 0;
+    }
+    const GraspResult& a = coherent.result;
+    const GraspResult& b = fresh.result;
+    EXPECT_EQ(a.first_contact, b.first_contact) << name;
+    EXPECT_EQ(a.gripped, b.gripped) << name;
+    EXPECT_EQ(a.object_z_final, b.object_z_final) << name;
+    EXPECT_EQ(a.hold_min_z, b.hold_min_z) << name;
+    EXPECT_EQ(a.max_contacts, b.max_contacts) << name;
+    EXPECT_EQ(a.physics_steps, b.physics_steps) << name;
+    // Served contacts on many closing steps, and the front did less box work.
+    EXPECT_GT(touching_steps, 10) << name;
+    std::uint64_t box_a = 0, box_b = 0;
+    for (std::size_t k = 0; k < a.steps.size(); ++k) {
+      box_a += a.steps[k].box_tests;
+      box_b += b.steps[k].box_tests;
+    }
+    EXPECT_LT(box_a, box_b) << name;
+    std::printf("%s: %zu closing grasp steps, %d with contacts, box tests %llu (front) vs %llu\n",
+                name.c_str(), a.steps.size(), touching_steps,
+                static_cast<unsigned long long>(box_a), static_cast<unsigned long long>(box_b));
+  }
 }
 
 }  // namespace

@@ -144,6 +144,16 @@ QueryResult Detector::collide(const ObbTree& a, const ObbTree& b, const Pose& b_
       separator_);
 }
 
+QueryResult Detector::collide_coherent(const ObbTree& a, const ObbTree& b, const Pose& b_in_a,
+                                       QueryCounters& counters, std::vector<TrianglePair>* pairs,
+                                       QueryFront& front) {
+  return std::visit(
+      [&](auto& separator) {
+        return graspcd::collide_coherent(a, b, b_in_a, separator, counters, pairs, front);
+      },
+      separator_);
+}
+
 bool Detector::box_disjoint(const Obb& a, const Obb& b, QueryCounters& counters) {
   ++counters.box_tests;
   return std::visit([&](auto& separator) { return separator.disjoint(a, b, 0, 0, counters); },

@@ -145,6 +145,12 @@ class Detector {
   QueryResult collide(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, QueryMode mode,
                       QueryCounters& counters, std::vector<TrianglePair>* pairs = nullptr);
 
+  // The all-contacts query restarted from `front` when B moved little (tree_query.h,
+  // collide_coherent): the same intersecting triangle pairs as collide() in kAllContacts mode.
+  QueryResult collide_coherent(const ObbTree& a, const ObbTree& b, const Pose& b_in_a,
+                               QueryCounters& counters, std::vector<TrianglePair>* pairs,
+                               QueryFront& front);
+
   // One box pair (the `boxbox` command): true when proven disjoint. The pair is cached under node
   // ids (0, 0), so warm and cached methods carry their state from one call to the next.
   bool box_disjoint(const Obb& a, const Obb& b, QueryCounters& counters);

@@ -48,6 +48,20 @@ inline constexpr double kSatRoundoffFactor = 16 * kUnitRoundoff;
 // sends node pairs closer than ~1e-12 S further down the tree.
 inline constexpr double kSatCarriedRoundoffFactor = 64 * kUnitRoundoff;
 
+// The tree query's front (tree_query.h, collide_coherent) is followed while B moved little
+// relative to A since it was recorded: a rotation of at most kFrontMaxRotation (radians) and a
+// shift of B's root box centre of at most kFrontMaxShift times the root box's diagonal. Past
+// either, the descent starts from the roots again. Speed only: every front gives the same answer.
+// Larger values follow stale fronts (many node pairs deep in the trees that one test higher up
+// would have settled); smaller ones give up the front at a grasp's ordinary motions (a finger at 2
+// rad/s turns 0.004 rad per 2 ms step).
+inline constexpr double kFrontMaxRotation = 0.1;
+inline constexpr double kFrontMaxShift = 0.1;
+// Every kFrontPullUpPeriod-th restarted query pulls its front up where node pairs moved apart
+// (tree_query.h, pull_up_front): each attempt costs a box test whether or not it succeeds, so a
+// front is not pulled up at every step. Speed only.
+inline constexpr unsigned kFrontPullUpPeriod = 4;
+
 // An OBB fit pads each half-extent by this fraction of the largest |coordinate| of the fitted
 // points (metres per metre), so that every vertex lies inside the box although the projections that
 // size it are rounded. Smaller: a vertex may poke out by an ulp; larger: looser boxes.

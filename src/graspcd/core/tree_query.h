@@ -47,6 +47,32 @@ struct QueryResult {
   std::uint64_t pair_count = 0;  // intersecting triangle pairs found (0 or 1 in first-contact mode)
 };
 
+// A node pair of the two trees: indices into A's and B's nodes(). On a front, `disjoint` says
+// whether the descent stopped there on a box test (true) or tested its two leaves (false).
+struct NodePair {
+  std::int32_t a = 0;
+  std::int32_t b = 0;
+  bool disjoint = false;
+};
+
+// The front of an all-contacts query (collide_coherent): the node pairs where its descent stopped,
+// either proven disjoint or two leaves whose triangles were tested. They cover every leaf pair of
+// the two trees exactly once, whatever the pose, so a descent restarted from them finds every
+// intersecting triangle pair a descent from the roots finds (the box tests never claim "disjoint"
+// for overlapping boxes, and the triangle test is exact): the same set, only the work differs.
+// It belongs to one pair of trees; hand it to no other.
+struct QueryFront {
+  std::vector<NodePair> pairs;
+  Pose pose;                         // B in A when it was recorded
+  std::uint64_t root_box_tests = 0;  // box tests of the last descent from the roots
+  std::uint32_t queries = 0;         // queries that restarted from it (pull-up every few)
+  bool valid = false;                // false: the next query descends from the roots
+  void reset() {
+    pairs.clear();
+    valid = false;
+  }
+};
+
 // The separator policy of the paper's SAT: stateless. hint() and record() make it an axis
 // separator: the tree query then runs SAT itself on frames carried down the trees (collide).
 struct SatSeparator {
@@ -111,10 +137,17 @@ bool test_leaves(const ObbTree& a, const ObbTree& b, const ObbNode& x, const Obb
 // placing B's box and forming A^T B at every pair. The slack, tolerances.h
 // (kSatCarriedRoundoffFactor), covers the rounding carried down. The visiting order, and so
 // every counter, is that of the generic descent.
+//
+// `starts`, when given, replaces the root pair: the descent starts from each of these node pairs,
+// whose frames are formed directly from the boxes as the root's is (so the carried rounding below
+// them is what the slack already covers). `stops`, when given, receives every node pair where the
+// descent stopped (disjoint, or two leaves tested): the front of QueryFront.
 template <class Separator, class TriTest>
 QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, QueryMode mode,
                             Separator& separator, QueryCounters& counters,
-                            std::vector<TrianglePair>* pairs, TriTest& tri_test) {
+                            std::vector<TrianglePair>* pairs, TriTest& tri_test,
+                            const std::vector<NodePair>* starts = nullptr,
+                            std::vector<NodePair>* stops = nullptr) {
   QueryResult result;
   const auto& na = a.nodes();
   const auto& nb = b.nodes();
@@ -128,8 +161,18 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
   const double carried_slack = tol::kSatCarriedRoundoffFactor * (a.depth() + b.depth() + 2) * size;
   std::vector<FramedPair> stack;
   stack.reserve(64);
-  stack.push_back(
-      {0, 0, a0.axes.transpose() * (b_in_a.R * b0.axes), a0.axes.transpose() * (cb0 - a0.center)});
+  const auto push_direct = [&](std::int32_t ia, std::int32_t ib) {
+    const Obb& x = na[static_cast<std::size_t>(ia)].box;
+    const Obb& y = nb[static_cast<std::size_t>(ib)].box;
+    stack.push_back({ia, ib, x.axes.transpose() * (b_in_a.R * y.axes),
+                     x.axes.transpose() * ((b_in_a.R * y.center + b_in_a.t) - x.center)});
+  };
+  if (starts) {
+    // In reverse, so that the stack pops them in the order given.
+    for (auto it = starts->rbegin(); it != starts->rend(); ++it) push_direct(it->a, it->b);
+  } else {
+    push_direct(0, 0);
+  }
   while (!stack.empty()) {
     const FramedPair p = stack.back();
     stack.pop_back();
@@ -144,10 +187,12 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
     const SatAxis axis = sat_separating_axis_in_a(p.R, p.T, x.box.half, y.box.half, slack, hint);
     if (axis != kSatNoAxis) {
       separator.record(p.ia, p.ib, axis, hint, counters);
+      if (stops) stops->push_back({p.ia, p.ib, true});
       continue;
     }
     // Two leaves: test their triangles.
     if (x.is_leaf() && y.is_leaf()) {
+      if (stops) stops->push_back({p.ia, p.ib, false});
       if (test_leaves(a, b, x, y, b_in_a, mode, counters, pairs, tri_test, result)) return result;
       continue;
     }
@@ -170,6 +215,61 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
 
 }  // namespace detail
 
+namespace detail {
+
+// The descent for every separator, from the roots or from `starts`, recording where it stopped in
+// `stops` (see collide_carried).
+template <class Separator, class TriTest>
+QueryResult descend(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, QueryMode mode,
+                    Separator& separator, QueryCounters& counters, std::vector<TrianglePair>* pairs,
+                    TriTest& tri_test, const std::vector<NodePair>* starts,
+                    std::vector<NodePair>* stops) {
+  QueryResult result;
+  if (a.nodes().empty() || b.nodes().empty()) return result;
+  if constexpr (IsAxisSeparator<Separator>::value) {
+    return collide_carried(a, b, b_in_a, mode, separator, counters, pairs, tri_test, starts, stops);
+  }
+  const auto& na = a.nodes();
+  const auto& nb = b.nodes();
+  std::vector<std::pair<std::int32_t, std::int32_t>> stack;
+  stack.reserve(64);
+  if (starts) {
+    for (auto it = starts->rbegin(); it != starts->rend(); ++it) stack.emplace_back(it->a, it->b);
+  } else {
+    stack.emplace_back(0, 0);
+  }
+  while (!stack.empty()) {
+    const auto [ia, ib] = stack.back();
+    stack.pop_back();
+    const ObbNode& x = na[static_cast<std::size_t>(ia)];
+    const ObbNode& y = nb[static_cast<std::size_t>(ib)];
+    // Node pair: ask the separator.
+    ++counters.box_tests;
+    if (separator.disjoint(x.box, transform(b_in_a, y.box), ia, ib, counters)) {
+      if (stops) stops->push_back({ia, ib, true});
+      continue;
+    }
+    // Two leaves: test their triangles.
+    if (x.is_leaf() && y.is_leaf()) {
+      if (stops) stops->push_back({ia, ib, false});
+      if (test_leaves(a, b, x, y, b_in_a, mode, counters, pairs, tri_test, result)) return result;
+      continue;
+    }
+    // Otherwise split the larger node (a leaf is never split).
+    const bool split_a = !x.is_leaf() && (y.is_leaf() || x.box.half.sum() >= y.box.half.sum());
+    if (split_a) {
+      stack.emplace_back(x.right, ib);
+      stack.emplace_back(ia + 1, ib);
+    } else {
+      stack.emplace_back(ia, y.right);
+      stack.emplace_back(ia, ib + 1);
+    }
+  }
+  return result;
+}
+
+}  // namespace detail
+
 // Descends both trees from their roots. Tree B is placed in A's frame by `b_in_a`
 // (x_A = R x_B + t): its boxes through transform(), its triangles through apply_pose() (the
 // doubles the exact ground truth sees too). At each node pair the separator may prove the boxes
@@ -183,40 +283,58 @@ template <class Separator, class TriTest = FilteredTriTest>
 QueryResult collide(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, QueryMode mode,
                     Separator& separator, QueryCounters& counters,
                     std::vector<TrianglePair>* pairs = nullptr, TriTest tri_test = TriTest{}) {
-  QueryResult result;
-  if (a.nodes().empty() || b.nodes().empty()) return result;
-  if constexpr (detail::IsAxisSeparator<Separator>::value) {
-    return detail::collide_carried(a, b, b_in_a, mode, separator, counters, pairs, tri_test);
-  }
-  const auto& na = a.nodes();
-  const auto& nb = b.nodes();
-  std::vector<std::pair<std::int32_t, std::int32_t>> stack;
-  stack.reserve(64);
-  stack.emplace_back(0, 0);
-  while (!stack.empty()) {
-    const auto [ia, ib] = stack.back();
-    stack.pop_back();
-    const ObbNode& x = na[ia];
-    const ObbNode& y = nb[ib];
-    // Node pair: ask the separator.
-    ++counters.box_tests;
-    if (separator.disjoint(x.box, transform(b_in_a, y.box), ia, ib, counters)) continue;
-    // Two leaves: test their triangles.
-    if (x.is_leaf() && y.is_leaf()) {
-      if (detail::test_leaves(a, b, x, y, b_in_a, mode, counters, pairs, tri_test, result)) {
-        return result;
-      }
-      continue;
-    }
-    // Otherwise split the larger node (a leaf is never split).
-    const bool split_a = !x.is_leaf() && (y.is_leaf() || x.box.half.sum() >= y.box.half.sum());
-    if (split_a) {
-      stack.emplace_back(x.right, ib);
-      stack.emplace_back(ia + 1, ib);
-    } else {
-      stack.emplace_back(ia, y.right);
-      stack.emplace_back(ia, ib + 1);
-    }
+  return detail::descend(a, b, b_in_a, mode, separator, counters, pairs, tri_test, nullptr,
+                         nullptr);
+}
+
+// True when a query at `b_in_a` should restart from `front` rather than from the roots: the front
+// is valid and B moved little relative to A since it was recorded (a rotation of at most
+// tol::kFrontMaxRotation radians and a displacement of B's root box centre of at most
+// tol::kFrontMaxShift times B's root box size). Only a matter of speed: any front gives the same
+// answer.
+bool front_applies(const QueryFront& front, const ObbTree& b, const Pose& b_in_a);
+
+// Pulls a front up where it went deeper than it needs now: two disjoint node pairs that split the
+// same parent pair (adjacent in the front's depth-first order) are replaced by the parent when SAT
+// (sat_separating_axis, which never claims "disjoint" for overlapping boxes) proves the parent's
+// boxes disjoint at `b_in_a`, repeatedly up the trees. The front still covers every leaf pair
+// once. Counts its box tests.
+void pull_up_front(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, QueryFront& front,
+                   QueryCounters& counters);
+
+// The all-contacts query with temporal coherence, after the front lists of FCL (Pan, Chitta,
+// Manocha 2012), which follow Ehmann and Lin's "generalized front tracking" of the bounding volume
+// test tree (Eurographics 2001): when front_applies, the descent restarts from the node pairs where
+// the last one stopped (pairs above the front, nearly always "may overlap" again at a small
+// motion, are not tested again), otherwise from the roots; either way `front` then holds where
+// this descent stopped. Every tol::kFrontPullUpPeriod restarts the front is pulled up where the
+// pairs moved apart (pull_up_front); when a restarted descent still costs more box tests than the
+// last descent from the roots did, the front is dropped and the next query starts from the roots.
+// The intersecting triangle pairs are exactly those of collide(..., kAllContacts, ...) at the same
+// pose, as a set (the order may differ; sort them to compare). Returns collide's result.
+template <class Separator, class TriTest = FilteredTriTest>
+QueryResult collide_coherent(const ObbTree& a, const ObbTree& b, const Pose& b_in_a,
+                             Separator& separator, QueryCounters& counters,
+                             std::vector<TrianglePair>* pairs, QueryFront& front,
+                             TriTest tri_test = TriTest{}) {
+  thread_local std::vector<NodePair> stops;
+  stops.clear();
+  const bool restart = front_applies(front, b, b_in_a);
+  const std::uint64_t before = counters.box_tests;
+  const QueryResult result =
+      detail::descend(a, b, b_in_a, QueryMode::kAllContacts, separator, counters, pairs, tri_test,
+                      restart ? &front.pairs : nullptr, &stops);
+  const std::uint64_t cost = counters.box_tests - before;
+  front.pairs.swap(stops);
+  front.pose = b_in_a;
+  front.valid = true;
+  if (!restart) {
+    front.root_box_tests = cost;
+    front.queries = 0;
+  } else if (cost > front.root_box_tests) {
+    front.valid = false;  // the front has grown past what a fresh descent costs
+  } else if (++front.queries % tol::kFrontPullUpPeriod == 0) {
+    pull_up_front(a, b, b_in_a, front, counters);
   }
   return result;
 }

@@ -594,6 +594,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
       if (options.method) config.method = *options.method;
       if (options.cap) config.detector.cap = *options.cap;
       if (options.switch_passes) config.detector.switch_passes = *options.switch_passes;
+      if (options.front_list) config.front_list = *options.front_list;
       registry = std::make_unique<Registry>(m, config, config_path);
     } catch (const GraspInputError&) {
       throw;

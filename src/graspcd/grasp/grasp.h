@@ -77,6 +77,7 @@ struct GraspOptions {
   std::optional<int> cap;            // perceptron pass cap override
   std::optional<int> switch_passes;  // Neuro-SAT switch override
   bool native = false;               // MuJoCo's own collision, no registry
+  std::optional<bool> front_list;    // overrides the config's "front_list" (registry.h)
   int max_steps = 400;               // most closing grasp steps
   // 5 steps of 2 ms per grasp step: a target ramp of 0.3 rad/s, tracked with the velocity
   // feed-forward within a few 1e-4 rad at omega = 40 rad/s.

@@ -39,8 +39,9 @@ void write_contact(const TriContact& c, const Mat3& R1, const Vec3& p1, mjContac
 // contact per intersecting triangle pair (contact.h, after Bullet's GImpact clip method), in the
 // sorted order of the pairs, reduced to the pair's manifold (contact.h: patches, at most
 // max_patch_contacts points each and max_contacts in all), written in the world frame.
-int collide_trees(Registry& registry, ServedPair& served, const mjData* d, mjContact* con, int g1,
+int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
                   int g2) {
+  ServedPair& served = registry.pair(pair_index);
   thread_local std::vector<TrianglePair> tri_pairs;
   thread_local std::vector<TriContact> candidates;
   thread_local std::vector<Triangle> faces_a, faces_b;
@@ -53,8 +54,14 @@ int collide_trees(Registry& registry, ServedPair& served, const mjData* d, mjCon
   const Pose pose = relative_pose(d, g1, g2);
   tri_pairs.clear();
   const Clock::time_point start = Clock::now();
-  served.detector->collide(t1->tree, t2->tree, pose, QueryMode::kAllContacts, stats.counters,
-                           &tri_pairs);
+  if (registry.config().front_list) {
+    QueryFront& front = registry.front(d, pair_index);
+    stats.front_restarts += front_applies(front, t2->tree, pose);
+    served.detector->collide_coherent(t1->tree, t2->tree, pose, stats.counters, &tri_pairs, front);
+  } else {
+    served.detector->collide(t1->tree, t2->tree, pose, QueryMode::kAllContacts, stats.counters,
+                             &tri_pairs);
+  }
   const Clock::time_point queried = Clock::now();
   stats.detection_ns += elapsed_ns(start, queried);
   served.contained = false;
@@ -167,7 +174,7 @@ int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjC
     return 0;
   }
   return served.path == PairPath::kBoxBox ? collide_box_box(registry, served, d, con, g1, g2)
-                                          : collide_trees(registry, served, d, con, g1, g2);
+                                          : collide_trees(registry, pair_index, d, con, g1, g2);
 }
 
 }  // namespace graspcd::bridge

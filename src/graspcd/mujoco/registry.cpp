@@ -172,6 +172,9 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
       c.manifold.max_per_pair = contact_budget(value, "max_contacts", source);
     } else if (field == "max_patch_contacts") {
       c.manifold.max_per_patch = contact_budget(value, "max_patch_contacts", source);
+    } else if (field == "front_list") {
+      if (!value.is_boolean()) fail(source, "'front_list' must be true or false");
+      c.front_list = value.get<bool>();
     } else if (field == "grasp") {
       // How the grasp experiment drives a hand: read by graspcd_grasp (graspcd/grasp/
       // drive_config.h), not by the seam.
@@ -371,7 +374,21 @@ void Registry::add_pair(int g1, int g2, const ManifoldOptions& manifold) {
 
 void Registry::reset_detectors() {
   for (ServedPair& p : pairs_) p.detector->reset();
+  fronts_.clear();
 }
+
+QueryFront& Registry::front(const mjData* d, int pair_index) {
+  auto it = fronts_.find(d);
+  if (it == fronts_.end()) {
+    // Bounded: past kMaxFrontData mjData, forget them all (a speed matter only: any front, even
+    // one left by a freed mjData whose address was reused, gives the same answers).
+    if (fronts_.size() >= kMaxFrontData) fronts_.clear();
+    it = fronts_.emplace(d, std::vector<QueryFront>(pairs_.size())).first;
+  }
+  return it->second[static_cast<std::size_t>(pair_index)];
+}
+
+void Registry::forget_fronts(const mjData* d) { fronts_.erase(d); }
 
 void Registry::warn(const std::string& code, const std::string& message) {
   warnings_.push_back(message);

@@ -11,6 +11,7 @@
 //     "max_depth": 0.01,       // contact penetration cap in metres (> 0), see contact.h
 //     "max_contacts": 8,       // contacts handed to MuJoCo per geom pair (1 .. mjMAXCONPAIR = 50)
 //     "max_patch_contacts": 4, // contacts per contact patch (1 .. 50), see contact.h, "manifold"
+//     "front_list": true,      // restart each tree query from the last step's front (speed only)
 //     "pairs": [ {"a": "finger*", "b": "body:object"} , ... ]
 //   }
 // A pair entry may carry its own "max_contacts" and "max_patch_contacts", which override the
@@ -88,6 +89,10 @@ struct RegistryConfig {
   // The contact manifold of every served pair (contact.h): points per patch and per pair, at most
   // mjMAXCONPAIR each.
   ManifoldOptions manifold;
+  // Temporal coherence of the tree path: each query restarts from where the same pair's query on
+  // the same mjData stopped last time, when the pair moved little (core/tree_query.h,
+  // collide_coherent). The contacts are the same either way; false: every query from the roots.
+  bool front_list = true;
   std::vector<PairPattern> patterns;
   // Geom id pairs registered directly (programmatic use), in addition to the patterns.
   std::vector<std::pair<int, int>> geom_pairs;
@@ -133,6 +138,8 @@ struct BridgeStats {
   // and friends, run by mj_step) reset a state with bad qpos, qvel or qacc, so this counts what
   // gets past them: e.g. mj_forward on a bad qpos, or a caller writing into mjData.
   std::uint64_t nonfinite_skips = 0;
+  // Tree queries restarted from the pair's front on its mjData (RegistryConfig::front_list).
+  std::uint64_t front_restarts = 0;
 };
 
 // The tree of one mesh (or of one primitive's tessellation) and, for each face id, the face's slot
@@ -234,8 +241,16 @@ class Registry {
     stats_ = BridgeStats{};
     return s;
   }
-  // Forgets every detector's cached state (warm planes, cached axes, switches).
+  // Forgets every detector's cached state (warm planes, cached axes, switches) and every front.
   void reset_detectors();
+  // The query front of a tree-path pair on one mjData (RegistryConfig::front_list): the state of
+  // the tree query's temporal coherence is kept per (mjData, pair), so that two mjData stepping
+  // the same model (the study's threads, a planner's rollouts) never follow each other's fronts.
+  // Created empty on first use; at most kMaxFrontData mjData are remembered.
+  QueryFront& front(const mjData* d, int pair_index);
+  // Forgets the fronts of `d` (e.g. before mj_deleteData; not needed for correctness).
+  void forget_fronts(const mjData* d);
+  static constexpr std::size_t kMaxFrontData = 64;
 
   // The mesh's faces in the mesh frame, as doubles converted from MuJoCo's floats (what the tree
   // holds, in face order): for tests and the exact check.
@@ -259,6 +274,7 @@ class Registry {
   std::map<std::array<double, 4>, MeshTree> primitive_trees_;
   std::vector<const MeshTree*> geom_trees_;  // by geom id
   BridgeStats stats_;
+  std::unordered_map<const mjData*, std::vector<QueryFront>> fronts_;
   std::vector<std::string> warnings_;
   // Adds a warning to warnings_ and to the process's sink under `code`.
   void warn(const std::string& code, const std::string& message);
