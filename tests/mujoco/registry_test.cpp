@@ -80,7 +80,7 @@ TEST(GlobMatch, StarMatchesAnyRunAndOtherCharactersThemselves) {
 TEST(RegistryConfig, ParsesEveryField) {
   const RegistryConfig c = parse_registry_config(
       R"({"method": "neurosat", "cap": 900, "switch": 40, "cache_slots": 64, "max_depth": 0.002,
-          "max_contacts": 12, "max_patch_contacts": 3,
+          "max_contacts": 12, "max_patch_contacts": 3, "front_list": false,
           "pairs": [{"a": "finger*", "b": "geom:cup"},
                     {"a": "palm", "b": "cup", "max_contacts": 2, "max_patch_contacts": 1}]})",
       "x.json");
@@ -91,6 +91,7 @@ TEST(RegistryConfig, ParsesEveryField) {
   EXPECT_DOUBLE_EQ(c.max_depth, 0.002);
   EXPECT_EQ(c.manifold.max_per_pair, 12);
   EXPECT_EQ(c.manifold.max_per_patch, 3);
+  EXPECT_FALSE(c.front_list);
   ASSERT_EQ(c.patterns.size(), 2u);
   EXPECT_EQ(c.patterns[0].a, "finger*");
   EXPECT_EQ(c.patterns[0].b, "geom:cup");
@@ -101,6 +102,7 @@ TEST(RegistryConfig, ParsesEveryField) {
   const RegistryConfig d = parse_registry_config(R"({"pairs": []})", "d.json");
   EXPECT_EQ(d.manifold.max_per_patch, 4);
   EXPECT_EQ(d.manifold.max_per_pair, 8);
+  EXPECT_TRUE(d.front_list);
 }
 
 // Each bad config gives one line that starts with the config's name.
@@ -121,6 +123,7 @@ TEST(RegistryConfig, ErrorsAreOneLineAndNameTheSource) {
            R"({"max_patch_contacts": 2.5, "pairs": []})",               // not an integer
            R"({"pairs": [{"a": "x", "b": "y", "max_contacts": -3}]})",  // per pair, below 1
            R"({"pairs": [{"a": "x", "b": "y", "colour": 1}]})",         // unknown pair field
+           R"({"front_list": 1, "pairs": []})",                         // not a boolean
        }) {
     try {
       parse_registry_config(bad, "cfg/hand.json");
