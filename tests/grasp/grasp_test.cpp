@@ -76,6 +76,13 @@ TEST_P(OursLiftsAndHolds, FingersTouchThenTheObjectIsLiftedAndHeldAndDetectionTi
   EXPECT_GT(r.object_z_final, r.object_z_initial + 0.03);
   EXPECT_GT(r.hold_min_z, r.object_z_initial + 0.03);
   EXPECT_GE(r.sim_time, 2.0 + 1.0);  // the lift and the 2 s hold at least
+  // The solver's buffers (nconmax 300, njmax 900 as shipped) never overflowed, and at rest in the
+  // hand (the hold's last second) the object touches with at most 1 mm of penetration.
+  EXPECT_EQ(r.contact_buffer_full, 0);
+  EXPECT_EQ(r.constraint_buffer_full, 0);
+  EXPECT_GT(r.rest_max_penetration, 0.0);
+  EXPECT_LT(r.rest_max_penetration, 0.001);
+  EXPECT_GT(r.rest_energy_early, 0.0);
 
   // Detection time per grasp step.
   ASSERT_FALSE(r.steps.empty());

@@ -257,6 +257,41 @@ void close_fingers(GraspRun& run, const GraspOptions& options, GraspResult& resu
 
 // After the hold, the same for our hands (GraspRun) and a driven one (DrivenRun): the final
 // height, the verdict held, and the run's totals.
+// One physics step of the hold: when it lies in the last second of the hold ("at rest",
+// grasp.h), the object's speed, the deepest contact of an object geom and the system's kinetic
+// energy go into the result's rest fields. `step` counts from 1 to `steps`.
+void watch_rest(const mjModel* m, mjData* d, int object, const std::vector<char>& is_object_geom,
+                long step, long steps, GraspResult& result) {
+  const long window = std::min(steps, std::lround(1.0 / m->opt.timestep));
+  const long first = steps - window + 1;
+  if (step < first) return;
+  mjtNum velocity[6];
+  mj_objectVelocity(m, d, mjOBJ_BODY, object, velocity, 0);
+  const double speed =
+      std::sqrt(velocity[3] * velocity[3] + velocity[4] * velocity[4] + velocity[5] * velocity[5]);
+  result.rest_max_speed = std::max(result.rest_max_speed, speed);
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& c = d->contact[i];
+    if (is_object_geom[static_cast<std::size_t>(c.geom1)] ||
+        is_object_geom[static_cast<std::size_t>(c.geom2)]) {
+      result.rest_max_penetration = std::max(result.rest_max_penetration, -c.dist);
+    }
+  }
+  // 0.5 qvel^T M qvel with the step's joint-space inertia (mj_energyVel's formula; MuJoCo 2.2
+  // fills d->energy only with the energy flag enabled).
+  thread_local std::vector<mjtNum> mv;
+  mv.resize(static_cast<std::size_t>(m->nv));
+  mj_mulM(m, d, mv.data(), d->qvel);
+  const double energy = 0.5 * mju_dot(d->qvel, mv.data(), m->nv);
+  const long half = window / 2;
+  const double share = energy / static_cast<double>(std::max(1L, half));
+  if (step < first + half) {
+    result.rest_energy_early += share;
+  } else if (step < first + 2 * half) {
+    result.rest_energy_late += share;
+  }
+}
+
 template <class Run>
 void finish_result(const Run& run, const mjData* d, double final_z, GraspResult& result) {
   result.object_z_final = final_z;
@@ -272,6 +307,8 @@ void finish_result(const Run& run, const mjData* d, double final_z, GraspResult&
   result.contained_calls = run.contained_total_;
   result.nonfinite_skips = run.nonfinite_total_;
   result.max_contacts = run.max_contacts_;
+  result.contact_buffer_full = d->warning[mjWARN_CONTACTFULL].number;
+  result.constraint_buffer_full = d->warning[mjWARN_CNSTRFULL].number;
 }
 
 // A hand that is not ours, driven through its own actuators by the config's "grasp" section
@@ -492,11 +529,14 @@ void run_driven_grasp(DrivenRun& run, const GraspOptions& options, GraspResult& 
   const std::array<double, 3> rel0 = run.object_in_hand();
   result.hold_min_z = run.height();
   run.phase_ = "the hold";
+  const long hold_steps = std::max(1L, std::lround(options.hold_time / run.m_->opt.timestep));
+  long hold_step = 0;
   run.run_phase(
       options.hold_time, [](double) {},
       [&] {
         result.hold_min_z = std::min(result.hold_min_z, run.height());
         result.hold_drift = std::max(result.hold_drift, run.drift_from(rel0));
+        watch_rest(run.m_, d, run.object_, run.is_object_geom_, ++hold_step, hold_steps, result);
       });
   run.take_stats();
   finish_result(run, d, run.height(), result);
@@ -685,9 +725,12 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   result.hold_min_z = run.object_z();
   result.hold_drift = 0;
   run.phase_ = "the hold";
+  const long hold_steps = std::max(1L, std::lround(options.hold_time / m->opt.timestep));
+  long hold_step = 0;
   run.run_phase(
       options.hold_time, [](double) {},
       [&] {
+        watch_rest(m, d, run.object_, run.is_object_geom_, ++hold_step, hold_steps, result);
         result.hold_min_z = std::min(result.hold_min_z, run.object_z());
         const std::array<double, 3> rel = run.object_in_palm();
         const double drift = std::sqrt((rel[0] - rel0[0]) * (rel[0] - rel0[0]) +

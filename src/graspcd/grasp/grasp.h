@@ -126,6 +126,18 @@ struct GraspResult {
   double hold_min_z = 0;  // lowest object height during the final hold
   double hold_drift = 0;  // largest move of the object relative to the palm in the hold, m
   bool held = false;
+  // The last second of the hold (or the whole hold when shorter), "at rest": the object's largest
+  // linear speed (m/s), the deepest contact of an object geom (-dist, m; 0 without contacts), and
+  // the whole system's kinetic energy (J, 0.5 qvel^T M qvel) averaged over that window's first
+  // and second halves.
+  double rest_max_speed = 0;
+  double rest_max_penetration = 0;
+  double rest_energy_early = 0;
+  double rest_energy_late = 0;
+  // MuJoCo's warning counters of the grasp's mjData at the end (d->warning[].number): the contact
+  // buffer (nconmax) and the constraint buffer (njmax) were full in this many steps.
+  int contact_buffer_full = 0;
+  int constraint_buffer_full = 0;
   double sim_time = 0;  // simulated seconds, all phases
   long physics_steps = 0;
   double step_wall_ms = 0;  // mean wall time per physics step (mj_step1 + control + mj_step2)
