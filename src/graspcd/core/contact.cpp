@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <utility>
@@ -302,13 +303,20 @@ double hull_gain(const std::vector<Point2>& h, const Point2& x) {
 }
 
 // A vertex of a candidate's triangle on one geom (side 0: geom1, 1: geom2), with the candidate.
-// Sorted, equal keys are the candidates that share the vertex.
+// Sorted, equal keys are the candidates that share the vertex. The order is by a 64-bit hash of
+// the vertex first (one integer comparison decides nearly every pair), then by the vertex, then by
+// the candidate: equal vertices have equal hashes, so each run of one vertex is contiguous and in
+// candidate order, which is all the manifold reads of the order.
 struct VertexKey {
+  std::uint64_t hash;
   int side;
   std::array<double, 3> x;
   std::uint32_t candidate;
-  bool same_vertex(const VertexKey& o) const { return side == o.side && x == o.x; }
+  bool same_vertex(const VertexKey& o) const {
+    return hash == o.hash && side == o.side && x == o.x;
+  }
   bool operator<(const VertexKey& o) const {
+    if (hash != o.hash) return hash < o.hash;
     if (side != o.side) return side < o.side;
     if (x != o.x) return x < o.x;
     return candidate < o.candidate;
@@ -316,9 +324,19 @@ struct VertexKey {
 };
 
 VertexKey vertex_key(int side, const Vec3& v, std::size_t candidate) {
-  // + 0.0 folds -0.0 into 0.0, which compare equal as coordinates.
-  return VertexKey{
-      side, {v[0] + 0.0, v[1] + 0.0, v[2] + 0.0}, static_cast<std::uint32_t>(candidate)};
+  // + 0.0 folds -0.0 into 0.0, which compare equal as coordinates (and then hash alike).
+  const std::array<double, 3> x = {v[0] + 0.0, v[1] + 0.0, v[2] + 0.0};
+  // FNV-1a over the side and the coordinates' bits, then a final mix (splitmix64's).
+  std::uint64_t h = 0xcbf29ce484222325ull ^ static_cast<std::uint64_t>(side);
+  for (const double c : x) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &c, sizeof bits);
+    h = (h ^ bits) * 0x100000001b3ull;
+  }
+  h ^= h >> 31;
+  h *= 0xbf58476d1ce4e5b9ull;
+  h ^= h >> 29;
+  return VertexKey{h, side, x, static_cast<std::uint32_t>(candidate)};
 }
 
 // Chooses at most `k` of the patch's members (deepest first in `members`; q their positions in
