@@ -270,6 +270,15 @@ void print_json(const bridge::GraspResult& r, const std::optional<ObjectScene>& 
                         {"sim_time", r.sim_time},
                         {"ms_per_physics_step", r.step_wall_ms},
                         {"max_contacts", r.max_contacts},
+                        {"mean_contacts", r.mean_contacts},
+                        {"max_pair_contacts", r.max_pair_contacts},
+                        {"rest",
+                         {{"max_speed", r.rest_max_speed},
+                          {"max_penetration", r.rest_max_penetration},
+                          {"energy_early", r.rest_energy_early},
+                          {"energy_late", r.rest_energy_late}}},
+                        {"contact_buffer_full", r.contact_buffer_full},
+                        {"constraint_buffer_full", r.constraint_buffer_full},
                         {"contained_calls", r.contained_calls},
                         {"nonfinite_skips", r.nonfinite_skips}};
   if (object) {
@@ -367,7 +376,12 @@ Command add_grasp_command(CLI::App& parent) {
       "object_z, segments), first_contact (segment -> step or null), gripped, held, "
       "object_z_initial, object_z_gripped, object_z_final, hold_min_z, hold_drift, "
       "detection_ns_close, detection_ns_total, physics_steps, sim_time, ms_per_physics_step, "
-      "max_contacts, contained_calls, nonfinite_skips, warnings.\n"
+      "max_contacts, mean_contacts (finger-object contacts per physics step), max_pair_contacts "
+      "(the most one geom pair had in a step), rest (the hold's last second: the object's "
+      "max_speed in m/s, its deepest contact max_penetration in m, the kinetic energy of the "
+      "window's halves energy_early and energy_late in J), contact_buffer_full and "
+      "constraint_buffer_full (MuJoCo's counters: steps whose nconmax or njmax was reached), "
+      "contained_calls, nonfinite_skips, warnings.\n"
       "Warnings: the pair registry's findings that do not stop the grasp (a served geom with a "
       "margin, an open mesh inside which containment is not checked), one line 'warning: "
       "CONFIG: message' each on stderr, and in the JSON's warnings.\n"

@@ -545,6 +545,12 @@ TEST_F(CliTest, GraspObjectFitsANewMeshIntoTheTemplateAndTheFingersTouchIt) {
   for (const auto& [segment, step] : doc["first_contact"].items()) touched += !step.is_null();
   EXPECT_GE(touched, 2) << doc["first_contact"].dump();
   EXPECT_GT(doc["max_contacts"].get<int>(), 0);
+  EXPECT_GT(doc["mean_contacts"].get<double>(), 0.0);
+  EXPECT_GE(doc["max_pair_contacts"].get<int>(), 1);
+  EXPECT_LE(doc["max_pair_contacts"].get<int>(), 8);  // the manifold's default budget per pair
+  EXPECT_LE(doc["max_pair_contacts"].get<int>(), doc["max_contacts"].get<int>());
+  EXPECT_EQ(doc["contact_buffer_full"].get<int>(), 0);
+  EXPECT_GE(doc["rest"]["max_speed"].get<double>(), 0.0);
   // The temporary scene is gone.
   EXPECT_TRUE(fs::is_empty(tmp));
 }

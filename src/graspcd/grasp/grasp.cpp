@@ -25,6 +25,20 @@ constexpr int kSegmentsPerFinger = 3;
 constexpr double kHeldRise = 0.03;   // m above the initial height
 constexpr double kHeldDrift = 0.01;  // m, largest move relative to the palm during the hold
 
+// Counts the longest run of one geom pair among the counted contacts of a step (MuJoCo writes
+// each geom pair's contacts consecutively): the most contacts one pair handed the solver.
+struct PairRun {
+  int last = -2, g1 = -1, g2 = -1, run = 0, most = 0;
+  void start() { last = -2; }
+  void add(int i, int geom1, int geom2) {
+    run = i == last + 1 && geom1 == g1 && geom2 == g2 ? run + 1 : 1;
+    last = i;
+    g1 = geom1;
+    g2 = geom2;
+    most = std::max(most, run);
+  }
+};
+
 int require_id(const mjModel* m, mjtObj type, const std::string& name, const std::string& scene,
                const char* what) {
   const int id = mj_name2id(m, type, name.c_str());
@@ -113,6 +127,7 @@ class GraspRun {
     check_finite();
     touching_.fill(false);
     contacts_ = 0;
+    pair_run_.start();
     for (int i = 0; i < d_->ncon; ++i) {
       const int g1 = d_->contact[i].geom1;
       const int g2 = d_->contact[i].geom2;
@@ -124,8 +139,10 @@ class GraspRun {
       if (s < 0) continue;
       touching_[static_cast<std::size_t>(s)] = true;
       ++contacts_;
+      pair_run_.add(i, g1, g2);
     }
     max_contacts_ = std::max(max_contacts_, contacts_);
+    contacts_sum_ += contacts_;
   }
 
   void check_finite() const { throw_if_nonfinite(d_, scene_, phase_, physics_steps_); }
@@ -168,6 +185,8 @@ class GraspRun {
   std::array<bool, kFingerSegments> touching_{};
   int contacts_ = 0;
   int max_contacts_ = 0;
+  long contacts_sum_ = 0;
+  PairRun pair_run_;
   long physics_steps_ = 0;
   std::int64_t wall_ns_ = 0;
   std::uint64_t detection_ns_total_ = 0;
@@ -307,6 +326,10 @@ void finish_result(const Run& run, const mjData* d, double final_z, GraspResult&
   result.contained_calls = run.contained_total_;
   result.nonfinite_skips = run.nonfinite_total_;
   result.max_contacts = run.max_contacts_;
+  result.mean_contacts = run.physics_steps_ > 0 ? static_cast<double>(run.contacts_sum_) /
+                                                      static_cast<double>(run.physics_steps_)
+                                                : 0.0;
+  result.max_pair_contacts = run.pair_run_.most;
   result.contact_buffer_full = d->warning[mjWARN_CONTACTFULL].number;
   result.constraint_buffer_full = d->warning[mjWARN_CNSTRFULL].number;
 }
@@ -400,6 +423,7 @@ class DrivenRun {
     throw_if_nonfinite(d_, scene_, phase_, physics_steps_);
     std::fill(touching_.begin(), touching_.end(), false);
     contacts_ = 0;
+    pair_run_.start();
     for (int i = 0; i < d_->ncon; ++i) {
       const auto g1 = static_cast<std::size_t>(d_->contact[i].geom1);
       const auto g2 = static_cast<std::size_t>(d_->contact[i].geom2);
@@ -409,8 +433,10 @@ class DrivenRun {
       if (segments == nullptr) continue;
       for (int s : *segments) touching_[static_cast<std::size_t>(s)] = true;
       ++contacts_;
+      pair_run_.add(i, d_->contact[i].geom1, d_->contact[i].geom2);
     }
     max_contacts_ = std::max(max_contacts_, contacts_);
+    contacts_sum_ += contacts_;
   }
   // `seconds` of physics steps, the controls set by at(fraction of the phase) before each.
   template <class Controls, class Observe>
@@ -446,6 +472,8 @@ class DrivenRun {
   std::vector<char> is_object_geom_;
   std::vector<bool> touching_;
   int contacts_ = 0, max_contacts_ = 0;
+  long contacts_sum_ = 0;
+  PairRun pair_run_;
   long physics_steps_ = 0;
   std::int64_t wall_ns_ = 0;
   std::uint64_t detection_ns_total_ = 0, contained_total_ = 0, nonfinite_total_ = 0;

@@ -144,6 +144,8 @@ struct GraspResult {
   std::uint64_t detection_ns_close = 0;  // summed over the closing grasp steps
   std::uint64_t detection_ns_total = 0;  // all phases
   int max_contacts = 0;                  // most finger-object contacts in one physics step
+  double mean_contacts = 0;              // finger-object contacts per physics step, all phases
+  int max_pair_contacts = 0;             // most of them one geom pair had in one physics step
   std::uint64_t contained_calls = 0;     // containment findings over all phases (registry.h)
   std::uint64_t nonfinite_skips = 0;  // served calls skipped on a non-finite placement, all phases
   // The registry's warnings (registry.h, Registry::warnings()), one line each.
