@@ -5,7 +5,8 @@ Usage: /usr/bin/python3 report/make_report.py OUT_DIR
 Reads OUT_DIR/study.json (Table 1, the box hand of Figures 13-15, recordings, machine, build),
 OUT_DIR/sweep.json (the run-time/error sweep, possibly merged from shards) and, if present,
 OUT_DIR/stress.json (`graspcd stress --json`, the numerical stress suite of issue 7) and
-OUT_DIR/perf.json (`./run perf`, graspcd against FCL and MuJoCo, issue 6), writes
+OUT_DIR/perf.json (`./run perf`, graspcd against FCL and MuJoCo, issue 6),
+OUT_DIR/contacts.json (study/contacts_solver.py, what MuJoCo's solver gets, issue 18), writes
 OUT_DIR/REPORT.md and OUT_DIR/figures/*.png. Every number in the report comes from those files; the text around a
 number is chosen by comparing numbers, never written in advance.
 
@@ -521,6 +522,49 @@ def perf_closing_note(perf):
     return lines
 
 
+def contacts_section(contacts):
+    """The "Contacts and the solver" section from contacts.json (study/contacts_solver.py)."""
+    lines = []
+    w = lines.append
+    before = contacts["before_budget"]
+    w("## Contacts and the solver")
+    w("")
+    w("From `contacts.json` (`study/contacts_solver.py`, run by `./run study`): each scene's grasp"
+      " (`graspcd grasp SCENE --json`) natively (MuJoCo's convex hulls), served with the contact"
+      " manifold as shipped (at most 4 points per patch and 8 per geom pair) and served with"
+      f" {before} per pair and per patch (every intersecting triangle pair's contact up to"
+      " MuJoCo's cap, as before the manifold). Contacts are finger-object contacts per physics"
+      " step over the whole grasp; \"most per pair\" is the most one geom pair had in one step;"
+      " rise is the object's final height above its start; at rest is the hold's last second"
+      " (the object's largest speed and deepest contact); buffers full counts the steps that"
+      " filled MuJoCo's contact or constraint buffer. The served step's cost against native is"
+      " a benchmark, `BM_WholeGrasp` of `./run perf` (docs/performance.md), not these single"
+      " runs.")
+    w("")
+    w("| scene | variant | contacts per step (mean, max) | most per pair | held, rise (cm) |"
+      " at rest: speed (mm/s), penetration (mm) | buffers full |")
+    w("|---|---|---|---|---|---|---|")
+    names = {"native": "native", "manifold": "manifold (4/8)", "before": f"before ({before})"}
+    for scene, variants in contacts["scenes"].items():
+        for key in ("native", "manifold", "before"):
+            r = variants[key]
+            full = r["contact_buffer_full"] + r["constraint_buffer_full"]
+            w(f"| {scene} | {names[key]} | {r['mean_contacts']:.1f}, {r['max_contacts']} |"
+              f" {r['max_pair_contacts']} | {'yes' if r['held'] else 'no'},"
+              f" {100 * r['rise']:.2f} | {1000 * r['rest_max_speed']:.2f},"
+              f" {1000 * r['rest_max_penetration']:.3f} | {full} |")
+    # What the table says about the manifold at rest, read from it.
+    worse = [scene for scene, v in contacts["scenes"].items()
+             if v["manifold"]["rest_max_speed"] > 1.2 * max(v["before"]["rest_max_speed"],
+                                                            v["native"]["rest_max_speed"])]
+    if worse:
+        w("")
+        w("At rest the manifold leaves the object faster than both native and the full contact"
+          f" set on {', '.join(worse)} (docs/design.md, \"The seam with MuJoCo\", says what the"
+          " budget costs).")
+    return lines
+
+
 def real_models_section(real):
     """The "Real hands and objects" section from study/real_models.py's real_models.json."""
     lines = []
@@ -847,6 +891,13 @@ def main():
     real = load(os.path.join(args.out_dir, "real_models.json"), required=False)
     if real is not None:  # study/real_models.py: the real hands of ../shared/models (issue 8)
         section = "\n".join(real_models_section(real)) + "\n\n"
+        at = text.find("## Reproduce")
+        if at < 0:
+            at = len(text)
+        text = text[:at].rstrip("\n") + "\n\n" + section + text[at:]
+    contacts = load(os.path.join(args.out_dir, "contacts.json"), required=False)
+    if contacts is not None:  # study/contacts_solver.py: what the solver gets (issue 18)
+        section = "\n".join(contacts_section(contacts)) + "\n\n"
         at = text.find("## Reproduce")
         if at < 0:
             at = len(text)
