@@ -657,9 +657,7 @@ TEST_F(CliTest, GraspConfigWhosePatternMatchesNothingIsOneLineAndExitTwo) {
   const Result d = run("grasp " + shipped_scene("example1") + " --config " + depth);
   EXPECT_EQ(d.exit_code, 2);
   EXPECT_EQ(d.out, "");
-  EXPECT_EQ(d.err, depth +
-                       ": bad JSON: [json.exception.out_of_range.406] number overflow parsing "
-                       "'1e999'\n");
+  EXPECT_EQ(d.err, depth + ":1: bad JSON: number overflow parsing '1e999'\n");
 }
 
 // An open object mesh: the containment check cannot be decided inside it, so the registry warns
