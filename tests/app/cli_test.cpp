@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -716,6 +718,40 @@ TEST_F(CliTest, GraspHelpDocumentsTheOutput) {
   EXPECT_NE(r.out.find("step contacts detection_ns"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--json"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--native"), std::string::npos) << r.out;
+}
+
+// --- Issue 19: hostile input at the seams between graspcd, MuJoCo and the files -----------------
+
+// Item 4: answers that could not be written are an error, not a success; a closed pipe stays
+// quiet (SIGPIPE).
+TEST_F(CliTest, StdoutThatCannotBeWrittenIsAnErrorAndAClosedPipeIsQuiet) {
+  const std::string cases = write("t.txt", std::string(kTouching) + kSeparated);
+  const std::string exe = std::string("'") + GRASPCD_EXE + "' ";
+  const fs::path err = dir_ / "err.txt";
+  const auto status_of = [&](const std::string& command) {
+    const int status = std::system((command + " 2> '" + err.string() + "'").c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  };
+  EXPECT_EQ(status_of(exe + "tritri " + cases + " > /dev/full"), 2);
+  EXPECT_EQ(read_file(err), "<stdout>: cannot write: No space left on device\n");
+  EXPECT_EQ(status_of(exe + "boxbox " + write("b.txt", kBoxesApart) + " > /dev/full"), 2);
+  EXPECT_EQ(read_file(err), "<stdout>: cannot write: No space left on device\n");
+  EXPECT_EQ(status_of(exe + "tritri --help > /dev/full"), 2);
+  EXPECT_EQ(read_file(err), "<stdout>: cannot write: No space left on device\n");
+  EXPECT_EQ(status_of(exe + "tritri " + cases + " >&-"), 2);
+  EXPECT_EQ(read_file(err), "<stdout>: cannot write: Bad file descriptor\n");
+  // 200,000 answers into `head -1`: the pipe closes early, graspcd ends by SIGPIPE, silently.
+  std::string many;
+  for (int i = 0; i < 200000; ++i) many += kTouching;
+  const std::string big = write("big.txt", many);
+  const fs::path status = dir_ / "status.txt";
+  fs::remove(err);
+  EXPECT_EQ(std::system(("{ " + exe + "tritri " + big + " 2> '" + err.string() + "'; echo $? > '" +
+                         status.string() + "'; } | head -1 > /dev/null")
+                            .c_str()),
+            0);
+  EXPECT_EQ(read_file(status), std::to_string(128 + SIGPIPE) + "\n");
+  EXPECT_EQ(read_file(err), "");
 }
 
 }  // namespace
