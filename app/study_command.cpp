@@ -45,7 +45,7 @@ void run_study_command(StudyCliOptions& o, const CLI::App& app) {
   try {
     study::run_study(o.study, log);
   } catch (const bridge::GraspInputError& e) {
-    throw io::InputError(e.file(), 0, e.message());
+    throw io::InputError(e.file(), e.line(), e.message());
   }
 }
 

@@ -8,6 +8,7 @@
 #include "command.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/io/text_input.h"
+#include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/study/trajectory.h"
 
 namespace graspcd::cli {
@@ -31,7 +32,9 @@ void run_trajectory_command(TrajectoryCliOptions& o) {
   try {
     study::export_grasp(o.scene, o.out, o.options);
   } catch (const bridge::GraspInputError& e) {
-    throw io::InputError(e.file(), 0, e.message());
+    throw io::InputError(e.file(), e.line(), e.message());
+  } catch (const bridge::MujocoError& e) {
+    throw io::InputError(o.scene, 0, e.what());
   }
   std::cerr << "[trajectory] wrote " << o.out << std::endl;
 }
