@@ -851,6 +851,24 @@ TEST_F(CliTest, GraspObjectThatMujocoCannotCompileNamesTheFileAndCleansUp) {
   EXPECT_TRUE(fs::is_empty(tmp));
 }
 
+// MuJoCo's errors (mju_error; here its stack, too small for the contacts of the first step) used to
+// print "Press Enter to exit ...", append to MUJOCO_LOG.TXT in the current folder and exit 1.
+TEST_F(CliTest, AMujocoErrorWhileSteppingIsOneLineNamingTheSceneAndExitTwo) {
+  const std::string scene = copy_scene(dir_ / "s", "example1", "", "");
+  std::string xml = read_file(scene);
+  const std::string size = "<size nconmax=\"300\" njmax=\"900\"/>";
+  ASSERT_NE(xml.find(size), std::string::npos);
+  xml.replace(xml.find(size), size.size(), "<size nconmax=\"300\" njmax=\"900\" nstack=\"1600\"/>");
+  std::ofstream(scene, std::ios::trunc) << xml;
+  const fs::path log = fs::current_path() / "MUJOCO_LOG.TXT";  // where MuJoCo would append
+  fs::remove(log);
+  const Result r = run("grasp " + scene + " --max-steps 5");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out.find("Press Enter"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err, scene + ": MuJoCo error: Stack overflow\n");
+  EXPECT_FALSE(fs::exists(log));
+}
+
 // Item 7: an OBJ with two objects is warned about in grasp --object as in meshpair (MuJoCo keeps
 // the first, the fit sees both).
 TEST_F(CliTest, GraspObjectWarnsAboutSeveralObjectsAsMeshpairDoes) {
