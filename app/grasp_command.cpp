@@ -347,7 +347,7 @@ Command add_grasp_command(CLI::App& parent) {
       ->excludes(scene);
   app->add_option("--scale", options->scale,
                   "--object: the mesh's scale (default: fitted to the cup's size)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app->add_option("--write-scene", options->write_scene,
                   "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder "
                   "and keep it (default: a temporary folder, removed)");
@@ -358,7 +358,7 @@ Command add_grasp_command(CLI::App& parent) {
   app->add_option("--config", options->config,
                   "Pair config (JSON); default SCENE.pairs.json beside the scene");
   app->add_option("--max-steps", options->max_steps, "Most closing grasp steps")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app->footer(wrap_help(
       "The fingers close in grasp steps of 0.003 rad (5 physics steps each, computed-torque "

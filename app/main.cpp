@@ -146,6 +146,15 @@ int main(int argc, char** argv) {
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
       return check_stdout(stdout_buffer, app.exit(e));
     }
+    // A first word that is no option and no subcommand: a misspelled subcommand.
+    if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
+      std::string names;
+      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+      }
+      return report_error(std::string("graspcd: unknown subcommand '") + argv[1] +
+                          "' (expected one of: " + names + ")");
+    }
     return report_error(std::string("graspcd: ") + e.what() + " (run with --help for usage)");
   }
 

@@ -230,7 +230,7 @@ Command add_validate_command(CLI::App& parent) {
                 "Check every method but perceptron-nodisp (default: the config's method)")
       ->excludes("--method");
   app->add_option("--steps", o->steps, "Most closing grasp steps")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app->add_option("--config", o->config,
                   "Pair config (JSON); default SCENE.pairs.json beside the scene");

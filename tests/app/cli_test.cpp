@@ -888,4 +888,32 @@ TEST_F(CliTest, GraspObjectWarnsAboutSeveralObjectsAsMeshpairDoes) {
   EXPECT_NE(g.err.find(warning), std::string::npos) << g.err;
 }
 
+// The messages: option values, a misspelled subcommand, a config's bad JSON named once with its
+// line.
+TEST_F(CliTest, OptionAndSubcommandErrorsAreShortAndRight) {
+  Result r = run("grasp --object x.obj --scale nan");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "graspcd: --scale: Value nan is not a finite number (run with --help for usage)\n");
+  r = run("grasp " + shipped_scene("example1") + " --max-steps 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "graspcd: --max-steps: Value 0 is not > 0 (run with --help for usage)\n");
+  r = run("tritr x");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "graspcd: unknown subcommand 'tritr' (expected one of: tritri, boxbox, meshpair, "
+            "grasp, study, stress, validate, trajectory)\n");
+  const std::string scene = copy_scene(dir_ / "s", "example1", "", "");
+  const std::string config = (dir_ / "s" / "example1.pairs.json").string();
+  std::ofstream(config, std::ios::trunc) << "{\n  \"pairs\": [\n  }\n";
+  for (const std::string& command : {"validate " + scene, "grasp " + scene}) {
+    r = run(command);
+    EXPECT_EQ(r.exit_code, 2) << command;
+    EXPECT_EQ(r.err, config +
+                         ":3: bad JSON: syntax error while parsing value - unexpected '}'; "
+                         "expected '[', '{', or a literal\n")
+        << command;
+  }
+}
+
 }  // namespace
