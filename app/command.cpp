@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <iostream>
 #include <sstream>
 
@@ -18,7 +19,29 @@ bool stdin_is_stream() {
   return ::fstat(STDIN_FILENO, &info) != 0 || !S_ISREG(info.st_mode);
 }
 
+// A validator of a finite number for which `ok` holds; `bound` says what ok means ("> 0").
+CLI::Validator finite_number(bool (*ok)(double), const std::string& bound,
+                             const std::string& name) {
+  return CLI::Validator(
+      [ok, bound](std::string& input) -> std::string {
+        double x = 0;
+        if (!CLI::detail::lexical_cast(input, x) || !std::isfinite(x)) {
+          return "Value " + input + " is not a finite number";
+        }
+        return ok(x) ? "" : "Value " + input + " is not " + bound;
+      },
+      name);
+}
+
 }  // namespace
+
+CLI::Validator positive_number() {
+  return finite_number([](double x) { return x > 0; }, "> 0", "POSITIVE");
+}
+
+CLI::Validator non_negative_number() {
+  return finite_number([](double x) { return x >= 0; }, ">= 0", "NONNEGATIVE");
+}
 
 void for_each_case(const std::string& path, std::size_t count,
                    const std::function<void(const std::vector<double>&)>& answer) {

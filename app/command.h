@@ -36,6 +36,12 @@ Command add_stress_command(CLI::App& parent);
 Command add_validate_command(CLI::App& parent);
 Command add_trajectory_command(CLI::App& parent);
 
+// CLI11 validators of a numeric option: a finite number > 0 (positive_number) or >= 0
+// (non_negative_number). CLI11's PositiveNumber passes nan and says "Value 0 not in range 0.000000
+// to 1797693134862...": these say "Value 0 is not > 0", "Value nan is not a finite number".
+CLI::Validator positive_number();
+CLI::Validator non_negative_number();
+
 // The paragraphs on the number grammar and the errors that every subcommand's help repeats.
 std::string number_grammar_help();
 

@@ -19,9 +19,11 @@
 
 #include "command.h"
 #include "graspcd/core/geometry.h"
+#include "graspcd/core/warnings.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/text_input.h"
+#include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/version/envelope.h"
 #include "method.h"
 
@@ -110,7 +112,13 @@ std::string number(double v) {
 
 ObjectScene write_object_scene(const GraspCliOptions& o, const fs::path& dir) {
   // The mesh as graspcd reads it (an error names FILE): its bounding box places and fits it.
-  const TriangleMesh mesh = io::load_mesh(o.object);
+  io::MeshStats stats;
+  const TriangleMesh mesh = io::load_mesh(o.object, &stats);
+  // What changes the answer or what MuJoCo loads (an OBJ with several objects: MuJoCo keeps the
+  // first, the fit below sees them all; dropped faces), one line each, as meshpair warns.
+  for (const std::string& w : io::mesh_warnings(o.object, stats, true)) {
+    warnings().add("mesh_hygiene", w);
+  }
   Vec3 lo = mesh.vertices.front(), hi = lo;
   for (const Vec3& v : mesh.vertices) {
     lo = lo.cwiseMin(v);
@@ -311,11 +319,20 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app) {
     object = write_object_scene(options, temp ? temp->path() : fs::path(options.write_scene));
     scene = object->scene;
   }
+  // Errors name the user's file, never the temporary scene (removed when this returns).
+  const auto named = [&](const std::string& file) {
+    return object && file == object->scene ? options.object : file;
+  };
   bridge::GraspResult result;
   try {
     result = bridge::run_grasp(scene, grasp);
   } catch (const bridge::GraspInputError& e) {
-    throw io::InputError(e.file(), 0, e.message());
+    if (object && e.file() == object->scene) {
+      throw io::InputError(options.object, 0, "in the template scene: " + e.message());
+    }
+    throw io::InputError(e.file(), e.line(), e.message());
+  } catch (const bridge::MujocoError& e) {
+    throw io::InputError(named(scene), 0, e.what());
   }
   if (object && !temp) result.scene = object->scene;
   if (object && temp) result.scene = options.object;
@@ -339,7 +356,7 @@ Command add_grasp_command(CLI::App& parent) {
       ->excludes(scene);
   app->add_option("--scale", options->scale,
                   "--object: the mesh's scale (default: fitted to the cup's size)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app->add_option("--write-scene", options->write_scene,
                   "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder "
                   "and keep it (default: a temporary folder, removed)");
@@ -350,7 +367,7 @@ Command add_grasp_command(CLI::App& parent) {
   app->add_option("--config", options->config,
                   "Pair config (JSON); default SCENE.pairs.json beside the scene");
   app->add_option("--max-steps", options->max_steps, "Most closing grasp steps")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app->footer(wrap_help(
       "The fingers close in grasp steps of 0.003 rad (5 physics steps each, computed-torque "

@@ -1,8 +1,14 @@
 // graspcd: the command line of the project (docs/design.md, "The command line"). Each subcommand
 // lives in its own file; this file parses, dispatches, and turns every error into one line on
 // stderr and exit code 2.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
+#include <streambuf>
 #include <string>
 #include <vector>
 
@@ -52,12 +58,75 @@ int report_error(const std::string& message) {
   return kExitError;
 }
 
+// Standard output for std::cout: a buffer written to file descriptor 1 that keeps the error of the
+// first write that failed (std::filebuf forgets it), so the error line can say why.
+class StdoutBuffer : public std::streambuf {
+ public:
+  StdoutBuffer() { setp(buffer_, buffer_ + sizeof(buffer_)); }
+  int error() const { return error_; }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (drain() != 0) return traits_type::eof();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(c);
+      pbump(1);
+    }
+    return traits_type::not_eof(c);
+  }
+  int sync() override { return drain(); }
+
+ private:
+  // Writes the buffered bytes; on failure drops them and keeps errno (0 = no failure yet).
+  int drain() {
+    for (const char* p = pbase(); p < pptr();) {
+      const ssize_t n = ::write(STDOUT_FILENO, p, static_cast<std::size_t>(pptr() - p));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        if (error_ == 0) error_ = n < 0 ? errno : EIO;
+        break;
+      }
+      p += n;
+    }
+    setp(buffer_, buffer_ + sizeof(buffer_));
+    return error_ == 0 ? 0 : -1;
+  }
+
+  char buffer_[1 << 16];
+  int error_ = 0;
+};
+
+// The answers were written only if standard output took them: a full disk (/dev/full), a closed
+// stdout or an I/O error is an error of the run, never a success with the answers lost. Called
+// once, at the end of every command. A closed pipe never gets here: SIGPIPE keeps its default
+// action and ends the process quietly (`graspcd ... | head`).
+int check_stdout(const StdoutBuffer& out, int exit_code) {
+  std::cout.flush();
+  int error = out.error();
+  // C stdio (MuJoCo prints through it) has its own buffer on the same descriptor.
+  if (error == 0 && (std::fflush(stdout) != 0 || std::ferror(stdout))) {
+    error = errno != 0 ? errno : EIO;
+  }
+  if (error == 0) return exit_code;
+  std::cerr << "<stdout>: cannot write: " << std::strerror(error) << '\n';
+  std::cerr.flush();
+  return kExitError;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
+  StdoutBuffer stdout_buffer;
+  // std::cout writes through stdout_buffer until main returns (then through its own buffer again).
+  struct RestoreCout {
+    std::streambuf* previous;
+    ~RestoreCout() { std::cout.rdbuf(previous); }
+  } restore_cout{std::cout.rdbuf(&stdout_buffer)};
   // MuJoCo's warnings go to the warning sink, never to stdout or MUJOCO_LOG.TXT.
   graspcd::bridge::route_mujoco_warnings();
+  // MuJoCo's errors become exceptions: one line naming the scene, exit 2, destructors run.
+  graspcd::bridge::route_mujoco_errors();
   CLI::App app{"graspcd: exact OBB-tree collision detection for robotic grasping.", "graspcd"};
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text(),
@@ -74,7 +143,18 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help and --version: CLI11 prints them, exit 0. Every usage error: one line, exit 2.
-    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
+      return check_stdout(stdout_buffer, app.exit(e));
+    }
+    // A first word that is no option and no subcommand: a misspelled subcommand.
+    if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
+      std::string names;
+      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+      }
+      return report_error(std::string("graspcd: unknown subcommand '") + argv[1] +
+                          "' (expected one of: " + names + ")");
+    }
     return report_error(std::string("graspcd: ") + e.what() + " (run with --help for usage)");
   }
 
@@ -86,7 +166,7 @@ int main(int argc, char** argv) {
       if (command.exit_code) exit_code = *command.exit_code;
     }
     print_warnings();
-    return exit_code;
+    return check_stdout(stdout_buffer, exit_code);
   } catch (const graspcd::io::InputError& e) {
     return report_error(e.what());
   } catch (const graspcd::cli::UsageError& e) {

@@ -21,10 +21,10 @@ void add_method_options(CLI::App& app, MethodOptions& options, MethodDefaults de
                      "perceptron-scaled, perceptron-warm, neurosat or neurosat-sticky")
           ->check(CLI::IsMember(method_names())),
       app.add_option("--cap", options.cap, "Perceptron: most passes per box test (positive)")
-          ->check(CLI::PositiveNumber),
+          ->check(positive_number()),
       app.add_option("--switch", options.switch_passes,
                      "Neuro-SAT: passes before SAT takes over (positive)")
-          ->check(CLI::PositiveNumber)};
+          ->check(positive_number())};
   for (CLI::Option* option : options_added) {
     option->capture_default_str();
     if (defaults == MethodDefaults::kSceneConfig) {

@@ -52,7 +52,7 @@ Command add_stress_command(CLI::App& parent) {
   app->add_option("--seed", o->stress.seed, "Seed of the case generator")->capture_default_str();
   app->add_option("--cases", o->stress.cases,
                   "Cases per class (overrides the defaults and --quick)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app->footer(wrap_help(
       "Generates seeded box pairs and triangle pairs, each built around a known contact (a "
       "vertex on a face, crossing edges, coplanar triangles touching) and then moved apart or "

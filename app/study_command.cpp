@@ -45,7 +45,7 @@ void run_study_command(StudyCliOptions& o, const CLI::App& app) {
   try {
     study::run_study(o.study, log);
   } catch (const bridge::GraspInputError& e) {
-    throw io::InputError(e.file(), 0, e.message());
+    throw io::InputError(e.file(), e.line(), e.message());
   }
 }
 
@@ -62,13 +62,13 @@ Command add_study_command(CLI::App& parent) {
                 "The sweep on all three examples with every knob value (hours: use --shard)");
   app->add_option("--out", o->study.out_dir, "Output folder (JSON and CSV)")->capture_default_str();
   app->add_option("--repeats", o->study.repeats, "Timed replays per method (medians of these)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app->add_option("--jobs", o->study.jobs, "Replays run at once, one thread each (0: one per core)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
   app->add_option("--max-steps", o->study.max_steps, "Most closing grasp steps per grasp")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app->add_option("--mjcf", o->study.mjcf_dir,
                   "Folder of the scenes (default: the repository's mjcf/)");

@@ -8,6 +8,7 @@
 #include "command.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/io/text_input.h"
+#include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/study/trajectory.h"
 
 namespace graspcd::cli {
@@ -31,7 +32,9 @@ void run_trajectory_command(TrajectoryCliOptions& o) {
   try {
     study::export_grasp(o.scene, o.out, o.options);
   } catch (const bridge::GraspInputError& e) {
-    throw io::InputError(e.file(), 0, e.message());
+    throw io::InputError(e.file(), e.line(), e.message());
+  } catch (const bridge::MujocoError& e) {
+    throw io::InputError(o.scene, 0, e.what());
   }
   std::cerr << "[trajectory] wrote " << o.out << std::endl;
 }
@@ -48,10 +51,10 @@ Command add_trajectory_command(CLI::App& parent) {
       ->delimiter(',')
       ->capture_default_str();
   app->add_option("--repeats", o->options.repeats, "Timed replays per method (per-step medians)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app->add_option("--max-steps", o->options.max_steps, "Most closing grasp steps")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app->footer(wrap_help(
       "Records the grasp of paper section 9 with graspcd's bridge (SAT), replays the recorded "

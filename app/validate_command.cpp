@@ -14,6 +14,7 @@
 #include "graspcd/exact/exact.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/io/text_input.h"
+#include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/registry.h"
 #include "graspcd/study/validate.h"
 #include "graspcd/version/envelope.h"
@@ -55,7 +56,8 @@ std::vector<study::TesterSpec> testers_of(ValidateCliOptions& o, const CLI::App&
   try {
     config = bridge::load_registry_config(config_path);
   } catch (const std::runtime_error& e) {
-    throw io::InputError(config_path, 0, e.what());
+    const bridge::GraspInputError error = bridge::config_error(config_path, e);
+    throw io::InputError(error.file(), error.line(), error.message());
   }
   DetectorOptions detector = config.detector;
   if (app.count("--cap") > 0) detector.cap = o.method.cap;
@@ -134,6 +136,10 @@ void print_text(const study::ValidationReport& report) {
   out << "# result: " << (report.missed_any() ? "MISSED COLLISIONS" : "no missed collision")
       << "; CGAL " << std::fixed << std::setprecision(2) << report.exact_seconds
       << " s, the methods " << report.tester_seconds << " s\n";
+  if (report.nonfinite_skips > 0) {
+    out << "# non-finite skips: " << report.nonfinite_skips
+        << " pair checks on a placement with NaN, inf or a number beyond 1e10 (not checked)\n";
+  }
   std::cout << out.str();
 }
 
@@ -179,6 +185,7 @@ void print_json(const study::ValidationReport& report) {
                         {"cgal", exact::cgal_version()},
                         {"exact_seconds", report.exact_seconds},
                         {"tester_seconds", report.tester_seconds},
+                        {"nonfinite_skips", report.nonfinite_skips},
                         {"missed_any", report.missed_any()},
                         {"methods", methods}};
   add_envelope(doc);
@@ -198,7 +205,9 @@ int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
   try {
     report = study::validate_scene(o.scene, testers, options);
   } catch (const bridge::GraspInputError& e) {
-    throw io::InputError(e.file(), 0, e.message());
+    throw io::InputError(e.file(), e.line(), e.message());
+  } catch (const bridge::MujocoError& e) {
+    throw io::InputError(o.scene, 0, e.what());
   }
   if (o.json) {
     print_json(report);
@@ -221,7 +230,7 @@ Command add_validate_command(CLI::App& parent) {
                 "Check every method but perceptron-nodisp (default: the config's method)")
       ->excludes("--method");
   app->add_option("--steps", o->steps, "Most closing grasp steps")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app->add_option("--config", o->config,
                   "Pair config (JSON); default SCENE.pairs.json beside the scene");
@@ -254,7 +263,8 @@ Command add_validate_command(CLI::App& parent) {
       "P' with the method's options prints the method's answer again (add --exact for CGAL's); "
       "box pairs write one boxbox line. Progress goes to stderr every 50 steps.\n"
       "--json: one document: scene, config, grasp_method, steps, gripped, cgal, exact_seconds, "
-      "tester_seconds, missed_any, methods (method, missed_any, seconds, pairs: pair, geom1, "
+      "tester_seconds, nonfinite_skips (pair checks skipped on a placement with NaN, inf or a "
+      "number beyond 1e10), missed_any, methods (method, missed_any, seconds, pairs: pair, geom1, "
       "geom2, "
       "path, "
       "steps, agree, truth_hits, missed, false_contacts, pair_mismatch, missed_tri_pairs, "

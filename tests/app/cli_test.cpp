@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -663,9 +665,7 @@ TEST_F(CliTest, GraspConfigWhosePatternMatchesNothingIsOneLineAndExitTwo) {
   const Result d = run("grasp " + shipped_scene("example1") + " --config " + depth);
   EXPECT_EQ(d.exit_code, 2);
   EXPECT_EQ(d.out, "");
-  EXPECT_EQ(d.err, depth +
-                       ": bad JSON: [json.exception.out_of_range.406] number overflow parsing "
-                       "'1e999'\n");
+  EXPECT_EQ(d.err, depth + ":1: bad JSON: number overflow parsing '1e999'\n");
 }
 
 // An open object mesh: the containment check cannot be decided inside it, so the registry warns
@@ -724,6 +724,202 @@ TEST_F(CliTest, GraspHelpDocumentsTheOutput) {
   EXPECT_NE(r.out.find("step contacts detection_ns"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--json"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--native"), std::string::npos) << r.out;
+}
+
+// --- Issue 19: hostile input at the seams between graspcd, MuJoCo and the files -----------------
+
+// A unit cube (12 faces) in an OBJ, 8 vertices; `first` replaces the first vertex line.
+std::string cube_obj(const std::string& first = "v 0 0 0") {
+  return first +
+         "\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+         "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\n"
+         "f 3 8 7\nf 4 1 5\nf 4 5 8\n";
+}
+
+// Item 4: answers that could not be written are an error, not a success; a closed pipe stays
+// quiet (SIGPIPE).
+TEST_F(CliTest, StdoutThatCannotBeWrittenIsAnErrorAndAClosedPipeIsQuiet) {
+  const std::string cases = write("t.txt", std::string(kTouching) + kSeparated);
+  const std::string exe = std::string("'") + GRASPCD_EXE + "' ";
+  const fs::path err = dir_ / "err.txt";
+  const auto status_of = [&](const std::string& command) {
+    const int status = std::system((command + " 2> '" + err.string() + "'").c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  };
+  EXPECT_EQ(status_of(exe + "tritri " + cases + " > /dev/full"), 2);
+  EXPECT_EQ(read_file(err), "<stdout>: cannot write: No space left on device\n");
+  EXPECT_EQ(status_of(exe + "boxbox " + write("b.txt", kBoxesApart) + " > /dev/full"), 2);
+  EXPECT_EQ(read_file(err), "<stdout>: cannot write: No space left on device\n");
+  EXPECT_EQ(status_of(exe + "tritri --help > /dev/full"), 2);
+  EXPECT_EQ(read_file(err), "<stdout>: cannot write: No space left on device\n");
+  EXPECT_EQ(status_of(exe + "tritri " + cases + " >&-"), 2);
+  EXPECT_EQ(read_file(err), "<stdout>: cannot write: Bad file descriptor\n");
+  // 200,000 answers into `head -1`: the pipe closes early, graspcd ends by SIGPIPE, silently.
+  std::string many;
+  for (int i = 0; i < 200000; ++i) many += kTouching;
+  const std::string big = write("big.txt", many);
+  const fs::path status = dir_ / "status.txt";
+  fs::remove(err);
+  EXPECT_EQ(std::system(("{ " + exe + "tritri " + big + " 2> '" + err.string() + "'; echo $? > '" +
+                         status.string() + "'; } | head -1 > /dev/null")
+                            .c_str()),
+            0);
+  EXPECT_EQ(read_file(status), std::to_string(128 + SIGPIPE) + "\n");
+  EXPECT_EQ(read_file(err), "");
+}
+
+// Item 3: a byte-order mark hid the first vertex and shifted every face (meshpair answered "1 11"
+// where the same file without it answers "0 0"); refused the same way by every reader.
+TEST_F(CliTest, AnObjWithAByteOrderMarkIsRefusedEverywhere) {
+  const std::string bom = write("bom.obj", "\xEF\xBB\xBF" + cube_obj());
+  const std::string plain = write("plain.obj", cube_obj());
+  const std::string poses = write("p.txt", "1 0 0 0 1 0 0 0 1  5 0 0\n");
+  Result r = run("meshpair " + plain + " " + plain + " --poses " + poses);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, 4), "0 0 ");
+  r = run("meshpair " + bom + " " + plain + " --poses " + poses);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, bom + ":1: UTF-8 byte-order mark\n");
+  r = run("grasp --object " + bom);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, bom + ":1: UTF-8 byte-order mark\n");
+  // In a scene: graspcd checks the meshes it names before MuJoCo reads them.
+  const std::string scene = copy_scene(dir_ / "s", "example1", "", "");
+  const std::string cup = (dir_ / "s" / "meshes" / "cup.obj").string();
+  const std::string text = read_file(cup);
+  std::ofstream(cup, std::ios::binary | std::ios::trunc) << "\xEF\xBB\xBF" << text;
+  r = run("grasp " + scene + " --max-steps 1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, cup + ":1: UTF-8 byte-order mark\n");
+}
+
+// Items 1 and 5: a non-finite number in a scene is refused at load by every command that loads
+// one (validate and trajectory used to spin in the exact predicates on it, grasp ran it).
+TEST_F(CliTest, ASceneWithANonFiniteNumberIsRefusedByEveryCommand) {
+  const std::string scene = copy_scene(dir_ / "s", "example1", "", "");
+  std::string xml = read_file(scene);
+  const std::string object = "<geom name=\"object\" type=\"mesh\"";
+  ASSERT_NE(xml.find(object), std::string::npos);
+  xml.replace(xml.find(object), object.size(),
+              "<geom name=\"object\" pos=\"nan 0 0\" type=\"mesh\"");
+  std::ofstream(scene, std::ios::trunc) << xml;
+  const std::string line =
+      std::to_string(1 + std::count(xml.begin(), xml.begin() + xml.find("pos=\"nan"), '\n'));
+  const std::string expected =
+      scene + ":" + line + ": <geom name=\"object\"> pos=\"nan 0 0\": non-finite number \"nan\"\n";
+  for (const std::string& command :
+       {"grasp " + scene, "validate " + scene + " --steps 1",
+        "trajectory " + scene + " --out " + (dir_ / "t.json").string()}) {
+    const Result r = run(command);
+    EXPECT_EQ(r.exit_code, 2) << command;
+    EXPECT_EQ(r.out, "") << command;
+    EXPECT_EQ(r.err, expected) << command;
+  }
+  // The palm's size, and an overflowing literal.
+  xml = read_file(shipped_scene("example1"));
+  const std::string palm = "<geom name=\"palm\" type=\"box\" size=\"0.045000";
+  ASSERT_NE(xml.find(palm), std::string::npos);
+  xml.replace(xml.find(palm), palm.size(), "<geom name=\"palm\" type=\"box\" size=\"1e999");
+  std::ofstream(scene, std::ios::trunc) << xml;
+  Result r = run("grasp " + scene);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(": <geom name=\"palm\"> size=\"1e999 "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("non-finite number \"1e999\""), std::string::npos) << r.err;
+  // A NaN vertex in the scene's OBJ, which MuJoCo reads as 0.
+  std::ofstream(scene, std::ios::trunc) << read_file(shipped_scene("example1"));
+  const std::string cup = (dir_ / "s" / "meshes" / "cup.obj").string();
+  std::string obj = read_file(cup);
+  obj.replace(obj.find("\nv ") + 1, 0, "v nan 1 1\n");
+  std::ofstream(cup, std::ios::binary | std::ios::trunc) << obj;
+  r = run("validate " + scene + " --steps 1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind(cup + ":", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(": vertex 1: non-finite number \"nan\""), std::string::npos) << r.err;
+}
+
+// Item 2: qhull inside MuJoCo (a mesh fitted to about 1e-21 m has no 3D hull) used to end the
+// process with exit 41 through libqhullcpp's print hook, naming nothing, leaving the temporary
+// folder. Now: the user's file named, exit 2, the folder removed.
+TEST_F(CliTest, GraspObjectThatMujocoCannotCompileNamesTheFileAndCleansUp) {
+  const std::string huge = write("huge.obj", cube_obj("v 1e20 0 0"));
+  const fs::path tmp = dir_ / "tmp";
+  fs::create_directories(tmp);
+  ASSERT_EQ(setenv("TMPDIR", tmp.c_str(), 1), 0);
+  const Result r = run("grasp --object " + huge);
+  unsetenv("TMPDIR");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  ASSERT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind(huge + ": in the template scene: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("qhull"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_empty(tmp));
+}
+
+// MuJoCo's errors (mju_error; here its stack, too small for the contacts of the first step) used to
+// print "Press Enter to exit ...", append to MUJOCO_LOG.TXT in the current folder and exit 1.
+TEST_F(CliTest, AMujocoErrorWhileSteppingIsOneLineNamingTheSceneAndExitTwo) {
+  const std::string scene = copy_scene(dir_ / "s", "example1", "", "");
+  std::string xml = read_file(scene);
+  const std::string size = "<size nconmax=\"300\" njmax=\"900\"/>";
+  ASSERT_NE(xml.find(size), std::string::npos);
+  xml.replace(xml.find(size), size.size(), "<size nconmax=\"300\" njmax=\"900\" nstack=\"1600\"/>");
+  std::ofstream(scene, std::ios::trunc) << xml;
+  const fs::path log = fs::current_path() / "MUJOCO_LOG.TXT";  // where MuJoCo would append
+  fs::remove(log);
+  const Result r = run("grasp " + scene + " --max-steps 5");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out.find("Press Enter"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err, scene + ": MuJoCo error: Stack overflow\n");
+  EXPECT_FALSE(fs::exists(log));
+}
+
+// Item 7: an OBJ with two objects is warned about in grasp --object as in meshpair (MuJoCo keeps
+// the first, the fit sees both).
+TEST_F(CliTest, GraspObjectWarnsAboutSeveralObjectsAsMeshpairDoes) {
+  const std::string two = write("two.obj", "o first\n" + cube_obj() +
+                                               "o second\nv 3 0 0\nv 4 0 0\nv 3 1 0\nv 3 0 1\n"
+                                               "f 9 11 10\nf 9 10 12\nf 9 12 11\nf 10 11 12\n");
+  const std::string warning = "warning: " + two +
+                              ": 2 objects ('first', 'second'): graspcd reads them all, but "
+                              "MuJoCo 2.2 keeps only the first ('first'); merge them into one "
+                              "object for a scene\n";
+  const Result m = run("meshpair " + two + " " + write("cube.obj", cube_obj()) + " --poses " +
+                       write("p.txt", "1 0 0 0 1 0 0 0 1  9 0 0\n"));
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  EXPECT_EQ(m.err, warning);
+  const Result g = run("grasp --object " + two + " --max-steps 1");
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  EXPECT_NE(g.err.find(warning), std::string::npos) << g.err;
+}
+
+// The messages: option values, a misspelled subcommand, a config's bad JSON named once with its
+// line.
+TEST_F(CliTest, OptionAndSubcommandErrorsAreShortAndRight) {
+  Result r = run("grasp --object x.obj --scale nan");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "graspcd: --scale: Value nan is not a finite number (run with --help for usage)\n");
+  r = run("grasp " + shipped_scene("example1") + " --max-steps 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "graspcd: --max-steps: Value 0 is not > 0 (run with --help for usage)\n");
+  r = run("tritr x");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "graspcd: unknown subcommand 'tritr' (expected one of: tritri, boxbox, meshpair, "
+            "grasp, study, stress, validate, trajectory)\n");
+  const std::string scene = copy_scene(dir_ / "s", "example1", "", "");
+  const std::string config = (dir_ / "s" / "example1.pairs.json").string();
+  std::ofstream(config, std::ios::trunc) << "{\n  \"pairs\": [\n  }\n";
+  for (const std::string& command : {"validate " + scene, "grasp " + scene}) {
+    r = run(command);
+    EXPECT_EQ(r.exit_code, 2) << command;
+    EXPECT_EQ(r.err, config +
+                         ":3: bad JSON: syntax error while parsing value - unexpected '}'; "
+                         "expected '[', '{', or a literal\n")
+        << command;
+  }
 }
 
 }  // namespace

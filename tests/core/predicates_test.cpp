@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "graspcd/support/seeded.h"
@@ -112,6 +113,32 @@ TEST(Orient3d, ExtremeButSupportedMagnitudes) {
     EXPECT_EQ(orient3d(a, c, b, d), -1) << s;
     EXPECT_EQ(orient3d(a, b, c, Vec3(s, s, 0)), 0) << s;
   }
+}
+
+}  // namespace
+}  // namespace graspcd::predicates
+
+namespace graspcd::predicates {
+namespace {
+
+// Issue 19, item 1: a NaN or infinite coordinate has no orientation. Every predicate answers 0 at
+// once, the exact variants included, and never fills an expansion with NaN.
+TEST(Predicates, NonFiniteCoordinatesAnswerZeroWithoutExpansions) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  filter_stats() = FilterStats{};
+  for (const double x : {std::nan(""), std::numeric_limits<double>::infinity(),
+                         -std::numeric_limits<double>::infinity()}) {
+    const Vec3 bad(x, 0.25, 0.5);
+    EXPECT_EQ(orient3d(a, b, c, bad), 0);
+    EXPECT_EQ(orient3d(bad, b, c, Vec3(0.25, 0.25, 1)), 0);
+    EXPECT_EQ(orient3d_exact(a, b, c, bad), 0);
+    for (int drop = 1; drop < 3; ++drop) {  // dropping x (drop 0) leaves finite coordinates
+      EXPECT_EQ(orient2d(a, bad, c, drop), 0);
+      EXPECT_EQ(orient2d_exact(a, bad, c, drop), 0);
+    }
+  }
+  EXPECT_EQ(filter_stats().orient3d_exact_calls, 0u);
+  EXPECT_EQ(filter_stats().orient2d_exact_calls, 0u);
 }
 
 }  // namespace

@@ -16,9 +16,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 #include <string>
 
+#include "graspcd/core/predicates.h"
 #include "graspcd/exact/exact.h"
 #include "graspcd/support/random_geometry.h"
 #include "support/test_scale.h"
@@ -237,6 +239,31 @@ TEST(TriTriReferenceVariants, PlainMollerMissesTouchingPairs) {
   }
   std::printf("plain Moller: %" PRId64 " of %" PRId64 " touching pairs missed\n", missed, touching);
   EXPECT_GT(missed, 0);
+}
+
+}  // namespace
+}  // namespace graspcd
+
+namespace graspcd {
+namespace {
+
+// Issue 19, item 1: a triangle with a NaN or infinite coordinate is no set of points; both exact
+// tests say "disjoint" at once, whatever the other coordinates, without exact arithmetic.
+TEST(TriTriNonFinite, ATriangleWithANanOrInfIntersectsNothing) {
+  const Triangle t1{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}};
+  predicates::filter_stats() = predicates::FilterStats{};
+  for (const double x : {std::nan(""), std::numeric_limits<double>::infinity(),
+                         -std::numeric_limits<double>::infinity()}) {
+    // Piercing t1 but for one coordinate.
+    const Triangle t2{{Vec3(0.2, 0.2, -1), Vec3(0.25, 0.2, 1), Vec3(x, 0.3, 0)}};
+    EXPECT_FALSE(tri_tri_intersect(t1, t2)) << x;
+    EXPECT_FALSE(tri_tri_intersect(t2, t1)) << x;
+    EXPECT_FALSE(tri_tri_intersect_predicates(t1, t2)) << x;
+    EXPECT_FALSE(tri_tri_intersect_predicates(t2, t2)) << x;
+  }
+  EXPECT_EQ(predicates::filter_stats().orient3d_exact_calls, 0u);
+  EXPECT_TRUE(
+      tri_tri_intersect(t1, Triangle{{Vec3(0.2, 0.2, -1), Vec3(0.25, 0.2, 1), Vec3(0.3, 0.3, 0)}}));
 }
 
 }  // namespace

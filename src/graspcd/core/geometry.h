@@ -37,6 +37,10 @@ struct Pose {
   Vec3 t = Vec3::Zero();
 };
 
+// True when every number of the pose is finite. A pose read from a simulation that went bad may
+// not be; the callers skip such a pose (and count it) rather than query a meaningless placement.
+inline bool finite_pose(const Pose& p) { return p.R.allFinite() && p.t.allFinite(); }
+
 // Applies a pose to a point in double arithmetic, one rounding per operation in a fixed order
 // (the build disables FMA contraction). Every consumer that must see the same transformed doubles
 // (the tree query's leaves and the CGAL ground truth) goes through this one function, so exactness

@@ -1,12 +1,14 @@
 #include "graspcd/core/obb.h"
 
-#include <libqhullcpp/Qhull.h>
-#include <libqhullcpp/QhullFacetList.h>
-#include <libqhullcpp/QhullVertexSet.h>
-
 #include <Eigen/Eigenvalues>
 #include <cmath>
-#include <sstream>
+#include <cstdio>
+
+// qhull's reentrant C library, the one MuJoCo's mesh compiler calls too. Not the C++ library
+// libqhullcpp: it replaces libqhull_r's print hook qh_fprintf process-wide with one that ends the
+// process (exit 41, "QH10025 ... without QhullQh defined") whenever a qhull run it did not start,
+// such as MuJoCo's on a degenerate mesh, prints a message.
+#include <libqhull_r/libqhull_r.h>
 
 #include "graspcd/core/tolerances.h"
 
@@ -42,23 +44,29 @@ bool hull_covariance(const std::vector<Vec3>& points, const Vec3& origin, Mat3& 
   for (const Vec3& p : points) {
     for (int k = 0; k < 3; ++k) coords.push_back(p[k] - origin[k]);
   }
-  try {
-    orgQhull::Qhull qhull;
-    std::ostringstream quiet;
-    qhull.setErrorStream(&quiet);
-    qhull.setOutputStream(&quiet);
-    qhull.runQhull("", 3, static_cast<int>(points.size()), coords.data(), "Qt");
-    double area_sum = 0.0;
-    Vec3 mu = Vec3::Zero();
-    Mat3 second = Mat3::Zero();
-    for (const orgQhull::QhullFacet& facet : qhull.facetList()) {
-      const orgQhull::QhullVertexSet vs = facet.vertices();
-      if (vs.size() != 3) continue;
+  // qhull's messages (a flat or degenerate point set is a precision error, answered by the
+  // fallback) go nowhere; without /dev/null they go to stderr.
+  static std::FILE* const quiet = std::fopen("/dev/null", "w");
+  qhT qh_storage;
+  qhT* qh = &qh_storage;  // the name the qhull macros below expect
+  qh_zero(qh, quiet);
+  char command[] = "qhull Qt";
+  const int exit_code = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords.data(), False,
+                                     command, nullptr, quiet);
+  double area_sum = 0.0;
+  Vec3 mu = Vec3::Zero();
+  Mat3 second = Mat3::Zero();
+  if (exit_code == 0) {
+    facetT* facet = nullptr;
+    FORALLfacets {
       Vec3 v[3];
-      for (int i = 0; i < 3; ++i) {
-        const double* c = vs[i].point().coordinates();
-        v[i] = Vec3(c[0], c[1], c[2]);
+      int count = 0;
+      vertexT *vertex = nullptr, **vertexp = nullptr;
+      FOREACHvertex_(facet->vertices) {
+        if (count < 3) v[count] = Vec3(vertex->point[0], vertex->point[1], vertex->point[2]);
+        ++count;
       }
+      if (count != 3) continue;
       const double area = 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).norm();
       const Vec3 m = (v[0] + v[1] + v[2]) / 3.0;
       area_sum += area;
@@ -66,13 +74,15 @@ bool hull_covariance(const std::vector<Vec3>& points, const Vec3& origin, Mat3& 
       second += (area / 12.0) * (9.0 * m * m.transpose() + v[0] * v[0].transpose() +
                                  v[1] * v[1].transpose() + v[2] * v[2].transpose());
     }
-    if (!(area_sum > 0.0)) return false;
-    mu /= area_sum;
-    cov = second / area_sum - mu * mu.transpose();
-    return cov.allFinite();
-  } catch (const std::exception&) {
-    return false;  // qhull found no full-dimensional hull
   }
+  qh_freeqhull(qh, !qh_ALL);
+  int long_left = 0, total_left = 0;
+  qh_memfreeshort(qh, &long_left, &total_left);
+  // No full-dimensional hull (exit_code != 0, or no area): the caller falls back.
+  if (!(area_sum > 0.0)) return false;
+  mu /= area_sum;
+  cov = second / area_sum - mu * mu.transpose();
+  return cov.allFinite();
 }
 
 // Orthonormal right-handed axes from a symmetric matrix's eigenvectors (Eigen's

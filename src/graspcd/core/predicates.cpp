@@ -153,6 +153,7 @@ FilterStats& filter_stats() {
 }
 
 int orient3d_exact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  if (!(a.allFinite() && b.allFinite() && c.allFinite() && d.allFinite())) return 0;
   ++filter_stats().orient3d_exact_calls;
   // det[u; v; w] with u = b - a, v = c - a, w = d - a, each difference exact.
   Expansion u[3], v[3], w[3];
@@ -184,6 +185,9 @@ int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const double bound = kOrient3dErrBound * permanent;
   if (det > bound) return 1;
   if (-det > bound) return -1;
+  // A NaN or infinite input (or a product beyond the double range) has no sign to compute: 0,
+  // without expansions (predicates.h).
+  if (!std::isfinite(permanent)) return 0;
   // A zero permanent means every product has an exactly zero factor (differences of doubles are
   // zero only for equal doubles, and products cannot underflow in tol's coordinate range), so the
   // determinant is exactly zero: the common case of shared vertices, answered without expansions.
@@ -192,6 +196,7 @@ int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 }
 
 int orient2d_exact(const Vec3& a, const Vec3& b, const Vec3& c, int drop) {
+  if (!(a.allFinite() && b.allFinite() && c.allFinite())) return 0;
   ++filter_stats().orient2d_exact_calls;
   const int i = (drop + 1) % 3, j = (drop + 2) % 3;
   const Expansion det = cross_term(difference(b[i], a[i]), difference(c[j], a[j]),
@@ -209,7 +214,8 @@ int orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int drop) {
   const double bound = kOrient2dErrBound * permanent;
   if (det > bound) return 1;
   if (-det > bound) return -1;
-  if (permanent == 0.0) return 0;  // exactly zero, as in orient3d
+  if (!std::isfinite(permanent)) return 0;  // a NaN or infinite input, as in orient3d
+  if (permanent == 0.0) return 0;           // exactly zero, as in orient3d
   return orient2d_exact(a, b, c, drop);
 }
 

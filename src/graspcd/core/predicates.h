@@ -7,7 +7,9 @@
 // Grow-Expansion, Scale-Expansion) follow his Section 2. Written for this project.
 //
 // Exact for every coordinate that is 0 or of magnitude within [tol::kMinCoordinate,
-// tol::kMaxCoordinate] (no intermediate underflow or overflow there).
+// tol::kMaxCoordinate] (no intermediate underflow or overflow there). A NaN or infinite coordinate
+// has no orientation: every predicate answers 0 for it at once (the exact variants too), so no
+// expansion ever holds a NaN (whose sign and zero elimination mean nothing).
 #pragma once
 
 #include "graspcd/core/geometry.h"

@@ -338,10 +338,17 @@ bool moller_float(const Triangle& t1, const Triangle& t2, double epsilon) {
   return !(hi1 < lo2 || hi2 < lo1);
 }
 
+// True when every coordinate is finite: x - x is 0 for a finite x and NaN for NaN or inf.
+bool finite(const Triangle& t) {
+  const Vec3 zero = (t.v[0] - t.v[0]) + (t.v[1] - t.v[1]) + (t.v[2] - t.v[2]);
+  return zero[0] + zero[1] + zero[2] == 0.0;
+}
+
 }  // namespace
 
 // Exact test: classify, then dispatch (see tritri.h).
 bool tri_tri_intersect_predicates(const Triangle& t1, const Triangle& t2) {
+  if (!finite(t1) || !finite(t2)) return false;  // no set of points (tritri.h)
   const Shape s1 = classify(t1), s2 = classify(t2);
   if (s1.kind != Shape::kTriangle && s2.kind != Shape::kTriangle) return shape_shape(s1, s2);
   if (s1.kind != Shape::kTriangle) return shape_triangle(s1, t2);
@@ -362,6 +369,7 @@ bool tri_tri_intersect_predicates(const Triangle& t1, const Triangle& t2) {
 
 // Moller 1997, eq. (6)-(9), with every floating-point decision certified by an error bound.
 bool tri_tri_intersect(const Triangle& t1, const Triangle& t2) {
+  if (!finite(t1) || !finite(t2)) return false;  // no set of points (tritri.h)
   // Eq. (6)-(7): T1's vertices against T2's plane; reject if all strictly on one side.
   const Plane p2 = plane_of(t2);
   if (!non_degenerate(t2, p2)) return tri_tri_intersect_predicates(t1, t2);

@@ -1,7 +1,9 @@
 // Triangle-triangle intersection tests. Triangles are closed sets: touching (a shared vertex or
 // edge, a vertex on a face, coplanar contact) counts as intersecting. A zero-area triangle is the
-// segment or point it spans. Every test here answers exactly as CGAL would on the same doubles,
-// except the two reference variants at the bottom, which are kept only to be measured.
+// segment or point it spans. A triangle with a NaN or infinite coordinate is no set of points: the
+// two exact tests answer false for it (and never enter exact arithmetic on it). Every test here
+// answers exactly as CGAL would on the same doubles, except the two reference variants at the
+// bottom, which are kept only to be measured.
 #pragma once
 
 #include "graspcd/core/geometry.h"

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "graspcd/mujoco/json_config.h"
+
 namespace graspcd::bridge {
 namespace {
 
@@ -81,16 +83,7 @@ DriveConfig parse_drive(const nlohmann::json& j, const std::string& source) {
 
 std::optional<DriveConfig> parse_drive_config(const std::string& json_text,
                                               const std::string& source) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::exception& e) {
-    std::string what = e.what();
-    for (char& c : what) {
-      if (c == '\n' || c == '\r') c = ' ';
-    }
-    fail(source, "bad JSON: " + what);
-  }
+  const nlohmann::json j = parse_json_config(json_text, source);
   if (!j.is_object() || !j.contains("grasp")) return std::nullopt;
   return parse_drive(j.at("grasp"), source);
 }

@@ -43,6 +43,7 @@
 #include <mujoco/mujoco.h>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -58,17 +59,23 @@ namespace graspcd::bridge {
 inline constexpr double kGraspStepRad = 0.003;  // the paper's grasp step
 inline constexpr int kFingerSegments = 12;      // finger{1..4}_{A,B,C}
 
-// A scene or config that cannot be used: what() is one line, "FILE: MESSAGE".
+// A scene or config that cannot be used: what() is one line, "FILE: MESSAGE", or
+// "FILE:LINE: MESSAGE" when the line is known (line() > 0).
 class GraspInputError : public std::runtime_error {
  public:
-  GraspInputError(const std::string& file, const std::string& message)
-      : std::runtime_error(file + ": " + message), file_(file), message_(message) {}
+  GraspInputError(const std::string& file, const std::string& message, std::size_t line = 0)
+      : std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : "") + ": " + message),
+        file_(file),
+        message_(message),
+        line_(line) {}
   const std::string& file() const { return file_; }
   const std::string& message() const { return message_; }
+  std::size_t line() const { return line_; }
 
  private:
   std::string file_;
   std::string message_;
+  std::size_t line_ = 0;
 };
 
 struct GraspOptions {
@@ -164,6 +171,10 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
 // Loads an MJCF file. A missing file or MuJoCo's error become a GraspInputError whose message is
 // "FILE: <MuJoCo's message on one line>" (mujoco-2.2-notes.md "Errors").
 ModelPtr load_model(const std::string& path);
+
+// A pair config's error (a std::runtime_error of registry.h or drive_config.h, whose message starts
+// "CONFIG: " or "CONFIG:LINE: ") as a GraspInputError with the file, line and message apart.
+GraspInputError config_error(const std::string& config_path, const std::runtime_error& e);
 
 // Joins MuJoCo's multi-line error text into one line (line breaks become "; ", blanks trimmed).
 std::string join_lines(const std::string& text);

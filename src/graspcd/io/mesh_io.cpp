@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -91,8 +92,20 @@ struct ObjVertexLine {
   Vec3 position;         // x y z as strtod reads them
 };
 
+// A face line's vertex references, as tinyobjloader resolves them: the number before the first
+// '/' of each word, 1-based, or negative for "counted back from the last vertex read so far".
+struct ObjFaceLine {
+  std::size_t line = 0;  // 1-based physical line
+  std::size_t face = 0;  // 1-based, in file order (before triangulation)
+  long largest = 0;      // the largest positive reference (0: none); checked at the end
+};
+
 // The scan also collects the names of the file's objects ('o NAME' lines): MuJoCo 2.2 loads only
-// the first object of an OBJ file, silently.
+// the first object of an OBJ file, silently. And it checks every face line ('f' then a blank): at
+// least 3 vertex references, each an integer that names a vertex of the file (a negative one a
+// vertex read before it); tinyobjloader would drop or misread such a face without a line number.
+// A UTF-8 byte-order mark is refused: neither this scan nor tinyobjloader (nor MuJoCo's reader)
+// would see the first line's 'v', and every face would then name the wrong vertices.
 std::vector<ObjVertexLine> read_obj_vertex_lines(const std::string& path,
                                                  std::vector<std::string>& objects) {
   std::ifstream in(path, std::ios::binary);
@@ -101,9 +114,25 @@ std::vector<ObjVertexLine> read_obj_vertex_lines(const std::string& path,
     return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
   };
   std::vector<ObjVertexLine> vertices;
+  std::vector<ObjFaceLine> faces;
   std::string line;
   std::vector<std::string> tokens;
+  // The words of `line` from `pos` up to a '#' (which ends the line's content).
+  const auto split_words = [&](std::size_t pos) {
+    const std::size_t end = std::min(line.find('#', pos), line.size());
+    tokens.clear();
+    while (pos < end) {
+      while (pos < end && blank(line[pos])) ++pos;
+      std::size_t stop = pos;
+      while (stop < end && !blank(line[stop])) ++stop;
+      if (stop > pos) tokens.push_back(line.substr(pos, stop - pos));
+      pos = stop;
+    }
+  };
   for (std::size_t line_number = 1; std::getline(in, line); ++line_number) {
+    if (line_number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) {
+      fail(path, "UTF-8 byte-order mark", 1);
+    }
     std::size_t pos = 0;
     while (pos < line.size() && (line[pos] == ' ' || line[pos] == '\t')) ++pos;
     if (pos + 1 < line.size() && line[pos] == 'o' &&
@@ -114,20 +143,44 @@ std::vector<ObjVertexLine> read_obj_vertex_lines(const std::string& path,
       objects.push_back(name);
       continue;
     }
+    if (pos + 1 < line.size() && line[pos] == 'f' &&
+        (line[pos + 1] == ' ' || line[pos + 1] == '\t')) {
+      ObjFaceLine face;
+      face.line = line_number;
+      face.face = faces.size() + 1;
+      const std::string which = "face " + std::to_string(face.face);
+      split_words(pos + 1);
+      if (tokens.size() < 3) {
+        fail(path, which + ": " + std::to_string(tokens.size()) + " vertices (a face needs 3)",
+             line_number);
+      }
+      for (const std::string& token : tokens) {
+        const std::string index = token.substr(0, token.find('/'));
+        char* end = nullptr;
+        errno = 0;
+        const long value = std::strtol(index.c_str(), &end, 10);
+        if (index.empty() || *end != '\0' || errno == ERANGE) {
+          fail(path, which + ": bad vertex index \"" + token + "\"", line_number);
+        }
+        if (value == 0)
+          fail(path, which + ": vertex index 0 (OBJ indices start at 1)", line_number);
+        if (value < 0 && static_cast<std::size_t>(-(value + 1)) >= vertices.size()) {
+          fail(path,
+               which + ": vertex index " + index + " points before the first vertex (" +
+                   std::to_string(vertices.size()) + " vertices precede it)",
+               line_number);
+        }
+        face.largest = std::max(face.largest, value);
+      }
+      faces.push_back(face);
+      continue;
+    }
     if (pos + 1 >= line.size() || line[pos] != 'v' ||
         (line[pos + 1] != ' ' && line[pos + 1] != '\t')) {
       continue;
     }
     const std::string which = "vertex " + std::to_string(vertices.size() + 1);
-    const std::size_t end = std::min(line.find('#', pos), line.size());
-    tokens.clear();
-    for (pos += 1; pos < end;) {
-      while (pos < end && blank(line[pos])) ++pos;
-      std::size_t stop = pos;
-      while (stop < end && !blank(line[stop])) ++stop;
-      if (stop > pos) tokens.push_back(line.substr(pos, stop - pos));
-      pos = stop;
-    }
+    split_words(pos + 1);
     if (tokens.size() != 3 && tokens.size() != 4 && tokens.size() != 6) {
       fail(path,
            which + ": expected x y z (optionally followed by w, or by r g b), got " +
@@ -154,6 +207,13 @@ std::vector<ObjVertexLine> read_obj_vertex_lines(const std::string& path,
     vertices.push_back(vertex);
   }
   if (in.bad()) fail(path, "read error");
+  for (const ObjFaceLine& face : faces) {
+    if (static_cast<std::size_t>(face.largest) <= vertices.size()) continue;
+    fail(path,
+         "face " + std::to_string(face.face) + ": vertex index " + std::to_string(face.largest) +
+             " out of range (the file has " + std::to_string(vertices.size()) + " vertices)",
+         face.line);
+  }
   return vertices;
 }
 
@@ -339,6 +399,17 @@ TriangleMesh load_mesh(const std::string& path, MeshStats* stats) {
   s.file_vertices = hygiene.input_vertices;
   if (stats != nullptr) s.closedness = closedness(mesh);
   return mesh;
+}
+
+void check_mesh_file(const std::string& path) {
+  require_readable(path);
+  const std::string ext = lower_extension(path);
+  if (ext == "obj") {
+    std::vector<std::string> objects;
+    read_obj_vertex_lines(path, objects);
+  } else if (ext == "stl") {
+    load_stl(path);
+  }
 }
 
 std::vector<std::string> mesh_warnings(const std::string& path, const MeshStats& stats,

@@ -46,6 +46,9 @@ std::vector<std::string> mesh_warnings(const std::string& path, const MeshStats&
 //    blank) is first read with the command line's number grammar (text_input.h, parse_number):
 //    3, 4 (x y z w) or 6 (x y z r g b) numbers, no hexadecimal floats (tinyobjloader cannot read
 //    them); a bad one is reported at its line, "FILE:LINE: vertex N: <parse_number's message>".
+//    Face lines are checked at their line too ("FILE:LINE: face N: ..."): at least 3 vertices,
+//    each index naming a vertex of the file. A UTF-8 byte-order mark at the start of the file is
+//    refused ("FILE:1: UTF-8 byte-order mark"): no OBJ reader sees the first line's vertex then.
 //    tinyobjloader's values must then equal those to within its rounding (relative 1e-12), or
 //    the line is reported.
 //  - STL: binary only (80-byte header, uint32 count, 50-byte records; the file size must be
@@ -59,5 +62,12 @@ std::vector<std::string> mesh_warnings(const std::string& path, const MeshStats&
 // literal, a NaN or infinite STL float) or one outside the exact-arithmetic range of
 // tolerances.h, and a mesh without faces.
 TriangleMesh load_mesh(const std::string& path, MeshStats* stats = nullptr);
+
+// The checks of load_mesh that come before any mesh is built, for a mesh file another reader
+// (MuJoCo's, for the meshes a scene names) will read: an OBJ's byte-order mark, vertex lines
+// (the number grammar: no nan, inf or out-of-range coordinate, which MuJoCo would read as 0 or
+// inf) and face lines (at least 3 vertices, every index naming a vertex); a binary STL's size and
+// its coordinates. Other formats are left to their reader. Throws InputError as load_mesh does.
+void check_mesh_file(const std::string& path);
 
 }  // namespace graspcd::io

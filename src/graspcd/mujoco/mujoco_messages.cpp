@@ -21,9 +21,19 @@ void on_mujoco_warning(const char* message) {
   if (t_capture != nullptr) t_capture->add("mujoco_warning", line);
 }
 
+[[noreturn]] void on_mujoco_error(const char* message) {
+  std::string line = message != nullptr ? message : "";
+  for (char& c : line) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  throw MujocoError("MuJoCo error: " + line);
+}
+
 }  // namespace
 
 void route_mujoco_warnings() { mju_user_warning = on_mujoco_warning; }
+
+void route_mujoco_errors() { mju_user_error = on_mujoco_error; }
 
 ScopedMujocoWarnings::ScopedMujocoWarnings(WarningSink& sink) : previous_(t_capture) {
   t_capture = &sink;

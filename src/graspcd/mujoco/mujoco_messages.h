@@ -12,7 +12,15 @@
 // study replays grasps on several threads) opens a ScopedMujocoWarnings: while it lives, the
 // messages raised on that thread also go to its sink. A library user's own hook is replaced only
 // when route_mujoco_warnings() is called; NonconvexContacts never calls it.
+//
+// MuJoCo's errors (mju_error: e.g. its stack or arena is too small for the model) print, append to
+// MUJOCO_LOG.TXT and exit(1) by default, which skips every destructor (a temporary folder stays
+// behind) and names no file. route_mujoco_errors() makes them a MujocoError exception instead,
+// thrown out of the MuJoCo call (mj_step, mj_makeData, ...), whose state is then not to be used
+// again: the caller reports it naming its scene and gives up that model.
 #pragma once
+
+#include <stdexcept>
 
 #include "graspcd/core/warnings.h"
 
@@ -20,6 +28,15 @@ namespace graspcd::bridge {
 
 // Sets mju_user_warning to graspcd's handler. Idempotent.
 void route_mujoco_warnings();
+
+// MuJoCo's error, one line: "MuJoCo error: MESSAGE".
+class MujocoError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Sets mju_user_error to a handler that throws MujocoError. Idempotent.
+void route_mujoco_errors();
 
 // While alive, MuJoCo warnings raised on this thread are also added to `sink`.
 class ScopedMujocoWarnings {

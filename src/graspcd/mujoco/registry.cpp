@@ -11,6 +11,8 @@
 #include "graspcd/core/mesh_hygiene.h"
 #include "graspcd/core/warnings.h"
 #include "graspcd/mujoco/collision.h"
+#include "graspcd/mujoco/json_config.h"
+#include "graspcd/mujoco/model_check.h"
 #include "graspcd/mujoco/primitives.h"
 
 namespace graspcd::bridge {
@@ -131,17 +133,7 @@ bool glob_match(const std::string& pattern, const std::string& name) {
 }
 
 RegistryConfig parse_registry_config(const std::string& json_text, const std::string& source) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::exception& e) {
-    // parse_error, and out_of_range for a number that overflows a double (e.g. 1e999).
-    std::string what = e.what();
-    for (char& c : what) {
-      if (c == '\n' || c == '\r') c = ' ';
-    }
-    fail(source, "bad JSON: " + what);
-  }
+  const nlohmann::json j = parse_json_config(json_text, source);
   if (!j.is_object()) fail(source, "the config must be a JSON object");
   RegistryConfig c;
   const auto positive_int = [&](const char* field) {
@@ -241,6 +233,10 @@ std::vector<Triangle> Registry::mesh_triangles(const mjModel* m, int mesh_id) {
 Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::string& source)
     : model_(m), config_(config) {
   if (!m) fail(source, "no model");
+  // A model with a non-finite number (MuJoCo compiles a NaN attribute with a warning) is refused
+  // here, at construction, never met inside mj_step (model_check.h).
+  const std::string non_finite = find_non_finite(m);
+  if (!non_finite.empty()) fail(source, non_finite);
   for (const PairPattern& p : config.patterns) {
     const std::vector<int> as = resolve(m, p.a, source);
     const std::vector<int> bs = resolve(m, p.b, source);

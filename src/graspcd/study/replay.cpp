@@ -122,6 +122,12 @@ ReplayStats replay(const MeshScene& scene, const std::vector<Pose>& poses, int s
       const Clock::time_point start = Clock::now();
       for (std::size_t i = 0; i < np; ++i) {
         const MeshPair& p = pairs[i];
+        // A non-finite pose (a simulation gone bad): no query, no contact, counted.
+        if (!finite_pose(step_poses[i])) {
+          hits[i] = 0;
+          if (r == 0) ++stats.nonfinite_skips;
+          continue;
+        }
         hits[i] = querier
                       .query(i, p, scene.tree(p.mesh1), scene.tree(p.mesh2), step_poses[i],
                              &scratch[i], counters)
@@ -159,6 +165,7 @@ Answers exact_answers(const MeshScene& scene, const Recording& recording) {
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       const MeshPair& p = pairs[i];
       const Pose pose = scene.pose(recording, s, p);
+      if (!finite_pose(pose)) continue;  // skipped as replay() skips it: no contact
       std::vector<Triangle> b = scene.faces(p.mesh2);
       for (Triangle& t : b) t = apply_pose(pose, t);
       const std::size_t k = static_cast<std::size_t>(s) * pairs.size() + i;

@@ -69,6 +69,8 @@ struct ReplayStats {
   QueryCounters counters;                    // of the first repeat
   std::vector<QueryCounters> step_counters;  // [step], of the first repeat
   Answers answers;                           // of the first repeat
+  // (step, pair) queries skipped because the pose held a NaN or an infinity (no contact).
+  std::uint64_t nonfinite_skips = 0;
 };
 
 // The pose of every (step, pair) of a recording, step-major: what replay() feeds the queries.

@@ -12,6 +12,7 @@
 #include "graspcd/exact/exact.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/mujoco/collision.h"
+#include "graspcd/mujoco/collision_pose.h"
 #include "graspcd/mujoco/registry.h"
 
 namespace graspcd::study {
@@ -141,6 +142,12 @@ class Validator {
     if (pairs_.empty()) set_up(*registry);
     for (std::size_t i = 0; i < pairs_.size(); ++i) {
       const CheckedPair& p = pairs_[i];
+      // A placement MuJoCo calls bad (NaN, inf, beyond 1e10), as the served path: not checked,
+      // counted (neither the methods nor CGAL answer on a meaningless pose).
+      if (bridge::bad_geom_placement(d, p.geom1) || bridge::bad_geom_placement(d, p.geom2)) {
+        ++report_.nonfinite_skips;
+        continue;
+      }
       const Pose pose = bridge::relative_pose(d, p.geom1, p.geom2);
       if (p.box_box) {
         check_boxes(i, pose, step);

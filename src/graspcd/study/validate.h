@@ -118,6 +118,9 @@ struct ValidationReport {
   std::vector<MethodTable> methods;
   double exact_seconds = 0;   // CGAL's time over the run
   double tester_seconds = 0;  // the testers' time over the run
+  // (step, pair) checks skipped because a geom's placement held NaN, inf or a number beyond 1e10
+  // (bridge::bad_geom_placement, the rule of the served path): nothing to check on such a pose.
+  std::uint64_t nonfinite_skips = 0;
   bool missed_any() const;
 };
 

@@ -1,0 +1,125 @@
+#include "graspcd/grasp/scene_check.h"
+
+#include <tinyxml2.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "graspcd/grasp/grasp.h"
+#include "graspcd/io/mesh_io.h"
+#include "graspcd/io/text_input.h"
+
+namespace graspcd::bridge {
+namespace {
+
+namespace fs = std::filesystem;
+
+// MJCF attributes whose values are names or files, never numbers: a geom may be called "nan".
+const std::set<std::string>& name_attributes() {
+  static const std::set<std::string> names = {
+      "name",          "class",    "childclass", "file",      "mesh",        "material",
+      "texture",       "hfield",   "skin",       "joint",     "joint1",      "joint2",
+      "jointinparent", "tendon",   "tendon1",    "tendon2",   "site",        "body",
+      "body1",         "body2",    "geom",       "geom1",     "geom2",       "target",
+      "objname",       "objtype",  "actuator",   "model",     "prefix",      "meshdir",
+      "texturedir",    "assetdir", "fileright",  "fileleft",  "fileup",      "filedown",
+      "filefront",     "fileback", "slidersite", "cranksite", "refsite",     "camera",
+      "light",         "key",      "plugin",     "instance",  "content_type"};
+  return names;
+}
+
+// The first word of `value` that strtod reads whole as a non-finite number, or "" when none does
+// (or when some word is not a number at all: then the attribute is not a list of numbers).
+std::string non_finite_word(const std::string& value) {
+  std::istringstream words(value);
+  std::string bad;
+  for (std::string word; words >> word;) {
+    char* end = nullptr;
+    const double x = std::strtod(word.c_str(), &end);
+    if (end == word.c_str() || *end != '\0') return "";
+    if (!std::isfinite(x) && bad.empty()) bad = word;
+  }
+  return bad;
+}
+
+struct MeshFile {
+  std::string scene;  // the MJCF file that names it
+  int line = 0;
+  std::string file;  // as written
+};
+
+struct Scan {
+  fs::path main_dir;    // the main file's folder: includes and mesh folders start there
+  std::string meshdir;  // <compiler meshdir>, or assetdir, as written
+  std::vector<MeshFile> meshes;
+  int depth = 0;
+};
+
+void scan_file(const std::string& path, Scan& scan);
+
+void scan_element(const std::string& path, const tinyxml2::XMLElement* e, Scan& scan) {
+  const std::string element = e->Name();
+  for (const tinyxml2::XMLAttribute* a = e->FirstAttribute(); a != nullptr; a = a->Next()) {
+    const std::string name = a->Name();
+    const std::string value = a->Value();
+    if (name_attributes().count(name) != 0) continue;
+    const std::string bad = non_finite_word(value);
+    if (bad.empty()) continue;
+    const char* label = e->Attribute("name");
+    throw GraspInputError(path,
+                          "<" + element + (label ? std::string(" name=\"") + label + "\"" : "") +
+                              "> " + name + "=\"" + value + "\": non-finite number \"" + bad + "\"",
+                          static_cast<std::size_t>(a->GetLineNum()));
+  }
+  if (element == "compiler") {
+    if (const char* dir = e->Attribute("assetdir")) scan.meshdir = dir;
+    if (const char* dir = e->Attribute("meshdir")) scan.meshdir = dir;
+  } else if (element == "mesh" && e->Attribute("file") != nullptr) {
+    scan.meshes.push_back({path, e->GetLineNum(), e->Attribute("file")});
+  } else if (element == "include" && e->Attribute("file") != nullptr) {
+    scan_file((scan.main_dir / e->Attribute("file")).string(), scan);
+  }
+  for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c != nullptr;
+       c = c->NextSiblingElement()) {
+    scan_element(path, c, scan);
+  }
+}
+
+// A file that does not parse (or an include nested too deep) is left to MuJoCo's reader.
+void scan_file(const std::string& path, Scan& scan) {
+  constexpr int kMaxIncludeDepth = 16;
+  if (scan.depth >= kMaxIncludeDepth) return;
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS || doc.RootElement() == nullptr) return;
+  ++scan.depth;
+  scan_element(path, doc.RootElement(), scan);
+  --scan.depth;
+}
+
+}  // namespace
+
+void check_scene_file(const std::string& path) {
+  Scan scan;
+  scan.main_dir = fs::path(path).parent_path();
+  scan_file(path, scan);
+  // The meshes, found as MuJoCo 2.2 finds them: an absolute file as is, otherwise in meshdir,
+  // itself relative to the main file's folder unless absolute.
+  for (const MeshFile& mesh : scan.meshes) {
+    fs::path file(mesh.file);
+    if (file.is_relative()) file = scan.main_dir / fs::path(scan.meshdir) / file;
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) continue;  // MuJoCo's error names it
+    try {
+      io::check_mesh_file(file.lexically_normal().string());
+    } catch (const io::InputError& e) {
+      throw GraspInputError(e.file(), e.message(), e.line());
+    }
+  }
+}
+
+}  // namespace graspcd::bridge

@@ -1,0 +1,17 @@
+// The JSON of graspcd's config files (the pair config, registry.h, and its "grasp" section,
+// graspcd/grasp/drive_config.h), parsed in one place so that every syntax error reads the same:
+// one line "SOURCE:LINE: bad JSON: MESSAGE" (docs/bad-input.md). Needs nlohmann-json
+// (nlohmann-json3-dev), which is not part of the installed interface otherwise.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace graspcd::bridge {
+
+// Parses `text`. A syntax error, or a number that overflows a double, throws std::runtime_error
+// "SOURCE:LINE: bad JSON: MESSAGE": LINE is 1-based (the line of nlohmann's byte position, or of
+// the overflowing literal), MESSAGE nlohmann's without its exception id and position.
+nlohmann::json parse_json_config(const std::string& text, const std::string& source);
+
+}  // namespace graspcd::bridge
