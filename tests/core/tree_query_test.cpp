@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <random>
 #include <string>
@@ -135,8 +137,8 @@ TEST(TreeQuery, CarriedFramesVisitTheSameNodePairsAsTheGenericDescent) {
 // Temporal coherence (collide_coherent): along a path that moves a little each step, with large
 // jumps away and back (a state restore), the query restarted from the last front finds exactly
 // the triangle pairs of a descent from the roots, for the carried SAT descent and the generic one
-// (the perceptron); every 100th pose of SAT also against CGAL. Small motions restart from the front and
-// save box tests; the jumps descend from the roots.
+// (the perceptron); every 100th pose of SAT also against CGAL. Small motions restart from the front
+// and save box tests; the jumps descend from the roots.
 TEST(TreeQuery, FrontListFindsTheSameTrianglePairsAsADescentFromTheRoots) {
   const TriangleMesh torus = testing::make_torus(0.04, 0.012, 30, 16);
   const TriangleMesh sphere = testing::make_uv_sphere(0.015, 12, 16);
@@ -223,6 +225,40 @@ TEST(TreeQuery, AStaleFrontStillGivesTheSameAnswer) {
     std::sort(pf.begin(), pf.end());
     std::sort(pc.begin(), pc.end());
     ASSERT_EQ(pf, pc) << "pose " << i;
+  }
+}
+
+// A non-finite pose intersects nothing and costs no descent, and a front the coherent query kept
+// is not left empty by it: the next finite query still finds the descent from the roots' pairs.
+TEST(TreeQuery, ANonFinitePoseIntersectsNothingAndLeavesNoFrontBehind) {
+  const TriangleMesh torus = testing::make_torus(0.04, 0.012, 24, 12);
+  const TriangleMesh sphere = testing::make_uv_sphere(0.015, 12, 16);
+  const ObbTree ta = ObbTree::build(torus), tb = ObbTree::build(sphere);
+  Pose touching;
+  touching.t = Vec3(0.066, 0, 0);  // the sphere across the torus's outer rim
+  Detector sat(Method::kSat);
+  QueryFront front;
+  QueryCounters c;
+  std::vector<TrianglePair> expected, found;
+  sat.collide(ta, tb, touching, QueryMode::kAllContacts, c, &expected);
+  ASSERT_FALSE(expected.empty());
+  sat.collide_coherent(ta, tb, touching, c, &found, front);
+  ASSERT_TRUE(front.valid);
+  for (const double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+    Pose pose = touching;
+    pose.t[1] = bad;
+    const QueryCounters before = c;
+    found.clear();
+    EXPECT_FALSE(sat.collide(ta, tb, pose, QueryMode::kAllContacts, c, &found).intersect);
+    EXPECT_FALSE(sat.collide_coherent(ta, tb, pose, c, &found, front).intersect);
+    EXPECT_TRUE(found.empty());
+    EXPECT_EQ(c.box_tests, before.box_tests);  // no descent
+    EXPECT_FALSE(front.valid);
+    found.clear();
+    sat.collide_coherent(ta, tb, touching, c, &found, front);
+    std::sort(found.begin(), found.end());
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(found, expected);
   }
 }
 

@@ -226,6 +226,9 @@ QueryResult descend(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, Quer
                     std::vector<NodePair>* stops) {
   QueryResult result;
   if (a.nodes().empty() || b.nodes().empty()) return result;
+  // A pose with a NaN or an infinity places no triangle anywhere: every triangle test says
+  // "disjoint" (tritri.h), so the answer is known without a descent that no box test could prune.
+  if (!b_in_a.R.allFinite() || !b_in_a.t.allFinite()) return result;
   if constexpr (IsAxisSeparator<Separator>::value) {
     return collide_carried(a, b, b_in_a, mode, separator, counters, pairs, tri_test, starts, stops);
   }
@@ -272,7 +275,8 @@ QueryResult descend(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, Quer
 
 // Descends both trees from their roots. Tree B is placed in A's frame by `b_in_a`
 // (x_A = R x_B + t): its boxes through transform(), its triangles through apply_pose() (the
-// doubles the exact ground truth sees too). At each node pair the separator may prove the boxes
+// doubles the exact ground truth sees too). A pose holding a NaN or an infinity intersects
+// nothing (no descent runs). At each node pair the separator may prove the boxes
 // disjoint; otherwise the larger node (by sum of half-extents) is split; at two leaves every
 // triangle pair is tested. `pairs`, if given, receives the intersecting pairs as input face
 // indices (unsorted). Separator: bool disjoint(const Obb& a, const Obb& b_in_a, int32 node_a,
@@ -325,6 +329,11 @@ QueryResult collide_coherent(const ObbTree& a, const ObbTree& b, const Pose& b_i
       detail::descend(a, b, b_in_a, QueryMode::kAllContacts, separator, counters, pairs, tri_test,
                       restart ? &front.pairs : nullptr, &stops);
   const std::uint64_t cost = counters.box_tests - before;
+  if (stops.empty()) {
+    // No descent ran (an empty tree, or a non-finite pose): nothing to follow next time.
+    front.reset();
+    return result;
+  }
   front.pairs.swap(stops);
   front.pose = b_in_a;
   front.valid = true;
