@@ -888,16 +888,15 @@ def main():
     figure_13_to_15(study, fig_dir)
     table1_figure(study, fig_dir)
     text = report(study, sweep, fig_dir, args.figures, stress, perf)
-    real = load(os.path.join(args.out_dir, "real_models.json"), required=False)
-    if real is not None:  # study/real_models.py: the real hands of ../shared/models (issue 8)
-        section = "\n".join(real_models_section(real)) + "\n\n"
-        at = text.find("## Reproduce")
-        if at < 0:
-            at = len(text)
-        text = text[:at].rstrip("\n") + "\n\n" + section + text[at:]
-    contacts = load(os.path.join(args.out_dir, "contacts.json"), required=False)
-    if contacts is not None:  # study/contacts_solver.py: what the solver gets (issue 18)
-        section = "\n".join(contacts_section(contacts)) + "\n\n"
+    # Sections drawn from optional files of other scripts, each before "## Reproduce":
+    # study/real_models.py (the real hands of ../shared/models, issue 8) and
+    # study/contacts_solver.py (what the solver gets, issue 18).
+    for name, draw in (("real_models.json", real_models_section),
+                       ("contacts.json", contacts_section)):
+        data = load(os.path.join(args.out_dir, name), required=False)
+        if data is None:
+            continue
+        section = "\n".join(draw(data)) + "\n\n"
         at = text.find("## Reproduce")
         if at < 0:
             at = len(text)

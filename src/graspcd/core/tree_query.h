@@ -67,6 +67,7 @@ struct QueryFront {
   std::uint64_t root_box_tests = 0;  // box tests of the last descent from the roots
   std::uint32_t queries = 0;         // queries that restarted from it (pull-up every few)
   bool valid = false;                // false: the next query descends from the roots
+  bool restarted = false;            // the last query restarted from the front
   void reset() {
     pairs.clear();
     valid = false;
@@ -324,6 +325,7 @@ QueryResult collide_coherent(const ObbTree& a, const ObbTree& b, const Pose& b_i
   thread_local std::vector<NodePair> stops;
   stops.clear();
   const bool restart = front_applies(front, b, b_in_a);
+  front.restarted = restart;
   const std::uint64_t before = counters.box_tests;
   const QueryResult result =
       detail::descend(a, b, b_in_a, QueryMode::kAllContacts, separator, counters, pairs, tri_test,

@@ -56,8 +56,8 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
   const Clock::time_point start = Clock::now();
   if (registry.config().front_list) {
     QueryFront& front = registry.front(d, pair_index);
-    stats.front_restarts += front_applies(front, t2->tree, pose);
     served.detector->collide_coherent(t1->tree, t2->tree, pose, stats.counters, &tri_pairs, front);
+    stats.front_restarts += front.restarted;
   } else {
     served.detector->collide(t1->tree, t2->tree, pose, QueryMode::kAllContacts, stats.counters,
                              &tri_pairs);
