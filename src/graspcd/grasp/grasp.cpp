@@ -305,12 +305,7 @@ void watch_rest(const mjModel* m, mjData* d, int object, const std::vector<char>
       result.rest_max_penetration = std::max(result.rest_max_penetration, -c.dist);
     }
   }
-  // 0.5 qvel^T M qvel with the step's joint-space inertia (mj_energyVel's formula; MuJoCo 2.2
-  // fills d->energy only with the energy flag enabled).
-  thread_local std::vector<mjtNum> mv;
-  mv.resize(static_cast<std::size_t>(m->nv));
-  mj_mulM(m, d, mv.data(), d->qvel);
-  const double energy = 0.5 * mju_dot(d->qvel, mv.data(), m->nv);
+  const double energy = kinetic_energy(m, d);
   const long half = window / 2;
   const double share = energy / static_cast<double>(std::max(1L, half));
   if (step < first + half) {
@@ -674,6 +669,13 @@ std::string qhull_line(const std::string& text) {
 }
 
 }  // namespace
+
+double kinetic_energy(const mjModel* m, const mjData* d) {
+  thread_local std::vector<mjtNum> mv;
+  mv.resize(static_cast<std::size_t>(m->nv));
+  mj_mulM(m, d, mv.data(), d->qvel);
+  return 0.5 * mju_dot(d->qvel, mv.data(), m->nv);
+}
 
 ModelPtr load_model(const std::string& path) {
   std::error_code ec;

@@ -172,6 +172,10 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
 // "FILE: <MuJoCo's message on one line>" (mujoco-2.2-notes.md "Errors").
 ModelPtr load_model(const std::string& path);
 
+// The system's kinetic energy, 0.5 qvel^T M qvel with the joint-space inertia of the last step
+// (mj_energyVel's formula; MuJoCo 2.2 fills d->energy only with the energy flag enabled), J.
+double kinetic_energy(const mjModel* m, const mjData* d);
+
 // A pair config's error (a std::runtime_error of registry.h or drive_config.h, whose message starts
 // "CONFIG: " or "CONFIG:LINE: ") as a GraspInputError with the file, line and message apart.
 GraspInputError config_error(const std::string& config_path, const std::runtime_error& e);
