@@ -396,10 +396,10 @@ def geometry_comment(kind):
     return lines
 
 
-def common_head(model, extra_comment, meshes):
+def common_head(model, extra_comment, meshes, meshdir="meshes", option_extra=""):
     out = header(model, extra_comment)
-    out.append('  <compiler angle="radian" meshdir="meshes" autolimits="true"/>')
-    out.append('  <option timestep="%s" gravity="0 0 -9.81"/>' % TIMESTEP)
+    out.append('  <compiler angle="radian" meshdir="%s" autolimits="true"/>' % meshdir)
+    out.append('  <option timestep="%s" gravity="0 0 -9.81"%s/>' % (TIMESTEP, option_extra))
     out.append("  " + SIZE)
     out.append("  <default>")
     out.append('    <joint damping="0.05" armature="0.001"/>')
@@ -523,15 +523,16 @@ def object_lines(body, mesh, x, y):
     ]
 
 
-def triangle_scene(model, objects, extra):
-    """objects: (body name, mesh, x, y) resting on the floor."""
+def triangle_scene(model, objects, extra, meshdir="meshes", option_extra=""):
+    """objects: (body name, mesh, x, y) resting on the floor; meshdir and option_extra (attributes
+    added to <option>) for the scenes of mjcf/hard/."""
     meshes = ["finger_%s" % s for s in SEG_NAMES] + sorted({m for _, m, _, _ in objects})
     lines = geometry_comment("closed rounded-box meshes, edge radius %.3f" % SEG_ROUND) + extra
     lines.append("Objects (closed meshes, bottom on the floor):")
     for body, mesh, x, y in objects:
         desc = [d for n, _, d in OBJECT_MESHES if n == mesh][0]
         lines.append("  body %s at (%s): %s" % (body, vec(x, y), desc))
-    o = common_head(model, lines, meshes)
+    o = common_head(model, lines, meshes, meshdir, option_extra)
     o.append("  <worldbody>")
     o.extend(arm_and_hand("mesh"))
     for body, mesh, x, y in objects:
@@ -546,6 +547,12 @@ def pairs_json(b_pattern):
     return ('{\n  "method": "sat",\n  "pairs": [\n    {"a": "geom:finger*", "b": "%s"}\n  ]\n}\n' %
             b_pattern)
 
+
+# Iterations of MuJoCo's noslip solver in the hold scenes (mjcf/hard/hold_*.xml): a
+# post-processing pass over the friction rows that removes the slip MuJoCo's soft constraints
+# allow under a sustained tangential load. More: slower steps, no less slip once converged; fewer:
+# some creep remains.
+HOLD_NOSLIP_ITERATIONS = 10
 
 EXAMPLES = (
     ("example1", "cup", "Example 1: the cup (non-convex) centred under the hand; the fingers close "
@@ -585,6 +592,19 @@ def generate():
         files[name + ".xml"] = triangle_scene("graspcd " + name, (("object", mesh, 0.0, 0.0),),
                                               ["", desc])
         files[name + ".pairs.json"] = pairs_json("body:object")
+    # The hold scenes of the hard-scene tests (tests/scenes/hard_scenes_test.cpp): examples 1 and 3
+    # with MuJoCo's noslip solver, which removes the slow slip (creep) of its soft friction under a
+    # sustained load, so that an object can rest in the hand for seconds (docs/design.md,
+    # "Holding longer").
+    for name, mesh, desc in EXAMPLES:
+        if name == "example2":
+            continue
+        files["hard/hold_%s.xml" % name] = triangle_scene(
+            "graspcd hold_" + name, (("object", mesh, 0.0, 0.0),),
+            ["", desc, "Hold scene: %s.xml with noslip_iterations=\"%d\" (MuJoCo's noslip solver)."
+             % (name, HOLD_NOSLIP_ITERATIONS)],
+            meshdir="../meshes", option_extra=' noslip_iterations="%d"' % HOLD_NOSLIP_ITERATIONS)
+        files["hard/hold_%s.pairs.json" % name] = pairs_json("body:object")
     return files
 
 
