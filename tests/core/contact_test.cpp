@@ -48,6 +48,25 @@ TEST(TrianglePairContact, CrossingSideFacesUseTheEdgeAxis) {
   EXPECT_NEAR(all.depth, 0.01, 1e-12);
 }
 
+// Seen on the Robotiq pad against the voxel cup (mjcf/real_robotiq_cup.xml), coordinates as the
+// served query had them: a horizontal face of the cup (b) crosses the pad's side face (a, normal
+// -x) and grazes the pad's front face (y = -0.004) by 0.09 mm. The edge axis of the pad's z edge
+// and the cup's x edge is y, tilted 0.23 degrees, so its dot product with n_a - n_b is 0.004: too
+// small for the faces to decide its sign (tol::kContactSignCosine). The smaller side, 0.09 mm
+// along -y, is the contact. Had the faces decided, that axis would have measured 10 mm and the
+// side face's 1.9 mm along -x would have won: the kicks that let the held cup jitter.
+TEST(TrianglePairContact, AnEdgeAxisNearlyInBothFacesTakesTheSmallerSide) {
+  const Triangle a =
+      tri({-0.011, -0.004, -0.009375}, {-0.011, -0.004, 0.009375}, {-0.011, 0.004, 0.009375});
+  const Triangle b =
+      tri({-0.009087654, -0.006248175, -0.001437782}, {-0.011701105, -0.003914970, -0.001433941},
+          {-0.009097126, -0.003904448, -0.001432941});
+  ASSERT_TRUE(tri_tri_intersect(a, b));
+  const TriContact c = triangle_pair_contact(a, b, 0.01, Vec3::UnitX(), 0b011, 0b010);
+  EXPECT_GT(c.normal.dot(-Vec3::UnitY()), 0.999);
+  EXPECT_NEAR(c.depth, 0.088e-3, 0.002e-3);
+}
+
 TEST(TrianglePairContact, DepthIsClippedToTheCap) {
   const Triangle floor = tri({-1, -1, 0}, {1, -1, 0}, {0, 1, 0});
   const Triangle blade = tri({-0.1, 0, 0.05}, {0.1, 0, 0.05}, {0, 0, -0.2});

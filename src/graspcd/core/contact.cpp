@@ -80,7 +80,7 @@ Direction measure(const Triangle& ref, const Vec3& n, const Triangle& moving) {
 // sharp edges (the SAT axes of gim_tri_collision). The sign comes from the solids where their
 // faces say something: the normal N = +-L must point out of A and into B, so N.(n_a - n_b) >= 0
 // (unit outward face normals, zero for a degenerate face), and the push is one-sided:
-// max(A.N) - min(B.N). When L is perpendicular to n_a - n_b (|L.(n_a - n_b)| <=
+// max(A.N) - min(B.N). When L is nearly perpendicular to n_a - n_b (|L.(n_a - n_b)| <=
 // tol::kContactSignCosine), the faces do not decide and the smaller of the two sides does. Returns
 // false when no sharp edge pair has a cross-product axis.
 bool min_edge_axis(const Triangle& a, const Triangle& b, const Vec3& na, const Vec3& nb,
