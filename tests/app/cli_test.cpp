@@ -926,6 +926,40 @@ std::string cube_obj(const std::string& first = "v 0 0 0") {
          "f 3 8 7\nf 4 1 5\nf 4 5 8\n";
 }
 
+// Issue 21: meshpair's table as one JSON document, the same answers as the text, with the
+// mesh hygiene warning (tagged "mesh", its face counted from 1 in the file) in the envelope.
+TEST_F(CliTest, MeshpairPrintsItsTableAsJson) {
+  const std::string a = write("a.obj", cube_obj() + "f 1 2 1\n");  // a 13th face of zero area
+  const std::string b = write("b.obj", cube_obj());
+  const std::string poses =
+      write("p.txt", "1 0 0 0 1 0 0 0 1  0.5 0 0\n1 0 0 0 1 0 0 0 1  3 0 0\n");
+  const Result text = run("meshpair " + a + " " + b + " --poses " + poses);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const Result r = run("meshpair " + a + " " + b + " --poses " + poses + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  graspcd::testing::expect_envelope(doc, 1);
+  EXPECT_EQ(doc["method"], "sat");
+  ASSERT_EQ(doc["answers"].size(), 2u);
+  const std::vector<std::string> rows = lines(text.out);
+  ASSERT_EQ(rows.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const nlohmann::json& answer = doc["answers"][i];
+    EXPECT_EQ(rows[i].rfind(std::string(answer["intersect"] ? "1 " : "0 ") +
+                                std::to_string(answer["pairs"].get<int>()) + " ",
+                            0),
+              0u)
+        << rows[i];
+  }
+  EXPECT_TRUE(doc["answers"][0]["intersect"]);
+  EXPECT_FALSE(doc["answers"][1]["intersect"]);
+  EXPECT_EQ(doc["warnings"][0]["source"], "mesh");
+  EXPECT_NE(doc["warnings"][0]["message"].get<std::string>().find(
+                "(faces 13 counted from 1 in the file's order"),
+            std::string::npos)
+      << doc["warnings"][0]["message"];
+}
+
 // Item 4: answers that could not be written are an error, not a success; a closed pipe stays
 // quiet (SIGPIPE).
 TEST_F(CliTest, StdoutThatCannotBeWrittenIsAnErrorAndAClosedPipeIsQuiet) {
