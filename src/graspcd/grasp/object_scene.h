@@ -2,7 +2,8 @@
 // "A new object"). The template is any MJCF scene with a pair config beside it
 // (TEMPLATE.pairs.json) whose object is the body `object`, a child of <worldbody> with a free
 // joint and one mesh geom. The new scene is the template read and written by tinyxml2 with:
-//  - that mesh asset's file replaced by the user's mesh and its scale set;
+//  - that mesh asset's file replaced by the user's mesh and its scale set (the asset is renamed
+//    "object_mesh", the geom "object");
 //  - the object body turned (the file's `up` axis along -gravity, then `yaw` about it, or the
 //    quaternion `pose`) and placed with its lowest point along gravity kSupportGap above the
 //    support point, centred on it across gravity;
