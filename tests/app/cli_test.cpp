@@ -707,6 +707,37 @@ TEST_F(CliTest, GraspRefusesAnObjectThatStartsInsideTheHandOrTheFloor) {
                        "point on the support\n");
 }
 
+// --hand FILE: any scene can be a template (docs/design.md, "Object scenes"); one that breaks the
+// contract, or lacks what an option needs, is one line naming it and its line, exit 2. These are
+// refused before any simulation.
+TEST_F(CliTest, GraspObjectTemplateFilesAreCheckedAndNamed) {
+  const std::string box = write("box.obj", kUserBox);
+  // Example 1 as a file has no graspcd_fit (the built-in "project" hand supplies one).
+  const std::string example1 = shipped_scene("example1");
+  Result r = run("grasp --object " + box + " --hand " + example1 + " --fit");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, example1 +
+                       ":1: template scene: no <numeric name=\"graspcd_fit\" data=\"WIDTH "
+                       "HEIGHT\"/> for --fit\n");
+  // A scene without a body "object" in its worldbody: the worldbody's line.
+  const std::string bare = write("bare.xml",
+                                 "<mujoco>\n  <worldbody>\n    <body name=\"cup\"/>\n  "
+                                 "</worldbody>\n</mujoco>\n");
+  r = run("grasp --object " + box + " --hand " + bare);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, bare + ":2: template scene: no <body name=\"object\"> in <worldbody>\n");
+  // Neither a built-in hand nor a file; and a bad --up.
+  r = run("grasp --object " + box + " --hand allegro");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "graspcd: grasp: --hand must be project, robotiq, shadow or a template scene file "
+            "(allegro is none)\n");
+  r = run("grasp --object " + box + " --up w");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "graspcd: grasp: --up must be one of x, y, z, -x, -y, -z (not 'w')\n");
+}
+
 // A grasp that never reaches the object is reported as failed, with the reason, and
 // --require-held makes it exit 1.
 TEST_F(CliTest, AGraspThatNeverTouchedTheObjectSaysWhyAndCanFail) {
