@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -16,11 +17,13 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "command.h"
 #include "graspcd/core/geometry.h"
 #include "graspcd/core/warnings.h"
 #include "graspcd/grasp/grasp.h"
+#include "graspcd/grasp/object_scene.h"
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/mujoco_messages.h"
@@ -41,128 +44,45 @@ struct GraspCliOptions {
   std::string config;
   bool native = false;
   bool json = false;
+  bool require_held = false;
   int max_steps = 400;
-  std::string object;       // --object FILE: a user's mesh in the template scene
-  double scale = 0;         // --scale S (> 0); 0: fit the object to the cup's size
-  std::string write_scene;  // --write-scene DIR: keep the generated scene there
+  std::string object;  // --object FILE: a user's mesh in a template scene
+  double scale = 1;    // --scale S (> 0): file units -> m; default 1 (metres)
+  bool fit = false;    // --fit: scale to the template's room instead
+  std::string hand = "project";
+  std::string up = "z";
+  double yaw = 0;
+  std::vector<double> pose;  // --pose W X Y Z
+  std::string write_scene;   // --write-scene DIR: keep the generated scene there
 };
 
 namespace fs = std::filesystem;
 
-// --object: the template is example 1 (mjcf/example1.xml: the project's arm and 4-finger hand,
-// the cup centred under it). The object replaces the cup: centred under the hand in x and y, its
-// lowest point on the floor, scaled by S or, without --scale, to fit where the cup stands: its
-// wider horizontal extent 7 cm (the cup's outer diameter) and its height at most 8 cm (the cup's).
-constexpr double kFitWidth = 0.07;
-constexpr double kFitHeight = 0.08;
-
-struct ObjectScene {
-  std::string file;   // the user's mesh, as given
-  std::string scene;  // the generated MJCF, SCENE.pairs.json beside it
-  double scale = 0;
-  bool fitted = false;
+// The template of each built-in hand (--hand): the scene whose object the user's replaces.
+struct HandTemplate {
+  std::string scene;
+  std::optional<std::array<double, 2>> fit;  // when the scene has no graspcd_fit
 };
 
-std::string xml_escape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw io::InputError(path, 0, "cannot read the template scene");
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-// Replaces the one occurrence of `from`; the template changing under us is an error naming it.
-void replace_once(std::string& text, const std::string& from, const std::string& to,
-                  const std::string& template_path) {
-  const std::size_t at = text.find(from);
-  if (at == std::string::npos || text.find(from, at + 1) != std::string::npos) {
-    throw io::InputError(
-        template_path, 0,
-        "the template scene no longer holds '" + from + "' exactly once (--object needs it)");
-  }
-  text.replace(at, from.size(), to);
-}
-
-std::string number(double v) {
-  std::ostringstream out;
-  out << std::setprecision(17) << v + 0.0;  // + 0.0: -0 prints as 0
-  return out.str();
-}
-
-ObjectScene write_object_scene(const GraspCliOptions& o, const fs::path& dir) {
-  // The mesh as graspcd reads it (an error names FILE): its bounding box places and fits it.
-  io::MeshStats stats;
-  const TriangleMesh mesh = io::load_mesh(o.object, &stats);
-  // What changes the answer or what MuJoCo loads (an OBJ with several objects: MuJoCo keeps the
-  // first, the fit below sees them all; dropped faces), one line each, as meshpair warns.
-  for (const std::string& w : io::mesh_warnings(o.object, stats, true)) {
-    warnings().add("mesh_hygiene", w);
-  }
-  Vec3 lo = mesh.vertices.front(), hi = lo;
-  for (const Vec3& v : mesh.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  const Vec3 size = hi - lo;
-  ObjectScene out;
-  out.file = o.object;
-  out.fitted = o.scale <= 0;
-  out.scale = o.scale;
-  if (out.fitted) {
-    const double width = std::max(size.x(), size.y());
-    out.scale = std::numeric_limits<double>::infinity();
-    if (width > 0) out.scale = kFitWidth / width;
-    if (size.z() > 0) out.scale = std::min(out.scale, kFitHeight / size.z());
-  }
+HandTemplate hand_template(const std::string& hand) {
   const std::string mjcf = GRASPCD_MJCF_DIR;
-  const std::string template_path = mjcf + "/example1.xml";
-  std::string xml = read_text(template_path);
-  const std::string s = number(out.scale);
-  replace_once(xml, "meshdir=\"meshes\"", "meshdir=\"" + xml_escape(mjcf + "/meshes") + "\"",
-               template_path);
-  replace_once(xml, "<mesh name=\"cup\" file=\"cup.obj\"/>",
-               "<mesh name=\"user_object\" file=\"" +
-                   xml_escape(fs::absolute(o.object).lexically_normal().string()) + "\" scale=\"" +
-                   s + ' ' + s + ' ' + s + "\"/>",
-               template_path);
-  replace_once(xml, "mesh=\"cup\"", "mesh=\"user_object\"", template_path);
-  // Room for the contacts of a fine mesh (example 1's cup has a few hundred faces).
-  replace_once(xml, "<size nconmax=\"300\" njmax=\"900\"/>",
-               "<size nconmax=\"1000\" njmax=\"4000\"/>", template_path);
-  const Vec3 at = -out.scale * Vec3(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()), lo.z());
-  replace_once(xml, "<body name=\"object\" pos=\"0.000000 0.000000 0.000000\">",
-               "<body name=\"object\" pos=\"" + number(at.x()) + ' ' + number(at.y()) + ' ' +
-                   number(at.z()) + "\">",
-               template_path);
-  fs::create_directories(dir);
-  const std::string stem = fs::path(o.object).stem().string();
-  out.scene = (dir / (stem + ".xml")).string();
-  std::ofstream(out.scene, std::ios::binary) << xml;
-  std::ofstream((dir / (stem + ".pairs.json")).string(), std::ios::binary)
-      << read_text(mjcf + "/example1.pairs.json");
-  return out;
+  // Example 1: the project's arm and 4-finger hand over the cup (7 cm wide, 8 cm tall).
+  if (hand == "project") return {mjcf + "/example1.xml", std::array<double, 2>{0.07, 0.08}};
+  if (hand == "robotiq") return {mjcf + "/real_robotiq_mug.xml", std::nullopt};
+  if (hand == "shadow") return {mjcf + "/real_shadow_glass.xml", std::nullopt};
+  std::error_code ec;
+  if (!fs::is_regular_file(hand, ec)) {
+    throw UsageError("grasp: --hand must be project, robotiq, shadow or a template scene file (" +
+                     hand + " is none)");
+  }
+  return {hand, std::nullopt};
 }
+
+struct ObjectRun {
+  std::string file;  // the user's mesh, as given
+  std::string hand;
+  bridge::ObjectScene scene;
+};
 
 // A temporary folder, removed with everything in it when it goes out of scope.
 class TempFolder {
@@ -197,8 +117,19 @@ std::string segments_text(const bridge::GraspResult& g, const bridge::GraspStepR
   return out.empty() ? "-" : out;
 }
 
-void print_text(const bridge::GraspResult& r, const std::optional<ObjectScene>& object) {
+// "# object FILE at scale S (given|fitted) ... in the HAND template": the first line of the text.
+std::string object_line(const ObjectRun& o) {
   std::ostringstream out;
+  out << "# object " << o.file << " at scale " << std::setprecision(6) << o.scene.scale
+      << (o.scene.fitted ? " (fitted)" : " (given)") << ", " << std::setprecision(3)
+      << o.scene.size[0] << " x " << o.scene.size[1] << " x " << o.scene.size[2] << " m, in the "
+      << o.hand << " template";
+  return out.str();
+}
+
+void print_text(const bridge::GraspResult& r, const std::optional<ObjectRun>& object) {
+  std::ostringstream out;
+  if (object) out << object_line(*object) << '\n';
   out << "step contacts detection_ns box_tests triangle_tests object_z segments\n";
   out << std::fixed;
   for (const bridge::GraspStepRecord& s : r.steps) {
@@ -217,23 +148,20 @@ void print_text(const bridge::GraspResult& r, const std::optional<ObjectScene>& 
   }
   out << '\n';
   out << std::setprecision(4) << "# gripped " << (r.gripped ? "yes" : "no") << "; held "
-      << (r.held ? "yes" : "no") << "; object z " << r.object_z_initial << " -> "
-      << r.object_z_gripped << " (gripped) -> " << r.object_z_final << " m (final), lowest "
-      << r.hold_min_z << " m and drift " << r.hold_drift << " m in the hold\n";
+      << (r.held ? "yes" : "no") << (r.reason.empty() ? "" : ": " + r.reason) << "; object z "
+      << r.object_z_initial << " -> " << r.object_z_gripped << " (before the lift) -> "
+      << r.object_z_final << " m (final), rose " << r.object_rise << " m of the hand's "
+      << r.hand_travel << " m, lowest " << r.hold_min_z << " m and drift " << r.hold_drift
+      << " m in the hold\n";
   out << "# detection ns " << r.detection_ns_close << " closing, " << r.detection_ns_total
       << " total; " << r.physics_steps << " physics steps, " << std::setprecision(2) << r.sim_time
       << " s simulated, " << std::setprecision(4) << r.step_wall_ms << " ms per physics step; "
       << r.contained_calls << " containment findings; " << r.nonfinite_skips
       << " non-finite skips\n";
-  if (object) {
-    out << "# object " << object->file << " at scale " << std::defaultfloat << std::setprecision(6)
-        << object->scale << (object->fitted ? " (fitted)" : " (given)")
-        << " in the template scene\n";
-  }
   std::cout << out.str();
 }
 
-void print_json(const bridge::GraspResult& r, const std::optional<ObjectScene>& object) {
+void print_json(const bridge::GraspResult& r, const std::optional<ObjectRun>& object) {
   nlohmann::json steps = nlohmann::json::array();
   for (const bridge::GraspStepRecord& s : r.steps) {
     nlohmann::json segments = nlohmann::json::array();
@@ -260,43 +188,52 @@ void print_json(const bridge::GraspResult& r, const std::optional<ObjectScene>& 
       first[name] = nullptr;
     }
   }
-  nlohmann::json doc = {{"scene", r.scene},
-                        {"method", r.method},
-                        {"native", r.native},
-                        {"steps", steps},
-                        {"first_contact", first},
-                        {"gripped", r.gripped},
-                        {"held", r.held},
-                        {"object_z_initial", r.object_z_initial},
-                        {"object_z_gripped", r.object_z_gripped},
-                        {"object_z_final", r.object_z_final},
-                        {"hold_min_z", r.hold_min_z},
-                        {"hold_drift", r.hold_drift},
-                        {"detection_ns_close", r.detection_ns_close},
-                        {"detection_ns_total", r.detection_ns_total},
-                        {"physics_steps", r.physics_steps},
-                        {"sim_time", r.sim_time},
-                        {"ms_per_physics_step", r.step_wall_ms},
-                        {"max_contacts", r.max_contacts},
-                        {"mean_contacts", r.mean_contacts},
-                        {"max_pair_contacts", r.max_pair_contacts},
-                        {"rest",
-                         {{"max_speed", r.rest_max_speed},
-                          {"max_penetration", r.rest_max_penetration},
-                          {"energy_early", r.rest_energy_early},
-                          {"energy_late", r.rest_energy_late}}},
-                        {"contact_buffer_full", r.contact_buffer_full},
-                        {"constraint_buffer_full", r.constraint_buffer_full},
-                        {"contained_calls", r.contained_calls},
-                        {"nonfinite_skips", r.nonfinite_skips}};
+  nlohmann::json doc = {
+      {"scene", r.scene},
+      {"method", r.method},
+      {"native", r.native},
+      {"steps", steps},
+      {"first_contact", first},
+      {"gripped", r.gripped},
+      {"held", r.held},
+      {"reason", r.reason.empty() ? nlohmann::json() : nlohmann::json(r.reason)},
+      {"object_rise", r.object_rise},
+      {"hand_travel", r.hand_travel},
+      {"slip_time", r.slip_time >= 0 ? nlohmann::json(r.slip_time) : nlohmann::json()},
+      {"object_z_initial", r.object_z_initial},
+      {"object_z_gripped", r.object_z_gripped},
+      {"object_z_final", r.object_z_final},
+      {"hold_min_z", r.hold_min_z},
+      {"hold_drift", r.hold_drift},
+      {"detection_ns_close", r.detection_ns_close},
+      {"detection_ns_total", r.detection_ns_total},
+      {"physics_steps", r.physics_steps},
+      {"sim_time", r.sim_time},
+      {"ms_per_physics_step", r.step_wall_ms},
+      {"max_contacts", r.max_contacts},
+      {"mean_contacts", r.mean_contacts},
+      {"max_pair_contacts", r.max_pair_contacts},
+      {"rest",
+       {{"max_speed", r.rest_max_speed},
+        {"max_penetration", r.rest_max_penetration},
+        {"energy_early", r.rest_energy_early},
+        {"energy_late", r.rest_energy_late}}},
+      {"contact_buffer_full", r.contact_buffer_full},
+      {"constraint_buffer_full", r.constraint_buffer_full},
+      {"contained_calls", r.contained_calls},
+      {"nonfinite_skips", r.nonfinite_skips}};
   if (object) {
-    doc["object"] = {{"file", object->file}, {"scale", object->scale}, {"fitted", object->fitted}};
+    const bridge::ObjectScene& o = object->scene;
+    doc["object"] = {{"file", object->file}, {"hand", object->hand},
+                     {"scale", o.scale},     {"fitted", o.fitted},
+                     {"size", o.size},       {"pos", o.pos},
+                     {"quat", o.quat},       {"scene", object->scene.scene}};
   }
   add_envelope(doc);
   std::cout << doc.dump(2) << '\n';
 }
 
-void run_grasp_command(GraspCliOptions& options, const CLI::App& app) {
+void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_code) {
   finish_method_options(options.method);
   bridge::GraspOptions grasp;
   grasp.config_path = options.config;
@@ -308,39 +245,66 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app) {
   if (options.object.empty() == options.scene.empty()) {
     throw UsageError("grasp: give either SCENE or --object FILE");
   }
-  if (options.object.empty() && (app.count("--scale") > 0 || !options.write_scene.empty())) {
-    throw UsageError("grasp: --scale and --write-scene go with --object");
+  for (const char* o : {"--scale", "--fit", "--hand", "--up", "--yaw", "--pose", "--write-scene"}) {
+    if (options.object.empty() && app.count(o) > 0) {
+      throw UsageError(std::string("grasp: ") + o + " goes with --object");
+    }
+  }
+  if (app.count("--fit") > 0 && app.count("--scale") > 0) {
+    throw UsageError("grasp: --scale and --fit exclude each other");
+  }
+  if (app.count("--pose") > 0 && (app.count("--up") > 0 || app.count("--yaw") > 0)) {
+    throw UsageError("grasp: --pose and --up/--yaw exclude each other");
   }
   std::optional<TempFolder> temp;
-  std::optional<ObjectScene> object;
+  std::optional<ObjectRun> object;
   std::string scene = options.scene;
   if (!options.object.empty()) {
+    const HandTemplate hand = hand_template(options.hand);
+    bridge::ObjectPlacement placement;
+    placement.file = options.object;
+    placement.scale = options.scale;
+    placement.fit = options.fit;
+    placement.up = options.up;
+    placement.yaw_degrees = options.yaw;
+    if (!options.pose.empty()) {
+      placement.pose =
+          std::array<double, 4>{options.pose[0], options.pose[1], options.pose[2], options.pose[3]};
+    }
     if (options.write_scene.empty()) temp.emplace();
-    object = write_object_scene(options, temp ? temp->path() : fs::path(options.write_scene));
-    scene = object->scene;
+    object = ObjectRun{options.object, options.hand, {}};
+    try {
+      object->scene =
+          bridge::write_object_scene(placement, hand.scene, options.hand,
+                                     temp ? temp->path().string() : options.write_scene, hand.fit);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("grasp: ") + e.what());
+    }
+    scene = object->scene.scene;
   }
   // Errors name the user's file, never the temporary scene (removed when this returns).
   const auto named = [&](const std::string& file) {
-    return object && file == object->scene ? options.object : file;
+    return object && file == object->scene.scene ? options.object : file;
   };
   bridge::GraspResult result;
   try {
     result = bridge::run_grasp(scene, grasp);
   } catch (const bridge::GraspInputError& e) {
-    if (object && e.file() == object->scene) {
+    if (object && e.file() == object->scene.scene) {
       throw io::InputError(options.object, 0, "in the template scene: " + e.message());
     }
     throw io::InputError(e.file(), e.line(), e.message());
   } catch (const bridge::MujocoError& e) {
     throw io::InputError(named(scene), 0, e.what());
   }
-  if (object && !temp) result.scene = object->scene;
+  if (object && !temp) result.scene = object->scene.scene;
   if (object && temp) result.scene = options.object;
   if (options.json) {
     print_json(result, object);
   } else {
     print_text(result, object);
   }
+  if (options.require_held && !result.held) *exit_code = 1;
 }
 
 }  // namespace
@@ -352,14 +316,32 @@ Command add_grasp_command(CLI::App& parent) {
   CLI::Option* scene =
       app->add_option("SCENE", options->scene, "The scene: an MJCF file of mjcf/ (or --object)");
   app->add_option("--object", options->object,
-                  "A mesh (OBJ or binary STL) grasped in the template scene instead of SCENE")
+                  "A mesh (OBJ or binary STL) grasped in a template scene instead of SCENE")
       ->excludes(scene);
   app->add_option("--scale", options->scale,
-                  "--object: the mesh's scale (default: fitted to the cup's size)")
+                  "--object: file units to metres (default 1: the file is in metres)")
       ->check(positive_number());
+  app->add_flag("--fit", options->fit,
+                "--object: scale the object to the template's room instead (said on the first "
+                "line)");
+  app->add_option("--hand", options->hand,
+                  "--object: the template: project (the arm and 4-finger hand), robotiq (the "
+                  "Robotiq 2F-85), shadow (the Shadow hand), or a template scene file")
+      ->capture_default_str();
+  app->add_option("--up", options->up,
+                  "--object: the file axis that points up: x, y, z, -x, -y, -z")
+      ->capture_default_str();
+  app->add_option("--yaw", options->yaw, "--object: then a turn about the up direction, degrees")
+      ->check(CLI::Range(-360.0, 360.0));
+  app->add_option(
+         "--pose", options->pose,
+         "--object: the object's rotation as a quaternion W X Y Z (instead of --up, --yaw)")
+      ->expected(4);
   app->add_option("--write-scene", options->write_scene,
                   "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder "
                   "and keep it (default: a temporary folder, removed)");
+  app->add_flag("--require-held", options->require_held,
+                "Exit with code 1 when the object was not held");
   add_method_options(*app, options->method, MethodDefaults::kSceneConfig);
   app->add_flag("--native", options->native,
                 "MuJoCo's own collision (convex hulls) instead of graspcd's callback");
@@ -380,9 +362,9 @@ Command add_grasp_command(CLI::App& parent) {
       "it, the tree query time in ns summed over its physics steps and all registered pairs "
       "(0 with --native), the box and triangle tests, the object's height in m, and the "
       "segments in contact (comma-separated, '-' for none). Then three summary lines starting "
-      "with '#': the first-contact grasp step of each segment ('-' for never); gripped and held "
-      "(the object rose >= 3 cm and stayed within 1 cm of its place in the hand during the "
-      "2 s hold) with its heights; the detection time of the closing steps and of the whole "
+      "with '#': the first-contact grasp step of each segment ('-' for never); 'gripped yes|no; "
+      "held yes|no[: REASON]' with the object's heights, its rise and the hand's travel; the "
+      "detection time of the closing steps and of the whole "
       "run, the physics steps, simulated seconds and wall ms per physics step, the "
       "containment findings (served calls whose surfaces did not meet but a segment lay wholly "
       "inside the closed object: a contact the surface test cannot see), and the non-finite "
@@ -390,7 +372,9 @@ Command add_grasp_command(CLI::App& parent) {
       "contacts, no query).\n"
       "--json: one document with the same: scene, method, native, steps (step, contacts, "
       "detection_ns, box_tests, triangle_tests, served_calls, contained, nonfinite_skips, "
-      "object_z, segments), first_contact (segment -> step or null), gripped, held, "
+      "object_z, segments), first_contact (segment -> step or null), gripped, held, reason "
+      "(null when held), object_rise and hand_travel (m, from the start of the lift to the end "
+      "of the hold), slip_time (s, or null), "
       "object_z_initial, object_z_gripped, object_z_final, hold_min_z, hold_drift, "
       "detection_ns_close, detection_ns_total, physics_steps, sim_time, ms_per_physics_step, "
       "max_contacts, mean_contacts (finger-object contacts per physics step), max_pair_contacts "
@@ -399,6 +383,15 @@ Command add_grasp_command(CLI::App& parent) {
       "window's halves energy_early and energy_late in J), contact_buffer_full and "
       "constraint_buffer_full (MuJoCo's counters: steps whose nconmax or njmax was reached), "
       "contained_calls, nonfinite_skips, warnings.\n"
+      "Verdicts: before the grasp, the start state is checked: an object that penetrates the "
+      "hand, a finger or its support by more than 0.5 mm, or lies wholly inside one (or one "
+      "inside it), is bad input (one line 'SCENE: the start state is not valid: ...', exit code "
+      "2). Gripped: just before the lift, two hand geoms touch the object with opposing contact "
+      "normals (negative dot product). Held: gripped, the object rose at least 80% of the "
+      "hand's travel, and it moved less than 1 cm in the hand during the hold. Otherwise "
+      "REASON says why: 'no segment reached the object', 'no two touching segments push from "
+      "opposing sides', 'slipped at t = T s', 'rose X cm of the hand's Y cm travel'. "
+      "--require-held: exit code 1 when not held.\n"
       "Warnings: the pair registry's findings that do not stop the grasp (a served geom with a "
       "margin, an open mesh inside which containment is not checked), one line 'warning: "
       "CONFIG: message' each on stderr, and in the JSON's warnings.\n"
@@ -408,21 +401,28 @@ Command add_grasp_command(CLI::App& parent) {
       "goes non-finite (MuJoCo finds NaN or a number beyond 1e10 in qpos, qvel, qacc or ctrl and "
       "resets) stops the grasp with one line 'graspcd: error: SCENE: the simulation went "
       "non-finite ...' and exit code 2.\n"
-      "--object FILE: a new object without writing a scene. The template is example 1 "
-      "(mjcf/example1.xml: the project's arm and 4-finger hand) with the cup replaced by FILE "
-      "(its z axis up), centred under the hand, its lowest point on the floor, scaled by --scale "
-      "or, without it, "
-      "to fit where the cup stands: its wider horizontal extent 7 cm (the cup's diameter) and "
-      "its height at most 8 cm (the cup's), whichever is smaller. Pairs: the fingers against "
-      "the object (example1.pairs.json). The output names FILE as the scene and adds a last "
-      "line '# object FILE at scale S (fitted|given) in the template scene' (JSON: 'object': "
-      "file, scale, fitted). --write-scene DIR keeps the scene (DIR/STEM.xml and its "
-      ".pairs.json) for graspcd validate or study; a bad FILE is one line 'FILE: message', "
-      "exit code 2.\n"
+      "--object FILE: a new object without writing a scene. The template (--hand) is a shipped "
+      "scene with its object replaced by FILE: project (mjcf/example1.xml: the project's arm and "
+      "4-finger hand), robotiq (mjcf/real_robotiq_mug.xml: the Robotiq 2F-85) or shadow "
+      "(mjcf/real_shadow_glass.xml: the Shadow hand; the last two need ../shared/models), or "
+      "any template scene file (docs/design.md, 'Object scenes'). FILE keeps its units "
+      "(--scale S multiplies them: 0.001 for millimetres) unless --fit scales it to the "
+      "template's room (project: 7 cm wide, 8 cm tall). The file's --up axis points against "
+      "gravity, turned by --yaw degrees about it (or --pose W X Y Z); its lowest point along "
+      "gravity is placed 0.5 mm above the template's support point, centred on it. Pairs and "
+      "drive: the template's .pairs.json. The output names FILE as the scene; its first line is "
+      "'# object FILE at scale S (fitted|given), W x D x H m, in the HAND template' (JSON: "
+      "'object': file, hand, scale, fitted, size, pos, quat, scene). --write-scene DIR keeps the "
+      "scene (DIR/STEM.xml, its paths relative to DIR, and its .pairs.json) for graspcd "
+      "validate or study; a bad FILE is one line 'FILE: message', exit code 2.\n"
       "Examples:\n"
       "  graspcd grasp mjcf/example1.xml --method perceptron\n"
-      "  graspcd grasp --object my_mug.obj --write-scene /tmp/my_mug"));
-  return Command{app, [options, app] { run_grasp_command(*options, *app); }};
+      "  graspcd grasp --object my_mug.obj --scale 0.001 --write-scene /tmp/my_mug\n"
+      "  graspcd grasp --object drill.obj --hand robotiq --up y --yaw 90 --require-held"));
+  auto exit_code = std::make_shared<int>(0);
+  return Command{app,
+                 [options, app, exit_code] { run_grasp_command(*options, *app, exit_code.get()); },
+                 exit_code};
 }
 
 }  // namespace graspcd::cli

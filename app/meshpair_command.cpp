@@ -5,6 +5,7 @@
 #include <functional>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "command.h"
 #include "graspcd/core/clock.h"
@@ -14,6 +15,7 @@
 #include "graspcd/exact/exact.h"
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/text_input.h"
+#include "graspcd/version/envelope.h"
 #include "method.h"
 
 namespace graspcd::cli {
@@ -29,6 +31,7 @@ struct MeshpairOptions {
   bool exact = false;
   int leaf_size = 1;
   std::string fit = "covariance";
+  bool json = false;
 };
 
 // One pose's answer and the time of the query alone.
@@ -102,12 +105,28 @@ void run_meshpair(MeshpairOptions& options) {
   }
 
   constexpr std::size_t kNumbers = 12;
+  nlohmann::json answers = nlohmann::json::array();
   for_each_case(options.poses, kNumbers, [&](const std::vector<double>& v) {
     const Pose pose = io::pose_from_numbers(v.data(), "pose");
     const PoseAnswer answer = query(pose);
+    if (options.json) {
+      answers.push_back({{"intersect", answer.result.intersect},
+                         {"pairs", answer.result.pair_count},
+                         {"ns", answer.nanoseconds}});
+      return;
+    }
     std::cout << (answer.result.intersect ? '1' : '0') << ' ' << answer.result.pair_count << ' '
               << answer.nanoseconds << '\n';
   });
+  if (options.json) {
+    nlohmann::json doc = {{"a", options.mesh_a},
+                          {"b", options.mesh_b},
+                          {"method", options.exact ? "exact" : method_name(options.method.method)},
+                          {"first_contact", options.first_contact},
+                          {"answers", answers}};
+    add_envelope(doc);
+    std::cout << doc.dump(2) << '\n';
+  }
 }
 
 }  // namespace
@@ -131,6 +150,8 @@ Command add_meshpair_command(CLI::App& parent) {
                   "Box fit: covariance (paper eq. 1-3) or hull (area-weighted, Gottschalk 1996)")
       ->check(CLI::IsMember({"covariance", "hull"}))
       ->capture_default_str();
+  app->add_flag("--json", options->json,
+                "Print one JSON document after the last pose instead of a line per pose");
   app->footer(wrap_help(
       "Per pose of mesh B in mesh A's frame, prints '1|0 PAIRS NS': whether the surfaces "
       "intersect, the number of intersecting triangle pairs (0 or 1 with --first-contact), and "
@@ -141,7 +162,9 @@ Command add_meshpair_command(CLI::App& parent) {
       "objects (MuJoCo 2.2 keeps only the first) are each one line 'warning: FILE: ...' on "
       "stderr.\n"
       "Poses: one per line, 12 numbers: R row-major (9), then t (3), placing B in A's frame "
-      "(x_A = R x_B + t). R must be a rotation to within 1e-9.\n" +
+      "(x_A = R x_B + t). R must be a rotation to within 1e-9.\n"
+      "--json: one document after the last pose: a, b, method ('exact' with --exact), "
+      "first_contact, answers (per pose: intersect, pairs, ns), and the envelope's warnings.\n" +
       number_grammar_help() +
       "Example (B shifted by 0.05 m along x):\n"
       "  echo '1 0 0 0 1 0 0 0 1  0.05 0 0' | graspcd meshpair a.obj b.obj"));

@@ -1,4 +1,4 @@
-// graspcd validate SCENE.xml [--method M | --all-methods] [--steps N] [--config F] [--out DIR]
+// graspcd validate SCENE.xml [--method M | --all-methods] [--max-steps N] [--config F] [--out DIR]
 // [--json]: the scene's grasp, every registered pair checked against CGAL at every closing grasp
 // step (src/graspcd/study/validate.h). Exit code 1 on any missed collision.
 #include <filesystem>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "command.h"
+#include "graspcd/core/warnings.h"
 #include "graspcd/exact/exact.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/io/text_input.h"
@@ -28,7 +29,7 @@ struct ValidateCliOptions {
   MethodOptions method;
   std::string scene;
   std::string config;
-  std::string out_dir = "validate_out";
+  std::string out_dir;  // empty: nothing written
   bool all_methods = false;
   bool json = false;
   int steps = 400;
@@ -88,7 +89,7 @@ void print_text(const study::ValidationReport& report) {
   std::ostringstream out;
   out << "# graspcd validate " << report.scene << " (pairs " << report.config
       << "): " << report.steps << " closing grasp steps of the grasp driven by "
-      << report.grasp_method << (report.gripped ? " (gripped)" : " (not gripped within the steps)")
+      << report.grasp_method << (report.gripped ? " (gripped)" : " (not gripped)")
       << "; truth: CGAL " << exact::cgal_version()
       << " on the same triangles or boxes in the same poses\n";
   std::size_t width = 4;
@@ -130,10 +131,15 @@ void print_text(const study::ValidationReport& report) {
       out << '\n';
       if (!r.first.command.empty()) {
         out << "#   reproduce: " << r.first.command << "   (add --exact for CGAL's answer)\n";
+      } else {
+        out << "#   add --out DIR to write the two meshes and the command that reproduces it\n";
       }
     }
   }
+  out << "# contacts: " << report.steps_with_contact << " of " << report.steps
+      << " grasp steps had a contact to check\n";
   out << "# result: " << (report.missed_any() ? "MISSED COLLISIONS" : "no missed collision")
+      << (report.steps_with_contact == 0 ? " (nothing touched: nothing was checked)" : "")
       << "; CGAL " << std::fixed << std::setprecision(2) << report.exact_seconds
       << " s, the methods " << report.tester_seconds << " s\n";
   if (report.nonfinite_skips > 0) {
@@ -181,6 +187,7 @@ void print_json(const study::ValidationReport& report) {
                         {"config", report.config},
                         {"grasp_method", report.grasp_method},
                         {"steps", report.steps},
+                        {"steps_with_contact", report.steps_with_contact},
                         {"gripped", report.gripped},
                         {"cgal", exact::cgal_version()},
                         {"exact_seconds", report.exact_seconds},
@@ -209,6 +216,13 @@ int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
   } catch (const bridge::MujocoError& e) {
     throw io::InputError(o.scene, 0, e.what());
   }
+  if (report.steps_with_contact == 0) {
+    warnings().add("validate_no_contact",
+                   o.scene +
+                       ": no grasp step had a contact to check (no pair ever touched): "
+                       "'no missed collision' says nothing about this scene",
+                   "scene");
+  }
   if (o.json) {
     print_json(report);
   } else {
@@ -229,15 +243,15 @@ Command add_validate_command(CLI::App& parent) {
   app->add_flag("--all-methods", o->all_methods,
                 "Check every method but perceptron-nodisp (default: the config's method)")
       ->excludes("--method");
-  app->add_option("--steps", o->steps, "Most closing grasp steps")
+  app->add_option("--max-steps,--steps", o->steps,
+                  "Most closing grasp steps (--steps: the same, kept as an alias)")
       ->check(positive_number())
       ->capture_default_str();
   app->add_option("--config", o->config,
                   "Pair config (JSON); default SCENE.pairs.json beside the scene");
   app->add_option("--out", o->out_dir,
-                  "Where the first disagreement of each method and pair is written (only when "
-                  "there is one)")
-      ->capture_default_str();
+                  "Write the first disagreement of each method and pair into this folder (only "
+                  "when there is one; default: nothing is written)");
   app->add_flag("--json", o->json, "Print one JSON document instead of the table");
   app->footer(wrap_help(
       "Runs the scene's grasp (as graspcd grasp, driven by the pair config's method) and, after "
@@ -259,10 +273,15 @@ Command add_validate_command(CLI::App& parent) {
       "disagreement ('-' for none). Then per method the totals and, for each disagreeing pair, "
       "its first disagreement with the command that reproduces it: the two meshes exactly as the "
       "detector saw them (OBJ, geom frames, face order kept, every coordinate read back as the "
-      "same double) and the pose line are written into --out, and 'graspcd meshpair A B --poses "
-      "P' with the method's options prints the method's answer again (add --exact for CGAL's); "
-      "box pairs write one boxbox line. Progress goes to stderr every 50 steps.\n"
-      "--json: one document: scene, config, grasp_method, steps, gripped, cgal, exact_seconds, "
+      "same double) and the pose line are written into --out (when given; nothing is written "
+      "into the current folder otherwise), and 'graspcd meshpair A B --poses P' with the "
+      "method's options prints the method's answer again (add --exact for CGAL's); box pairs "
+      "write one boxbox line. A line '# contacts: N of M grasp steps had a contact to check' "
+      "counts the steps at which CGAL found some pair intersecting; with none, the result says "
+      "so and a warning says that 'no missed collision' means nothing there. Progress goes to "
+      "stderr every 50 steps.\n"
+      "--json: one document: scene, config, grasp_method, steps, steps_with_contact, gripped, "
+      "cgal, exact_seconds, "
       "tester_seconds, nonfinite_skips (pair checks skipped on a placement with NaN, inf or a "
       "number beyond 1e10), missed_any, methods (method, missed_any, seconds, pairs: pair, geom1, "
       "geom2, "
@@ -276,7 +295,7 @@ Command add_validate_command(CLI::App& parent) {
       "line 'FILE: message').\n"
       "Examples:\n"
       "  graspcd validate mjcf/example3.xml\n"
-      "  graspcd validate mjcf/hand_boxes.xml --all-methods --steps 100 --json"));
+      "  graspcd validate mjcf/hand_boxes.xml --all-methods --max-steps 100 --json"));
   auto exit_code = std::make_shared<int>(0);
   return Command{app, [o, app, exit_code] { *exit_code = run_validate_command(*o, *app); },
                  exit_code};

@@ -2,16 +2,19 @@
 """Pictures of the grasps and the trees (issue 9), drawn from the trajectory files that
 `graspcd study` writes into OUT/trajectories/ (format: src/graspcd/study/trajectory.h).
 
-    /usr/bin/python3 report/draw_figures.py TRAJECTORY_DIR FIGURES_DIR
+    /usr/bin/python3 report/draw_figures.py TRAJECTORY [TRAJECTORY ...] FIGURES_DIR
 
-Writes into FIGURES_DIR:
-  fig18_<example>.png      each grasp example at its first contact and at its last closing grasp
-                           step (the grip), as the paper's Figure 18
-  fig17_obb_depths.png     one finger segment's OBBs at tree depths 0 to 3 (Figure 17)
-  contacts_native.png      the contact points and normals on the non-convex object at the grip of
-                           example 1: ours beside MuJoCo's native convex-hull contacts at the same
-                           joint positions
-  fig12_box_hand.png       the box hand with its segments labelled A, B, C (Figure 12)
+Each TRAJECTORY is a trajectory file (`graspcd trajectory SCENE --out FILE.json`, any name) or a
+folder whose *.json files are all trajectories. Writes into FIGURES_DIR what the files hold:
+  fig18_<name>.png         each grasp at its first contact and at its last closing grasp step (the
+                           grip), as the paper's Figure 18 (every trajectory but a box hand's)
+  fig17_obb_depths.png     the first finger segment with OBB levels: its boxes at tree depths 0 to
+                           3 (Figure 17), on one scale
+  contacts_native.png      where graspcd's contacts and MuJoCo's native convex-hull ones differ
+                           most: the trajectory and grasp step with the most of our contacts far
+                           (> 5 mm) from every native one (a finger in a cavity or slot)
+  fig12_box_hand.png       a box hand (every segment a box) with its segments labelled A, B, C
+                           (Figure 12)
 Each input that is missing or not a trajectory file is a one-line error naming it, exit code 2.
 make_report.py calls insert_section(), which draws them when OUT/trajectories exists and adds their
 section to REPORT.md.
@@ -21,6 +24,7 @@ import sys
 from pathlib import Path
 
 import matplotlib
+import matplotlib.ticker
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -100,7 +104,7 @@ def touching_geoms(traj, step):
     return {g for c in traj["steps"][step]["contacts"] for g in c["geoms"]}
 
 
-def set_equal(ax, points, margin=0.05):
+def set_equal(ax, points, margin=0.05, unit="m"):
     lo, hi = points.min(axis=0), points.max(axis=0)
     span = hi - lo
     lo, hi = lo - margin * span.max(), hi + margin * span.max()
@@ -108,9 +112,9 @@ def set_equal(ax, points, margin=0.05):
     ax.set_ylim(lo[1], hi[1])
     ax.set_zlim(lo[2], hi[2])
     ax.set_box_aspect(hi - lo)
-    ax.set_xlabel("x (m)", fontsize=7)
-    ax.set_ylabel("y (m)", fontsize=7)
-    ax.set_zlabel("z (m)", fontsize=7)
+    ax.set_xlabel(f"x ({unit})", fontsize=7)
+    ax.set_ylabel(f"y ({unit})", fontsize=7)
+    ax.set_zlabel(f"z ({unit})", fontsize=7)
     ax.tick_params(labelsize=6)
 
 
@@ -172,30 +176,67 @@ def fig17(traj, out):
     v = np.array(mesh["vertices"]).reshape(-1, 3)
     tris = v[np.array(mesh["faces"]).reshape(-1, 3)]
     levels = mesh["obb_levels"]
-    fig = plt.figure(figsize=(12, 4))
+    corners = [[box_corners(np.array(b["center"]), np.array(b["axes"]).reshape(3, 3), b["half"])
+                for b in boxes] for boxes in levels]
+    # One scale for every panel (in mm): the union of the mesh and every level's boxes.
+    everything = 1e3 * np.concatenate([v] + [c for level in corners for c in level])
+    fig = plt.figure(figsize=(13, 4.6))
     for depth, boxes in enumerate(levels):
         ax = fig.add_subplot(1, len(levels), depth + 1, projection="3d")
-        ax.add_collection3d(Poly3DCollection(tris, facecolors=shaded(tris, COLORS["segment"], 0.35),
-                                             edgecolor="none"))
-        segments = []
-        corners_all = [v]
-        for b in boxes:
-            c = box_corners(np.array(b["center"]), np.array(b["axes"]).reshape(3, 3), b["half"])
-            corners_all.append(c)
-            segments += [(c[i], c[j]) for i, j in BOX_EDGES]
+        ax.add_collection3d(Poly3DCollection(1e3 * tris, edgecolor="none",
+                                             facecolors=shaded(tris, COLORS["segment"], 0.35)))
+        segments = [(1e3 * c[i], 1e3 * c[j]) for c in corners[depth] for i, j in BOX_EDGES]
         ax.add_collection3d(Line3DCollection(segments, colors="#202060", linewidths=0.8))
-        set_equal(ax, np.concatenate(corners_all))
+        set_equal(ax, everything, unit="mm")
+        # Three ticks an axis: the default crowds the labels of a 2 cm segment.
+        for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+            axis.set_major_locator(matplotlib.ticker.MaxNLocator(3))
         ax.view_init(elev=15, azim=-50)
         ax.set_title(f"depth {depth}: {boxes_text(len(boxes))}", fontsize=9)
     fig.suptitle(f"OBB tree of {traj['geoms'][g]['name']} (mesh {mesh['name']}, "
-                 f"{len(mesh['faces']) // 3} triangles), in its geom frame", fontsize=10)
-    fig.tight_layout()
+                 f"{len(mesh['faces']) // 3} triangles), in its geom frame, every panel at the "
+                 "same scale (mm)", fontsize=10)
+    fig.text(0.5, 0.02, "Each box is fitted to its own triangles (covariance fit, paper eq. 1-3), "
+             "not cut out of its parent: a child turned to its triangles' axes can stick out of "
+             "its parent's box, and so look larger, though it bounds fewer triangles.",
+             ha="center", fontsize=8.5, style="italic")
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
     fig.savefig(out, dpi=110)
     plt.close(fig)
 
 
-def contacts_figure(traj, out):
-    step = len(traj["steps"]) - 1
+# Our contacts farther than this from every native one show where the two answers differ, m.
+APART = 0.005
+
+
+def contacts_apart(step):
+    """How many of our contacts at a trajectory step lie farther than APART from every native."""
+    ours = np.array([c["pos"] for c in step["contacts"]]).reshape(-1, 3)
+    native = np.array([c["pos"] for c in step.get("native_contacts", [])]).reshape(-1, 3)
+    if len(ours) == 0:
+        return 0
+    if len(native) == 0:
+        return len(ours)
+    d = np.linalg.norm(ours[:, None, :] - native[None, :, :], axis=2).min(axis=1)
+    return int((d > APART).sum())
+
+
+def most_different(trajs):
+    """The (trajectory, 0-based step) whose contacts differ most from MuJoCo's native ones (the
+    most of ours apart from every native contact; the later step on ties), or None."""
+    best = None
+    for t in trajs:
+        if not any("native_contacts" in s for s in t["steps"]):
+            continue
+        for k, s in enumerate(t["steps"]):
+            score = (contacts_apart(s), k)
+            if best is None or score > best[0]:
+                best = (score, t, k)
+    return None if best is None else (best[1], best[2])
+
+
+def contacts_figure(traj, out, step=None):
+    step = len(traj["steps"]) - 1 if step is None else step
     data = traj["steps"][step]
     fig = plt.figure(figsize=(10, 5))
     # The normal drawn with a length of a fifth of the object's size.
@@ -218,8 +259,9 @@ def contacts_figure(traj, out):
         set_equal(ax, points)
         ax.view_init(elev=25, azim=-60)
         ax.set_title(f"{title}\n{len(contacts)} contacts", fontsize=9)
-    fig.suptitle(f"{traj['name']}, grasp step {step + 1}: contact points and normals on the object",
-                 fontsize=10)
+    fig.suptitle(f"{traj['name']}, grasp step {step + 1}: contact points and normals on the object; "
+                 f"{contacts_apart(data)} of ours lie more than {APART * 1e3:.0f} mm from every "
+                 "native one", fontsize=10)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
     plt.close(fig)
@@ -257,30 +299,69 @@ def fig12(traj, out):
     plt.close(fig)
 
 
-def draw_all(src, dst):
-    """Draws every picture from the trajectory folder `src` into `dst`; returns what the report
-    says about them. Raises InputError naming the file that is missing or bad."""
-    src, dst = Path(src), Path(dst)
-    examples = sorted(src.glob("example*.json"))
-    if not examples:
-        raise InputError(f"{src}: no example*.json trajectory files")
+def is_box_hand(traj):
+    """A box hand: finger segments, every one a box (Figure 12's hand)."""
+    kinds = {geom["type"] for geom in traj["geoms"] if geom.get("segment")}
+    return kinds == {"box"}
+
+
+def has_obb_finger(traj):
+    try:
+        obb_finger(traj)
+        return True
+    except InputError:
+        return False
+
+
+def trajectory_files(sources):
+    """The files of `sources` (files, or folders of *.json); an empty folder is an error."""
+    files = []
+    for s in map(Path, sources):
+        if s.is_dir():
+            found = sorted(s.glob("*.json"))
+            if not found:
+                raise InputError(f"{s}: no *.json trajectory files")
+            files += found
+        else:
+            files.append(s)
+    return files
+
+
+def draw_all(sources, dst):
+    """Draws every picture the trajectory files of `sources` (files or folders) hold into `dst`;
+    returns what the report says about them. Raises InputError naming the file that is missing
+    or bad."""
+    if isinstance(sources, (str, Path)):
+        sources = [sources]
     trajs = []
-    for p in examples:
+    for p in trajectory_files(sources):
         trajs.append(load(p))
         trajs[-1]["file"] = str(p)
-    boxes = load(src / "hand_boxes.json")
-    boxes["file"] = str(src / "hand_boxes.json")
+    dst = Path(dst)
     dst.mkdir(parents=True, exist_ok=True)
-    info = {"fig18": [], "examples": trajs}
-    for t in trajs:
+    grasps = [t for t in trajs if not is_box_hand(t)]
+    boxes = [t for t in trajs if is_box_hand(t)]
+    info = {"fig18": [], "examples": grasps, "files": [], "obb": None, "contacts": None,
+            "box_hand": None}
+    for t in grasps:
         name = f"fig18_{t['name']}.png"
         fig18(t, dst / name)
         info["fig18"].append((t, name))
-    fig17(trajs[0], dst / "fig17_obb_depths.png")
-    contacts_figure(trajs[0], dst / "contacts_native.png")
-    fig12(boxes, dst / "fig12_box_hand.png")
-    info["files"] = [n for _, n in info["fig18"]] + ["fig17_obb_depths.png", "contacts_native.png",
-                                                      "fig12_box_hand.png"]
+        info["files"].append(name)
+    with_obb = [t for t in trajs if has_obb_finger(t)]
+    if with_obb:
+        fig17(with_obb[0], dst / "fig17_obb_depths.png")
+        info["obb"] = with_obb[0]
+        info["files"].append("fig17_obb_depths.png")
+    choice = most_different(grasps)
+    if choice is not None:
+        contacts_figure(choice[0], dst / "contacts_native.png", choice[1])
+        info["contacts"] = choice
+        info["files"].append("contacts_native.png")
+    if boxes:
+        fig12(boxes[0], dst / "fig12_box_hand.png")
+        info["box_hand"] = boxes[0]
+        info["files"].append("fig12_box_hand.png")
     return info
 
 
@@ -302,24 +383,31 @@ def section(info, fig_rel):
                   f"{len(t['steps'])} ({len(t['steps'][-1]['contacts'])} contacts); "
                   f"{'held' if t['held'] else 'not held'} after the lift.", "",
                   f"![{name}]({fig_rel}/{name})", ""]
-    t = info["examples"][0]
-    g = obb_finger(t)
-    levels = t["meshes"][t["geoms"][g]["mesh"]]["obb_levels"]
-    lines += ["### One finger's OBBs at tree depths 0 to 3 (Figure 17)", "",
-              f"{t['geoms'][g]['name']} of {t['name']}: " +
-              ", ".join(f"depth {d}: {boxes_text(len(b))}" for d, b in enumerate(levels)) + ".", "",
-              f"![fig17_obb_depths.png]({fig_rel}/fig17_obb_depths.png)", ""]
-    last = t["steps"][-1]
-    lines += ["### Contacts on the non-convex object: ours and MuJoCo's convex hulls", "",
-              f"{t['name']} at the grip (grasp step {len(t['steps'])}): graspcd's contacts from the "
-              f"intersecting triangles ({len(last['contacts'])}) beside MuJoCo's native contacts "
-              f"from the convex hulls at the same joint positions ({len(last['native_contacts'])})"
-              ". Over all closing grasp steps: "
-              f"{sum(len(s['contacts']) for s in t['steps'])} of ours, "
-              f"{sum(len(s['native_contacts']) for s in t['steps'])} native.", "",
-              f"![contacts_native.png]({fig_rel}/contacts_native.png)", "",
-              "### The box hand and its segments A, B, C (Figure 12)", "",
-              f"![fig12_box_hand.png]({fig_rel}/fig12_box_hand.png)", ""]
+    if info["obb"] is not None:
+        t = info["obb"]
+        g = obb_finger(t)
+        levels = t["meshes"][t["geoms"][g]["mesh"]]["obb_levels"]
+        lines += ["### One finger's OBBs at tree depths 0 to 3 (Figure 17)", "",
+                  f"{t['geoms'][g]['name']} of {t['name']}: " +
+                  ", ".join(f"depth {d}: {boxes_text(len(b))}" for d, b in enumerate(levels)) +
+                  ". Every panel at the same scale; a child box is fitted to its own triangles, "
+                  "so it can stick out of its parent.", "",
+                  f"![fig17_obb_depths.png]({fig_rel}/fig17_obb_depths.png)", ""]
+    if info["contacts"] is not None:
+        t, k = info["contacts"]
+        step = t["steps"][k]
+        lines += ["### Contacts on the non-convex object: ours and MuJoCo's convex hulls", "",
+                  f"{t['name']} at grasp step {k + 1}, the step of all trajectories where the two "
+                  f"differ most: {contacts_apart(step)} of graspcd's {len(step['contacts'])} "
+                  f"contacts from the intersecting triangles lie more than {APART * 1e3:.0f} mm "
+                  f"from every one of MuJoCo's {len(step['native_contacts'])} native contacts from "
+                  "the convex hulls at the same joint positions. Over all closing grasp steps: "
+                  f"{sum(len(s['contacts']) for s in t['steps'])} of ours, "
+                  f"{sum(len(s['native_contacts']) for s in t['steps'])} native.", "",
+                  f"![contacts_native.png]({fig_rel}/contacts_native.png)", ""]
+    if info["box_hand"] is not None:
+        lines += ["### The box hand and its segments A, B, C (Figure 12)", "",
+                  f"![fig12_box_hand.png]({fig_rel}/fig12_box_hand.png)", ""]
     return lines
 
 
@@ -340,16 +428,16 @@ def insert_section(text, out_dir, fig_dir, fig_rel):
 
 
 def main(argv):
-    if len(argv) != 3:
-        print("usage: draw_figures.py TRAJECTORY_DIR FIGURES_DIR", file=sys.stderr)
+    if len(argv) < 3:
+        print("usage: draw_figures.py TRAJECTORY [TRAJECTORY ...] FIGURES_DIR", file=sys.stderr)
         return 2
     try:
-        info = draw_all(argv[1], argv[2])
+        info = draw_all(argv[1:-1], argv[-1])
     except InputError as e:
         print(e, file=sys.stderr)
         return 2
     for name in info["files"]:
-        print(f"wrote {Path(argv[2]) / name}", file=sys.stderr)
+        print(f"wrote {Path(argv[-1]) / name}", file=sys.stderr)
     return 0
 
 

@@ -71,15 +71,22 @@ def box_method(study, name):
     return None
 
 
-def finish_box_figure(fig, axes, ylabel, title, fig_dir, name, files):
-    """The shared frame of Figures 13-15: one panel per segment kind, saved as PNG."""
+def finish_box_figure(fig, axes, ylabel, title, fig_dir, name, files, legend_below=False):
+    """The shared frame of Figures 13-15: one panel per segment kind, saved as PNG. With
+    `legend_below`, the methods' legend goes under the panels, where it covers no line."""
     for ax, seg in zip(axes, ["B", "C"]):
         ax.set_xlabel("grasp step")
         ax.set_title(f"segments {seg}")
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_ylabel(ylabel)
     fig.suptitle(title)
-    fig.tight_layout()
+    if legend_below:
+        handles, labels = axes[0].get_legend_handles_labels()
+        fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 7), fontsize=8,
+                   frameon=False)
+        fig.tight_layout(rect=(0, 0.08, 1, 1))
+    else:
+        fig.tight_layout()
     files.append(name)
     fig.savefig(os.path.join(fig_dir, name), dpi=110)
     plt.close(fig)
@@ -97,10 +104,9 @@ def figure_13_to_15(study, fig_dir):
             y = [v / 1e3 for v in m["segments"][seg]["step_ns_median"]]
             ax.plot(steps, y, label=m["name"], color=METHOD_COLORS.get(m["name"]))
         ax.set_yscale("log")
-    axes[0].legend()
     finish_box_figure(fig, axes, "detection time per grasp step (µs, median)",
                       "Figure 13: detection time per grasp step, box hand", fig_dir,
-                      "fig13_time_per_step.png", files)
+                      "fig13_time_per_step.png", files, legend_below=True)
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4), sharey=True)
     for ax, seg in zip(axes, ["B", "C"]):
@@ -186,6 +192,10 @@ def sweep_error(c):
             c.get("false_tri_pairs", 0))
 
 
+# Sweep labels of points within this factor of each other in time are staggered.
+LABEL_GAP = 3.0
+
+
 def sweep_figure(sweep, fig_dir):
     configs = sweep["configs"]
     fig, axes = plt.subplots(1, 2, figsize=(13, 5))
@@ -203,13 +213,24 @@ def sweep_figure(sweep, fig_dir):
                         label=fam, s=30)
     fx = sorted((pts[i] for i in front))
     axes[0].plot([p[0] for p in fx], [p[1] for p in fx], "k--", lw=1, label="Pareto front")
-    # Labels only where they say something: the front and the points with errors.
-    for i, c in enumerate(configs):
-        if i in front or pts[i][1] > 0 or c["position_error_mean_mm"] > 0:
-            axes[0].annotate(c["name"], pts[i], fontsize=7, xytext=(4, 6),
-                             textcoords="offset points", rotation=20)
-            axes[1].annotate(c["name"], (c["median_ms"], c["position_error_mean_mm"]),
-                             fontsize=7, xytext=(4, -10), textcoords="offset points")
+    # Labels only where they say something: the front and the points with errors. Points closer
+    # than a factor LABEL_GAP in time get their labels on staggered heights, each joined to its
+    # point by a thin line, so that no two labels overlap.
+    labelled = sorted((i for i, c in enumerate(configs)
+                       if i in front or pts[i][1] > 0 or c["position_error_mean_mm"] > 0),
+                      key=lambda i: pts[i][0])
+    level, last_x = 0, None
+    for i in labelled:
+        c = configs[i]
+        x = pts[i][0]
+        level = level + 1 if last_x is not None and x < last_x * LABEL_GAP else 0
+        last_x = x
+        line = dict(arrowstyle="-", lw=0.5, color="#555555")
+        axes[0].annotate(c["name"], pts[i], fontsize=7, xytext=(6, 10 + 14 * level),
+                         textcoords="offset points", arrowprops=line)
+        axes[1].annotate(c["name"], (c["median_ms"], c["position_error_mean_mm"]), fontsize=7,
+                         xytext=(6, -14 - 14 * level), textcoords="offset points",
+                         arrowprops=line)
     for ax in axes:
         ax.set_xscale("log")
         ax.set_xlabel("replay time, all grasp steps (ms, median)")

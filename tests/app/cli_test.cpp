@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -43,12 +44,15 @@ std::vector<std::string> lines(const std::string& text) {
 class CliTest : public graspcd::testing::TempDirTest {
  protected:
   // Runs `graspcd ARGS` with `stdin_text` on standard input. ARGS is passed to the shell as is.
-  Result run(const std::string& args, const std::string& stdin_text = "") {
+  // `cwd`: the working folder (default: the test's).
+  Result run(const std::string& args, const std::string& stdin_text = "",
+             const fs::path& cwd = {}) {
     const std::string in = write("stdin.txt", stdin_text);
     const fs::path out = dir_ / "stdout.txt";
     const fs::path err = dir_ / "stderr.txt";
-    const std::string command = std::string("'") + GRASPCD_EXE + "' " + args + " < '" + in +
-                                "' > '" + out.string() + "' 2> '" + err.string() + "'";
+    const std::string command = (cwd.empty() ? "" : "cd '" + cwd.string() + "' && ") + "'" +
+                                GRASPCD_EXE + "' " + args + " < '" + in + "' > '" + out.string() +
+                                "' 2> '" + err.string() + "'";
     const int status = std::system(command.c_str());
     Result r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -57,6 +61,12 @@ class CliTest : public graspcd::testing::TempDirTest {
     return r;
   }
 };
+
+// GRASPCD_TEST_SCALE < 1: the sanitizer pass, where a grasp takes ten times as long.
+bool sanitizer_pass() {
+  const char* scale = std::getenv("GRASPCD_TEST_SCALE");
+  return scale != nullptr && std::strtod(scale, nullptr) < 1;
+}
 
 // Triangle pairs: T1 in the plane z = 0, T2 sharing its vertex at the origin / lifted by 1.
 const char* const kTouching = "0 0 0 1 0 0 0 1 0  0 0 0 0 0 1 1 0 1\n";
@@ -490,7 +500,9 @@ TEST_F(CliTest, GraspPrintsAHeaderOneLinePerGraspStepAndASummary) {
   }
   // Eight grasp steps of 0.003 rad do not reach the object: no grip, nothing lifted.
   EXPECT_EQ(out[9].rfind("# method sat; first contact (grasp step): finger1_A=-", 0), 0u) << out[9];
-  EXPECT_EQ(out[10].rfind("# gripped no; held no;", 0), 0u) << out[10];
+  EXPECT_EQ(out[10].rfind("# gripped no; held no: no segment reached the object;", 0), 0u)
+      << out[10];
+  EXPECT_EQ(out[10].find("(gripped)"), std::string::npos) << out[10];
   EXPECT_EQ(out[11].rfind("# detection ns ", 0), 0u) << out[11];
   EXPECT_NE(out[11].find(" 0 non-finite skips"), std::string::npos) << out[11];
 }
@@ -527,15 +539,15 @@ const char* const kUserBox =
     "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
     "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
 
-// A new object without a scene (README, "A grasp of your own object"): the box is fitted to the
+// A new object without a scene (README, "A new object"): with --fit the box is fitted to the
 // cup's place (its 60 mm height to 8 cm: scale 0.08 / 60, narrower than the 7 cm width), centred
-// under the hand, and the fingers close on it.
-TEST_F(CliTest, GraspObjectFitsANewMeshIntoTheTemplateAndTheFingersTouchIt) {
+// under the hand, and the fingers close on it from opposing sides.
+TEST_F(CliTest, GraspObjectFitsANewMeshIntoTheTemplateAndTheFingersGripIt) {
   const std::string box = write("box.obj", kUserBox);
   const fs::path tmp = dir_ / "tmp";  // the command's temporary folder goes here
   fs::create_directories(tmp);
   ASSERT_EQ(setenv("TMPDIR", tmp.c_str(), 1), 0);
-  const Result r = run("grasp --object " + box + " --json --max-steps 150");
+  const Result r = run("grasp --object " + box + " --fit --json --max-steps 150");
   unsetenv("TMPDIR");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json doc = nlohmann::json::parse(r.out);
@@ -543,6 +555,12 @@ TEST_F(CliTest, GraspObjectFitsANewMeshIntoTheTemplateAndTheFingersTouchIt) {
   EXPECT_EQ(doc["object"]["file"], box);
   EXPECT_TRUE(doc["object"]["fitted"]);
   EXPECT_NEAR(doc["object"]["scale"].get<double>(), 0.08 / 60, 1e-12);
+  EXPECT_EQ(doc["object"]["hand"], "project");
+  EXPECT_NEAR(doc["object"]["size"][2].get<double>(), 0.08, 1e-12);
+  // Gripped means two segments push from opposing sides; a failed verdict says why.
+  EXPECT_TRUE(doc["gripped"]) << doc["reason"];
+  EXPECT_EQ(doc["held"].get<bool>(), doc["reason"].is_null()) << doc["reason"];
+  EXPECT_GT(doc["hand_travel"].get<double>(), 0.05);
   int touched = 0;
   for (const auto& [segment, step] : doc["first_contact"].items()) touched += !step.is_null();
   EXPECT_GE(touched, 2) << doc["first_contact"].dump();
@@ -565,12 +583,37 @@ TEST_F(CliTest, GraspObjectWithAScaleWritesTheSceneWhenAsked) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::vector<std::string> text = lines(r.out);
   ASSERT_FALSE(text.empty());
-  EXPECT_EQ(text.back(), "# object " + box + " at scale 0.001 (given) in the template scene");
+  EXPECT_EQ(text.front(), "# object " + box +
+                              " at scale 0.001 (given), 0.05 x 0.04 x 0.06 m, in the project "
+                              "template");
   const std::string xml = read_file(out / "box.xml");
   EXPECT_NE(xml.find("scale=\"0.001 0.001 0.001\""), std::string::npos);
-  // Centred under the hand (x 125 mm, y 0 in the file), its lowest point (10 mm) on the floor.
-  EXPECT_NE(xml.find("<body name=\"object\" pos=\"-0.125 0 -0.01\">"), std::string::npos) << xml;
+  // Centred under the hand (x 125 mm, y 0 in the file), its lowest point (10 mm) 0.5 mm above
+  // the floor, not turned.
+  const std::smatch pos = [&] {
+    std::smatch m;
+    std::regex_search(
+        xml, m, std::regex(R"re(<body name="object" pos="(\S+) (\S+) (\S+)" quat="1 0 0 0">)re"));
+    return m;
+  }();
+  ASSERT_EQ(pos.size(), 4u) << xml;
+  EXPECT_NEAR(std::stod(pos[1]), -0.125, 1e-12);
+  EXPECT_NEAR(std::stod(pos[2]), 0.0, 1e-12);
+  EXPECT_NEAR(std::stod(pos[3]), -0.01 + 0.0005, 1e-12);
   EXPECT_TRUE(fs::exists(out / "box.pairs.json"));
+  // A header that says what the scene is (not the template's), and paths relative to the folder.
+  EXPECT_EQ(xml.find("generate_scenes.py"), std::string::npos);
+  EXPECT_EQ(xml.find("cup: outer radius"), std::string::npos);
+  EXPECT_NE(xml.find("Generated by graspcd"), std::string::npos);
+  EXPECT_NE(xml.find("file axis z up, turned 0 degrees"), std::string::npos) << xml;
+  std::smatch meshdir;
+  ASSERT_TRUE(std::regex_search(xml, meshdir, std::regex(R"re(meshdir="([^"]*)")re")));
+  EXPECT_NE(meshdir[1].str().front(), '/') << meshdir[1];
+  EXPECT_TRUE(fs::exists(out / meshdir[1].str() / "finger_A.obj")) << meshdir[1];
+  // It runs as a scene of its own, from another working folder (a whole grasp: Release pass only).
+  if (sanitizer_pass()) return;
+  const Result again = run("grasp " + (out / "box.xml").string() + " --max-steps 1");
+  EXPECT_EQ(again.exit_code, 0) << again.err;
 }
 
 TEST_F(CliTest, GraspObjectErrorsAreOneLineAndExitTwo) {
@@ -593,6 +636,168 @@ TEST_F(CliTest, GraspObjectErrorsAreOneLineAndExitTwo) {
     EXPECT_EQ(r.exit_code, 2) << args;
     EXPECT_EQ(lines(r.err).size(), 1u) << args << ": " << r.err;
   }
+}
+
+// The box of kUserBox in metres: 5 x 4 x 6 cm, off the origin.
+std::string user_box_in_metres() {
+  std::istringstream in(kUserBox);
+  std::ostringstream out;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("v ", 0) == 0) {
+      std::istringstream v(line.substr(2));
+      double x = 0, y = 0, z = 0;
+      v >> x >> y >> z;
+      out << "v " << x / 1000 << ' ' << y / 1000 << ' ' << z / 1000 << '\n';
+    } else {
+      out << line << '\n';
+    }
+  }
+  return out.str();
+}
+
+// Issue 21: --object keeps the file's units (metres) unless told, and says so on the first line.
+TEST_F(CliTest, GraspObjectKeepsTheFilesUnitsByDefault) {
+  const std::string box = write("box_m.obj", user_box_in_metres());
+  const Result r = run("grasp --object " + box + " --max-steps 2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["object"]["scale"], 1.0);
+  EXPECT_FALSE(doc["object"]["fitted"]);
+  EXPECT_NEAR(doc["object"]["size"][0].get<double>(), 0.05, 1e-12);
+  EXPECT_NEAR(doc["object"]["size"][1].get<double>(), 0.04, 1e-12);
+  EXPECT_NEAR(doc["object"]["size"][2].get<double>(), 0.06, 1e-12);
+}
+
+// The start-state check (issue 21): an object that starts inside the fingers, or sunk into the
+// floor, is bad input: one line naming the file, exit 2, nothing on stdout.
+TEST_F(CliTest, GraspRefusesAnObjectThatStartsInsideTheHandOrTheFloor) {
+  // The millimetre box at twice its size, 10 x 8 x 12 cm: wider than the open hand.
+  const std::string box = write("box.obj", kUserBox);
+  Result r = run("grasp --object " + box + " --scale 0.002");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  ASSERT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind(box + ": in the template scene: the start state is not valid: ", 0), 0u)
+      << r.err;
+  EXPECT_NE(r.err.find("penetrates"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("(at most 0.5 mm allowed)"), std::string::npos) << r.err;
+  // A scene of its own with the object 3.6 cm inside the floor (the issue's mug): the refused
+  // run has written it (the scene is written before the grasp); at the box's true size, centred
+  // under the hand (file x 100..150 mm), its lowest point (file z 10 mm) at z = -0.036.
+  const fs::path out = dir_ / "scene";
+  ASSERT_EQ(run("grasp --object " + box + " --scale 0.002 --write-scene " + out.string()).exit_code,
+            2);
+  std::string xml = read_file(out / "box.xml");
+  const std::string twice = R"(scale="0.002 0.002 0.002")";
+  ASSERT_NE(xml.find(twice), std::string::npos) << xml;
+  xml.replace(xml.find(twice), twice.size(), R"(scale="0.001 0.001 0.001")");
+  const std::regex pos(R"re(<body name="object" pos="\S+ \S+ \S+")re");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(xml, m, pos)) << xml;
+  xml.replace(static_cast<std::size_t>(m.position(0)), static_cast<std::size_t>(m.length(0)),
+              R"(<body name="object" pos="-0.125 0 -0.046")");
+  std::ofstream(out / "box.xml", std::ios::trunc) << xml;
+  const std::string scene = (out / "box.xml").string();
+  r = run("grasp " + scene + " --json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, scene +
+                       ": the start state is not valid: geom 'object' of the object lies 36.0 mm "
+                       "below the plane geom 'floor' (at most 0.5 mm allowed): put its lowest "
+                       "point on the support\n");
+}
+
+// --hand FILE: any scene can be a template (docs/design.md, "Object scenes"); one that breaks the
+// contract, or lacks what an option needs, is one line naming it and its line, exit 2. These are
+// refused before any simulation.
+TEST_F(CliTest, GraspObjectTemplateFilesAreCheckedAndNamed) {
+  const std::string box = write("box.obj", kUserBox);
+  // Example 1 as a file has no graspcd_fit (the built-in "project" hand supplies one).
+  const std::string example1 = shipped_scene("example1");
+  Result r = run("grasp --object " + box + " --hand " + example1 + " --fit");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, example1 +
+                       ":1: template scene: no <numeric name=\"graspcd_fit\" data=\"WIDTH "
+                       "HEIGHT\"/> for --fit\n");
+  // A scene without a body "object" in its worldbody: the worldbody's line.
+  const std::string bare = write("bare.xml",
+                                 "<mujoco>\n  <worldbody>\n    <body name=\"cup\"/>\n  "
+                                 "</worldbody>\n</mujoco>\n");
+  r = run("grasp --object " + box + " --hand " + bare);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, bare + ":2: template scene: no <body name=\"object\"> in <worldbody>\n");
+  // Neither a built-in hand nor a file; and a bad --up.
+  r = run("grasp --object " + box + " --hand allegro");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "graspcd: grasp: --hand must be project, robotiq, shadow or a template scene file "
+            "(allegro is none)\n");
+  r = run("grasp --object " + box + " --up w");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "graspcd: grasp: --up must be one of x, y, z, -x, -y, -z (not 'w')\n");
+}
+
+// A grasp that never reaches the object is reported as failed, with the reason, and
+// --require-held makes it exit 1.
+TEST_F(CliTest, AGraspThatNeverTouchedTheObjectSaysWhyAndCanFail) {
+  // (The text's summary line is checked by GraspPrintsAHeaderOneLinePerGraspStepAndASummary.)
+  const std::string box = write("box.obj", kUserBox);
+  const Result r =
+      run("grasp --object " + box + " --scale 0.001 --max-steps 2 --json --require-held");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  EXPECT_FALSE(doc["gripped"]);
+  EXPECT_FALSE(doc["held"]);
+  EXPECT_EQ(doc["reason"], "no segment reached the object");
+  EXPECT_TRUE(doc["slip_time"].is_null());
+  // Not a usage error: the verdict is the answer, printed in full.
+  EXPECT_EQ(doc["steps"].size(), 2u);
+}
+
+// --hand robotiq and --hand shadow (../shared/models): a new object at its real size in metres and
+// in millimetres, placed by --up, grasped to a verdict that agrees with its numbers.
+TEST_F(CliTest, GraspObjectWithTheRealHands) {
+  const fs::path models = fs::path(GRASPCD_MODELS_DIR);
+  if (!fs::exists(models / "hands" / "robotiq_2f85" / "2f85.xml") ||
+      !fs::exists(models / "hands" / "shadow_hand" / "right_hand.xml")) {
+    GTEST_SKIP() << "real hands not found in " << models;
+  }
+  if (sanitizer_pass()) {
+    GTEST_SKIP() << "real-hand grasps skipped at GRASPCD_TEST_SCALE < 1 (sanitizer pass)";
+  }
+  // A 3 x 3 x 6 cm block, in millimetres, lying on its side in the file (its long axis x).
+  const std::string block = write("block.obj",
+                                  "v -30 -15 -15\nv 30 -15 -15\nv -30 15 -15\nv 30 15 -15\n"
+                                  "v -30 -15 15\nv 30 -15 15\nv -30 15 15\nv 30 15 15\n"
+                                  "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\n"
+                                  "f 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n");
+  // Robotiq: standing up (file x along -gravity), between the pads.
+  Result r = run("grasp --object " + block + " --scale 0.001 --hand robotiq --up x --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json doc = nlohmann::json::parse(r.out);
+  graspcd::testing::expect_envelope(doc, -1);
+  EXPECT_EQ(doc["object"]["hand"], "robotiq");
+  EXPECT_NEAR(doc["object"]["size"][2].get<double>(), 0.06, 1e-12);
+  EXPECT_TRUE(doc["gripped"]) << doc["reason"];
+  EXPECT_TRUE(doc["held"]) << doc["reason"];
+  EXPECT_GE(doc["object_rise"].get<double>(), 0.8 * doc["hand_travel"].get<double>());
+  EXPECT_LT(doc["hold_drift"].get<double>(), 0.01);
+  // Shadow: lying across the fingers (file x across gravity), in metres.
+  const std::string bar =
+      write("bar.obj",
+            "v -0.012 -0.03 -0.012\nv 0.012 -0.03 -0.012\nv -0.012 0.03 -0.012\n"
+            "v 0.012 0.03 -0.012\nv -0.012 -0.03 0.012\nv 0.012 -0.03 0.012\n"
+            "v -0.012 0.03 0.012\nv 0.012 0.03 0.012\n"
+            "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\n"
+            "f 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n");
+  r = run("grasp --object " + bar + " --hand shadow --up x --json --require-held");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["object"]["hand"], "shadow");
+  EXPECT_TRUE(doc["gripped"]) << doc["reason"];
+  EXPECT_TRUE(doc["held"]) << doc["reason"];
+  EXPECT_TRUE(doc["reason"].is_null());
 }
 
 TEST_F(CliTest, GraspBadMjcfIsOneLineWithTheFileAndExitTwo) {
@@ -669,23 +874,29 @@ TEST_F(CliTest, GraspConfigWhosePatternMatchesNothingIsOneLineAndExitTwo) {
 }
 
 // An open object mesh: the containment check cannot be decided inside it, so the registry warns
-// on one line and the grasp goes on with surface contacts (exit 0).
+// on one line, the start check on another (it cannot see into it either), and the grasp goes on
+// with surface contacts (exit 0).
 TEST_F(CliTest, GraspWithAnOpenMeshWarnsAndGoesOn) {
   const std::string scene = copy_scene(dir_ / "s", "example1", "", "cup.obj");
   const Result r = run("grasp " + scene + " --max-steps 2 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::vector<std::string> err = lines(r.err);
-  ASSERT_EQ(err.size(), 1u) << r.err;
+  ASSERT_EQ(err.size(), 2u) << r.err;
   const std::string config = (dir_ / "s" / "example1.pairs.json").string();
   EXPECT_EQ(err[0].rfind("warning: " + config + ": mesh ", 0), 0u) << err[0];
   EXPECT_NE(err[0].find("'cup' is not closed: "), std::string::npos) << err[0];
   EXPECT_NE(err[0].find("boundary edges"), std::string::npos) << err[0];
   EXPECT_NE(err[0].find("containment inside it is not checked"), std::string::npos) << err[0];
   const nlohmann::json doc = nlohmann::json::parse(r.out);
-  graspcd::testing::expect_envelope(doc, 1);
+  graspcd::testing::expect_envelope(doc, 2);
   EXPECT_EQ(doc.at("warnings")[0].at("code"), "mesh_open");
+  EXPECT_EQ(doc.at("warnings")[0].at("source"), "mesh");
   EXPECT_EQ(doc.at("warnings")[0].at("count"), 1);
   EXPECT_EQ("warning: " + doc.at("warnings")[0].at("message").get<std::string>(), err[0]);
+  EXPECT_EQ(err[1],
+            "warning: start check: geom 'object' is not a closed mesh: what lies inside it is not "
+            "checked");
+  EXPECT_EQ(doc.at("warnings")[1].at("source"), "scene");
   EXPECT_EQ(doc.at("steps").size(), 2u);
   EXPECT_EQ(doc.at("nonfinite_skips"), 0);
 }
@@ -699,9 +910,12 @@ TEST_F(CliTest, MujocoWarningsGoToTheSinkNotToStdout) {
   ASSERT_NE(xml.find(size), std::string::npos);
   xml.replace(xml.find(size), size.size(), "<size nconmax=\"1\"");
   std::ofstream(scene, std::ios::trunc) << xml;
-  const fs::path log = fs::current_path() / "MUJOCO_LOG.TXT";  // where MuJoCo would append
-  fs::remove(log);
-  const Result r = run("grasp " + scene + " --max-steps 60 --json");
+  // Where MuJoCo would append: the command's working folder, the test's own (other test programs
+  // running beside this one may use MuJoCo without a warning hook in theirs).
+  const fs::path cwd = dir_ / "cwd";
+  fs::create_directories(cwd);
+  const fs::path log = cwd / "MUJOCO_LOG.TXT";
+  const Result r = run("grasp " + scene + " --max-steps 60 --json", "", cwd);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json doc = nlohmann::json::parse(r.out);  // nothing after the document
   graspcd::testing::expect_envelope(doc, -1);
@@ -710,12 +924,14 @@ TEST_F(CliTest, MujocoWarningsGoToTheSinkNotToStdout) {
     if (w.at("code") == "mujoco_warning" &&
         w.at("message").get<std::string>().find("contact buffer is full") != std::string::npos) {
       buffer_full = true;
+      EXPECT_EQ(w.at("source"), "mujoco");
       EXPECT_NE(r.err.find("warning: " + w.at("message").get<std::string>()), std::string::npos)
           << r.err;
     }
   }
   EXPECT_TRUE(buffer_full) << doc.at("warnings");
   EXPECT_FALSE(fs::exists(log));
+  EXPECT_TRUE(fs::is_empty(cwd)) << "nothing is written into the working folder";
 }
 
 TEST_F(CliTest, GraspHelpDocumentsTheOutput) {
@@ -734,6 +950,40 @@ std::string cube_obj(const std::string& first = "v 0 0 0") {
          "\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
          "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\n"
          "f 3 8 7\nf 4 1 5\nf 4 5 8\n";
+}
+
+// Issue 21: meshpair's table as one JSON document, the same answers as the text, with the
+// mesh hygiene warning (tagged "mesh", its face counted from 1 in the file) in the envelope.
+TEST_F(CliTest, MeshpairPrintsItsTableAsJson) {
+  const std::string a = write("a.obj", cube_obj() + "f 1 2 1\n");  // a 13th face of zero area
+  const std::string b = write("b.obj", cube_obj());
+  const std::string poses =
+      write("p.txt", "1 0 0 0 1 0 0 0 1  0.5 0 0\n1 0 0 0 1 0 0 0 1  3 0 0\n");
+  const Result text = run("meshpair " + a + " " + b + " --poses " + poses);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const Result r = run("meshpair " + a + " " + b + " --poses " + poses + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  graspcd::testing::expect_envelope(doc, 1);
+  EXPECT_EQ(doc["method"], "sat");
+  ASSERT_EQ(doc["answers"].size(), 2u);
+  const std::vector<std::string> rows = lines(text.out);
+  ASSERT_EQ(rows.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const nlohmann::json& answer = doc["answers"][i];
+    EXPECT_EQ(rows[i].rfind(std::string(answer["intersect"] ? "1 " : "0 ") +
+                                std::to_string(answer["pairs"].get<int>()) + " ",
+                            0),
+              0u)
+        << rows[i];
+  }
+  EXPECT_TRUE(doc["answers"][0]["intersect"]);
+  EXPECT_FALSE(doc["answers"][1]["intersect"]);
+  EXPECT_EQ(doc["warnings"][0]["source"], "mesh");
+  EXPECT_NE(doc["warnings"][0]["message"].get<std::string>().find(
+                "(faces 13 counted from 1 in the file's order"),
+            std::string::npos)
+      << doc["warnings"][0]["message"];
 }
 
 // Item 4: answers that could not be written are an error, not a success; a closed pipe stays
@@ -847,7 +1097,7 @@ TEST_F(CliTest, GraspObjectThatMujocoCannotCompileNamesTheFileAndCleansUp) {
   const fs::path tmp = dir_ / "tmp";
   fs::create_directories(tmp);
   ASSERT_EQ(setenv("TMPDIR", tmp.c_str(), 1), 0);
-  const Result r = run("grasp --object " + huge);
+  const Result r = run("grasp --object " + huge + " --fit");
   unsetenv("TMPDIR");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.out, "");
@@ -866,13 +1116,15 @@ TEST_F(CliTest, AMujocoErrorWhileSteppingIsOneLineNamingTheSceneAndExitTwo) {
   ASSERT_NE(xml.find(size), std::string::npos);
   xml.replace(xml.find(size), size.size(), "<size nconmax=\"300\" njmax=\"900\" nstack=\"1600\"/>");
   std::ofstream(scene, std::ios::trunc) << xml;
-  const fs::path log = fs::current_path() / "MUJOCO_LOG.TXT";  // where MuJoCo would append
-  fs::remove(log);
-  const Result r = run("grasp " + scene + " --max-steps 5");
+  const fs::path cwd = dir_ / "cwd";  // where MuJoCo would append, the command's own folder
+  fs::create_directories(cwd);
+  const fs::path log = cwd / "MUJOCO_LOG.TXT";
+  const Result r = run("grasp " + scene + " --max-steps 5", "", cwd);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.out.find("Press Enter"), std::string::npos) << r.out;
   EXPECT_EQ(r.err, scene + ": MuJoCo error: Stack overflow\n");
   EXPECT_FALSE(fs::exists(log));
+  EXPECT_TRUE(fs::is_empty(cwd)) << "nothing is written into the working folder";
 }
 
 // Item 7: an OBJ with two objects is warned about in grasp --object as in meshpair (MuJoCo keeps
@@ -889,7 +1141,7 @@ TEST_F(CliTest, GraspObjectWarnsAboutSeveralObjectsAsMeshpairDoes) {
                        write("p.txt", "1 0 0 0 1 0 0 0 1  9 0 0\n"));
   ASSERT_EQ(m.exit_code, 0) << m.err;
   EXPECT_EQ(m.err, warning);
-  const Result g = run("grasp --object " + two + " --max-steps 1");
+  const Result g = run("grasp --object " + two + " --fit --max-steps 1");
   ASSERT_EQ(g.exit_code, 0) << g.err;
   EXPECT_NE(g.err.find(warning), std::string::npos) << g.err;
 }

@@ -128,8 +128,8 @@ TEST_F(MeshIoTest, ZeroAreaFacesAreDroppedWithAWarningAndFacesMapBack) {
   const std::vector<std::string> w = mesh_warnings(path, stats);
   ASSERT_EQ(w.size(), 2u);
   EXPECT_EQ(w[0], path +
-                      ": dropped 2 zero-area faces (file faces 1, 3; each spans a segment or a "
-                      "point)");
+                      ": dropped 2 zero-area faces (faces 1, 3 counted from 1 in the file's order; "
+                      "each spans a segment or a point)");
   EXPECT_EQ(w[1].rfind(path + ": the mesh is not closed: ", 0), 0u) << w[1];
   // For commands without a containment check (meshpair) only the dropped faces are news.
   EXPECT_EQ(mesh_warnings(path, stats, true), std::vector<std::string>{w[0]});

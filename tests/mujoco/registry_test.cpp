@@ -343,8 +343,8 @@ TEST(RegistryHygiene, ZeroAreaFacesAreLeftOutOfTheTreeWithAWarning) {
   }
   ASSERT_EQ(r.warnings().size(), 1u);
   EXPECT_EQ(r.warnings()[0],
-            "hyg.json: mesh 0 'tet': dropped 1 zero-area faces (MuJoCo faces 1; each spans a "
-            "segment or a point)");
+            "hyg.json: mesh 0 'tet': dropped 1 zero-area faces (MuJoCo face ids, from 0: 1; each "
+            "spans a segment or a point)");
   EXPECT_TRUE(t->closedness.closed()) << t->closedness.describe();
 }
 

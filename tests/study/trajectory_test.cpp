@@ -153,11 +153,14 @@ TEST_F(TrajectoryTest, CommandWritesTimesPerMethodAndFiguresAreDrawnFromItsFiles
   EXPECT_EQ(boxes["geoms"][0]["type"], "cylinder");
 
   const fs::path figures = dir_ / "figures";
-  r = run("/usr/bin/python3 '" GRASPCD_SOURCE_DIR "/report/draw_figures.py' '" + traj.string() +
-          "' '" + figures.string() + "'");
+  // Any trajectory files, named as their user likes (the folder form is make_report.py's).
+  fs::rename(traj / "example1.json", traj / "my_grasp.json");
+  r = run("/usr/bin/python3 '" GRASPCD_SOURCE_DIR "/report/draw_figures.py' '" +
+          (traj / "hand_boxes.json").string() + "' '" + (traj / "my_grasp.json").string() + "' '" +
+          figures.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* f : {"fig18_example1.png", "fig17_obb_depths.png", "contacts_native.png",
-                        "fig12_box_hand.png"}) {
+                        "fig12_box_hand.png"}) {  // fig18 is named after the scene
     const std::string png = read_file(figures / f);
     ASSERT_GT(png.size(), 10000u) << f;
     EXPECT_EQ(png.substr(1, 3), "PNG") << f;

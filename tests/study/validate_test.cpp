@@ -13,6 +13,7 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -296,6 +297,9 @@ TEST_F(ValidateTest, UsersOwnSceneWithANewObject) {
               graspcd::study::detector_tester(Method::kNeuroSatSticky, {})});
   EXPECT_TRUE(report.gripped);
   EXPECT_FALSE(report.missed_any());
+  // The steps with something to check are counted: some, not all (the fingers close from apart).
+  EXPECT_GT(report.steps_with_contact, 0);
+  EXPECT_LT(report.steps_with_contact, report.steps);
   for (const auto& table : report.methods) {
     EXPECT_GT(sum(table.rows, &PairRow::truth_hits), 0) << table.method;
     EXPECT_EQ(sum(table.rows, &PairRow::agree), sum(table.rows, &PairRow::steps)) << table.method;
@@ -303,6 +307,35 @@ TEST_F(ValidateTest, UsersOwnSceneWithANewObject) {
   const Outcome r = graspcd("validate '" + scene + "' --steps 40");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("finger1_A/object"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("\n# contacts: \\d+ of 40 grasp steps had a "
+                                                  "contact to check\n# result: no missed")))
+      << r.out;
+}
+
+// Issue 21: a validation in which nothing touched says so and warns, instead of a bare "no missed
+// collision"; --max-steps is the option's name (--steps stays an alias); nothing is written into
+// the current folder without --out.
+TEST_F(ValidateTest, AValidationWithNoContactToCheckSaysSoAndWarns) {
+  const std::filesystem::path cwd_out = std::filesystem::current_path() / "validate_out";
+  std::filesystem::remove_all(cwd_out);
+  const Outcome r = graspcd("validate '" + kMjcf + "example1.xml' --max-steps 2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json doc = json::parse(r.out);
+  graspcd::testing::expect_envelope(doc, 1);
+  EXPECT_EQ(doc["steps"], 2);
+  EXPECT_EQ(doc["steps_with_contact"], 0);
+  EXPECT_EQ(doc["warnings"][0]["code"], "validate_no_contact");
+  EXPECT_EQ(doc["warnings"][0]["source"], "scene");
+  EXPECT_NE(r.err.find("no grasp step had a contact to check"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(cwd_out));
+  if (graspcd::testing::test_scale() < 1) return;  // the text again: Release pass only
+  const Outcome text = graspcd("validate '" + kMjcf + "example1.xml' --steps 2");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("# contacts: 0 of 2 grasp steps had a contact to check\n"
+                          "# result: no missed collision (nothing touched: nothing was checked)"),
+            std::string::npos)
+      << text.out;
+  EXPECT_FALSE(std::filesystem::exists(cwd_out));
 }
 
 TEST_F(ValidateTest, CommandPrintsTheTableAndJsonAndExitsZeroOnTheBoxHand) {

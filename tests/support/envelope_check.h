@@ -35,6 +35,10 @@ inline void expect_envelope(const nlohmann::json& doc, int warnings = 0) {
   }
   for (const nlohmann::json& w : doc.at("warnings")) {
     EXPECT_FALSE(w.at("code").get<std::string>().empty()) << w;
+    const std::string source = w.at("source").get<std::string>();
+    EXPECT_TRUE(source == "mujoco" || source == "mesh" || source == "config" || source == "scene" ||
+                source == "graspcd")
+        << w;
     EXPECT_FALSE(w.at("message").get<std::string>().empty()) << w;
     EXPECT_GE(w.at("count").get<long>(), 1) << w;
   }

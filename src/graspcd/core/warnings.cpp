@@ -1,8 +1,11 @@
 #include "graspcd/core/warnings.h"
 
+#include <utility>
+
 namespace graspcd {
 
-void WarningSink::add(const std::string& code, const std::string& message) {
+void WarningSink::add(const std::string& code, const std::string& message,
+                      const std::string& source) {
   const std::lock_guard<std::mutex> lock(mutex_);
   for (Warning& w : warnings_) {
     if (w.code == code && w.message == message) {
@@ -10,7 +13,17 @@ void WarningSink::add(const std::string& code, const std::string& message) {
       return;
     }
   }
-  warnings_.push_back(Warning{code, message, 1});
+  warnings_.push_back(Warning{code, message, 1, source});
+}
+
+void WarningSink::add(const std::string& code, const std::string& message) {
+  static const std::pair<const char*, const char*> kSources[] = {
+      {"mujoco_", "mujoco"}, {"mesh_", "mesh"}, {"served_", "config"}, {"start_", "scene"}};
+  std::string source = "graspcd";
+  for (const auto& [prefix, name] : kSources) {
+    if (code.rfind(prefix, 0) == 0) source = name;
+  }
+  add(code, message, source);
 }
 
 std::vector<Warning> WarningSink::list() const {

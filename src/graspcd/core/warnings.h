@@ -5,7 +5,9 @@
 // when it recurred) and every JSON document carries the list in its envelope's "warnings" array
 // (graspcd/version/envelope.h; docs/design.md, "The command line").
 //
-// A warning is a stable code (snake_case, for scripts) and a one-line message (for people).
+// A warning is a stable code (snake_case, for scripts), a one-line message (for people) and the
+// source that raised it: "mujoco" (MuJoCo's own warnings), "mesh" (a mesh file's hygiene), "config"
+// (the pair config and the registry's findings), "scene" (the scene and its start state).
 // The same code and message added again only raise the count, so a warning met at every physics
 // step is one line, not thousands. Thread-safe: the study replays grasps on several threads.
 #pragma once
@@ -21,11 +23,15 @@ struct Warning {
   std::string code;     // e.g. "mesh_degenerate_faces"; stable across releases
   std::string message;  // one line, naming the file (and line) or the pair it concerns
   std::int64_t count = 1;
+  std::string source;  // "mujoco", "mesh", "config", "scene" (see above)
 };
 
 class WarningSink {
  public:
   // Records a warning, or raises the count of an equal (code, message) one.
+  void add(const std::string& code, const std::string& message, const std::string& source);
+  // The same with the source read from the code: "mujoco_*" -> "mujoco", "mesh_*" -> "mesh",
+  // "served_*" -> "config", "start_*" -> "scene", anything else "graspcd".
   void add(const std::string& code, const std::string& message);
   // The warnings in the order they were first added.
   std::vector<Warning> list() const;

@@ -19,6 +19,7 @@
 #include "graspcd/grasp/controllers.h"
 #include "graspcd/grasp/drive_config.h"
 #include "graspcd/grasp/scene_check.h"
+#include "graspcd/grasp/start_check.h"
 #include "graspcd/mujoco/collision.h"
 #include "graspcd/mujoco/model_check.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
@@ -31,8 +32,79 @@ namespace {
 constexpr int kArmJoints = 3;
 constexpr int kFingers = 4;
 constexpr int kSegmentsPerFinger = 3;
-constexpr double kHeldRise = 0.03;   // m above the initial height
-constexpr double kHeldDrift = 0.01;  // m, largest move relative to the palm during the hold
+
+// Whether two hand geoms push the object from opposing sides (grasp.h, "gripped"): per hand geom
+// touching an object geom in d's contacts, the sum of its contact normals turned to point from
+// the hand geom into the object (MuJoCo's frame[0..2] points from geom1 to geom2); two geoms whose
+// sums have a negative dot product oppose. Hand geoms: neither the object's body tree, nor the
+// world body (the floor), nor the support's body tree (support_root -1: none).
+struct GripSides {
+  int touching = 0;  // hand geoms touching the object
+  bool opposing = false;
+};
+
+GripSides grip_sides(const mjModel* m, const mjData* d, const std::vector<char>& is_object_geom,
+                     int support_root) {
+  std::vector<std::pair<int, Vec3>> pushes;  // hand geom, summed normal into the object
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& c = d->contact[i];
+    const bool object1 = is_object_geom[static_cast<std::size_t>(c.geom1)] != 0;
+    const bool object2 = is_object_geom[static_cast<std::size_t>(c.geom2)] != 0;
+    if (object1 == object2) continue;
+    const int hand = object1 ? c.geom2 : c.geom1;
+    const int body = m->geom_bodyid[hand];
+    if (body == 0 || m->body_rootid[body] == support_root) continue;
+    Vec3 n(c.frame[0], c.frame[1], c.frame[2]);
+    if (object1) n = -n;
+    auto at = std::find_if(pushes.begin(), pushes.end(),
+                           [hand](const std::pair<int, Vec3>& p) { return p.first == hand; });
+    if (at == pushes.end()) {
+      pushes.emplace_back(hand, n);
+    } else {
+      at->second += n;
+    }
+  }
+  GripSides out;
+  out.touching = static_cast<int>(pushes.size());
+  for (std::size_t a = 0; a < pushes.size() && !out.opposing; ++a) {
+    for (std::size_t b = a + 1; b < pushes.size(); ++b) {
+      if (pushes[a].second.dot(pushes[b].second) < 0) {
+        out.opposing = true;
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+// The verdicts after the hold (grasp.h): held, and the reason of a failure. `ever_touched`: some
+// segment touched the object during the closing; `grip`: the grip before the lift.
+void judge(bool ever_touched, const GripSides& grip, GraspResult& result) {
+  result.gripped = grip.opposing;
+  const bool rose =
+      result.hand_travel > 0 && result.object_rise >= kHeldRiseShare * result.hand_travel;
+  const bool slipped = result.hold_drift >= kHeldSlip;
+  result.held = result.gripped && rose && !slipped;
+  char text[160];
+  if (!ever_touched) {
+    result.reason = "no segment reached the object";
+  } else if (grip.touching == 0) {
+    result.reason = "no segment touched the object after the squeeze";
+  } else if (!grip.opposing) {
+    result.reason = "no two touching segments push from opposing sides (" +
+                    std::to_string(grip.touching) + " touching)";
+  } else if (slipped) {
+    std::snprintf(text, sizeof text, "slipped at t = %.3f s (moved %.1f cm in the hand)",
+                  result.slip_time, 100 * result.hold_drift);
+    result.reason = text;
+  } else if (!rose) {
+    std::snprintf(text, sizeof text, "rose %.1f cm of the hand's %.1f cm travel (less than %.0f%%)",
+                  100 * result.object_rise, 100 * result.hand_travel, 100 * kHeldRiseShare);
+    result.reason = text;
+  } else {
+    result.reason.clear();
+  }
+}
 
 // Counts the longest run of one geom pair among the counted contacts of a step (MuJoCo writes
 // each geom pair's contacts consecutively): the most contacts one pair handed the solver.
@@ -274,10 +346,7 @@ void close_fingers(GraspRun& run, const GraspOptions& options, GraspResult& resu
       }
       every_finger = every_finger && any;
     }
-    if (every_finger) {
-      result.gripped = true;
-      break;
-    }
+    if (every_finger) break;
     if (all_stopped) break;
   }
   for (std::size_t i = 0; i < kFingerSegments; ++i) run.qd_d_[kArmJoints + i] = 0;
@@ -318,9 +387,6 @@ void watch_rest(const mjModel* m, mjData* d, int object, const std::vector<char>
 template <class Run>
 void finish_result(const Run& run, const mjData* d, double final_z, GraspResult& result) {
   result.object_z_final = final_z;
-  result.held = result.object_z_final >= result.object_z_initial + kHeldRise &&
-                result.hold_min_z >= result.object_z_initial + kHeldRise &&
-                result.hold_drift < kHeldDrift;
   result.physics_steps = run.physics_steps_;
   result.sim_time = d->time;
   result.step_wall_ms = run.physics_steps_ > 0 ? static_cast<double>(run.wall_ns_) / 1e6 /
@@ -392,12 +458,16 @@ class DrivenRun {
     touching_.assign(names_.size(), false);
   }
 
-  double height() const {
+  // The height of a body along -gravity above the support body.
+  double height_of(int body) const {
     double h = 0;
-    for (int k = 0; k < 3; ++k)
-      h += (d_->xpos[3 * object_ + k] - d_->xpos[3 * support_ + k]) * up_[k];
+    for (int k = 0; k < 3; ++k) h += (d_->xpos[3 * body + k] - d_->xpos[3 * support_ + k]) * up_[k];
     return h;
   }
+  double height() const { return height_of(object_); }
+  double hand_height() const { return height_of(hand_); }
+  // The support's body tree (-1 for the world: the world body is never a hand geom's).
+  int support_root() const { return support_ > 0 ? m_->body_rootid[support_] : -1; }
   double drift_from(const std::array<double, 3>& rel0) const {
     double s = 0;
     for (int k = 0; k < 3; ++k) {
@@ -493,7 +563,6 @@ void run_driven_grasp(DrivenRun& run, const GraspOptions& options, GraspResult& 
 
   // Phase 1: close in grasp steps.
   std::vector<bool> stopped(drives, false);
-  std::vector<bool> by_touch(drives, false);
   const int n = std::max(1, options.physics_steps_per_grasp_step);
   for (int k = 1; k <= options.max_steps; ++k) {
     run.phase_ = "grasp step " + std::to_string(k) + " of the closing";
@@ -514,16 +583,14 @@ void run_driven_grasp(DrivenRun& run, const GraspOptions& options, GraspResult& 
     for (std::size_t s = 0; s < segments; ++s) {
       if (touched[s] && result.first_contact[s] < 0) result.first_contact[s] = k;
     }
-    bool all_stopped = true, all_touched = true;
+    bool all_stopped = true;
     for (std::size_t i = 0; i < drives; ++i) {
       bool every = true;
       for (int s : run.segments_of_drive_[i])
         every = every && result.first_contact[static_cast<std::size_t>(s)] > 0;
-      if (every) stopped[i] = by_touch[i] = true;
+      if (every) stopped[i] = true;
       all_stopped = all_stopped && stopped[i];
-      all_touched = all_touched && by_touch[i];
     }
-    if (all_touched) result.gripped = true;
     if (all_stopped) break;
   }
 
@@ -545,6 +612,8 @@ void run_driven_grasp(DrivenRun& run, const GraspOptions& options, GraspResult& 
   run.run_phase(
       options.settle_time, [](double) {}, nothing);
   result.object_z_gripped = run.height();
+  const GripSides grip = grip_sides(run.m_, d, run.is_object_geom_, run.support_root());
+  const double hand_at_lift = run.hand_height();
 
   // Phase 3: lift along a cosine ramp.
   run.phase_ = "the lift";
@@ -568,10 +637,16 @@ void run_driven_grasp(DrivenRun& run, const GraspOptions& options, GraspResult& 
       [&] {
         result.hold_min_z = std::min(result.hold_min_z, run.height());
         result.hold_drift = std::max(result.hold_drift, run.drift_from(rel0));
+        if (result.slip_time < 0 && result.hold_drift >= kHeldSlip) result.slip_time = d->time;
         watch_rest(run.m_, d, run.object_, run.is_object_geom_, ++hold_step, hold_steps, result);
       });
   run.take_stats();
   finish_result(run, d, run.height(), result);
+  result.hand_travel = run.hand_height() - hand_at_lift;
+  result.object_rise = result.object_z_final - result.object_z_gripped;
+  bool ever_touched = false;
+  for (int step : result.first_contact) ever_touched = ever_touched || step > 0;
+  judge(ever_touched, grip, result);
 }
 
 }  // namespace
@@ -731,6 +806,18 @@ GraspInputError config_error(const std::string& config_path, const std::runtime_
   return GraspInputError(config_path, message, line);
 }
 
+namespace {
+
+// The start-state check (start_check.h) as bad input naming the scene.
+void throw_if_bad_start(const mjModel* m, const mjData* d, int object, const std::string& scene) {
+  const std::string problem = check_start_state(m, d, object);
+  if (!problem.empty()) {
+    throw GraspInputError(scene, "the start state is not valid: " + problem);
+  }
+}
+
+}  // namespace
+
 // Paper section 9 (the grasp) with the computed-torque law of section 7, eq. (12)-(16); the
 // phases are described in grasp.h.
 GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options) {
@@ -786,6 +873,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
     // A hand driven through its own actuators (the config's "grasp" section).
     DrivenRun run(m, d, registry.get(), *drive, scene_path, config_path);
     mj_forward(m, d);
+    throw_if_bad_start(m, d, run.object_, scene_path);
     if (registry) registry->reset_stats();
     run_driven_grasp(run, options, result);
     registry.reset();  // detaches before the model goes
@@ -793,6 +881,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   }
   GraspRun run(m, d, registry.get(), options, scene_path);
   mj_forward(m, d);
+  throw_if_bad_start(m, d, run.object_, scene_path);
   if (registry) registry->reset_stats();
   result.object_z_initial = run.object_z();
 
@@ -816,6 +905,8 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   run.run_phase(
       options.settle_time, [](double) {}, observe_nothing);
   result.object_z_gripped = run.object_z();
+  const GripSides grip = grip_sides(m, d, run.is_object_geom_, -1);
+  const double palm_at_lift = d->xpos[3 * run.palm_ + 2];
 
   // Phase 3: lift along a cosine ramp, arm2 = -a s(t), arm3 = +a s(t).
   const int arm2 = mj_name2id(m, mjOBJ_JOINT, "arm2");
@@ -866,10 +957,16 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
                                        (rel[1] - rel0[1]) * (rel[1] - rel0[1]) +
                                        (rel[2] - rel0[2]) * (rel[2] - rel0[2]));
         result.hold_drift = std::max(result.hold_drift, drift);
+        if (result.slip_time < 0 && result.hold_drift >= kHeldSlip) result.slip_time = d->time;
       });
   run.take_stats();
 
   finish_result(run, d, run.object_z(), result);
+  result.hand_travel = d->xpos[3 * run.palm_ + 2] - palm_at_lift;
+  result.object_rise = result.object_z_final - result.object_z_gripped;
+  bool ever_touched = false;
+  for (int step : result.first_contact) ever_touched = ever_touched || step > 0;
+  judge(ever_touched, grip, result);
   registry.reset();  // detaches before the model goes
   return result;
 }

@@ -25,9 +25,20 @@
 //   3. Lift: arm2 -> -a and arm3 -> +a along a cosine ramp over `lift_time` s (with velocity and
 //      acceleration feed-forward), a = asin(lift_height / L) with L the arm2-arm3 distance: the
 //      wrist rises by lift_height and the hand keeps its orientation (arm2 + arm3 = 0).
-//   4. Hold `hold_time` s. The object is held when its final height is >= 0.03 m above its
-//      initial height, stays so during the hold, and its position relative to the palm moves by
-//      less than 0.01 m during the hold.
+//   4. Hold `hold_time` s.
+//
+// Before phase 1 the start state is checked (start_check.h): an object that starts inside the
+// hand, a finger or its support (by more than 0.5 mm), or wholly inside one, is bad input
+// (GraspInputError naming the scene). The verdicts (docs/design.md, "Semantics"):
+//  - gripped: at the end of the settling (just before the lift), two hand geoms touch the object
+//    with opposing contact normals: the mean normals, from each geom into the object, of two
+//    touching geoms have a negative dot product (kGripOpposing). One side pushing is no grip.
+//  - held: gripped, the object rose at least kHeldRiseShare (80%) of the hand's travel from the
+//    start of the lift to the end of the hold, and it moved by less than kHeldSlip (1 cm)
+//    relative to the hand during the hold.
+//  - reason: why a grasp was not gripped or not held, one phrase (empty when held): "no segment
+//    reached the object", "no two touching segments push from opposing sides", "slipped at
+//    t = 2.35 s", "rose 1.2 cm of the hand's 6.0 cm travel (less than 80%)".
 //
 // Non-finite state: after every physics step the driver reads MuJoCo's warnings for a bad number
 // (NaN, or beyond mjMAXVAL = 1e10) in qpos, qvel, qacc or ctrl (mjWARN_BADQPOS, mjWARN_BADQVEL,
@@ -58,6 +69,10 @@ namespace graspcd::bridge {
 
 inline constexpr double kGraspStepRad = 0.003;  // the paper's grasp step
 inline constexpr int kFingerSegments = 12;      // finger{1..4}_{A,B,C}
+// The verdicts (see above): the share of the hand's travel the object must rise, and the most it
+// may move in the hand during the hold (m).
+inline constexpr double kHeldRiseShare = 0.8;
+inline constexpr double kHeldSlip = 0.01;
 
 // A scene or config that cannot be used: what() is one line, "FILE: MESSAGE", or
 // "FILE:LINE: MESSAGE" when the line is known (line() > 0).
@@ -124,7 +139,8 @@ struct GraspResult {
   // the "touch" patterns of the config's "grasp" section on a driven real hand (registry.h).
   std::vector<std::string> segments;
   std::vector<int> first_contact;  // by segments: grasp step, -1 when never
-  bool gripped = false;            // every finger touched before max_steps
+  // Two hand geoms touch the object with opposing contact normals before the lift (see above).
+  bool gripped = false;
   // Heights are along -gravity (z for gravity along -z), relative to the support body of a
   // driven real hand (the world on our hands).
   double object_z_initial = 0;
@@ -133,6 +149,10 @@ struct GraspResult {
   double hold_min_z = 0;  // lowest object height during the final hold
   double hold_drift = 0;  // largest move of the object relative to the palm in the hold, m
   bool held = false;
+  double hand_travel = 0;  // the hand's rise from the start of the lift to the end of the hold, m
+  double object_rise = 0;  // the object's over the same time, m
+  double slip_time = -1;   // simulated time at which the object had moved kHeldSlip in the hand
+  std::string reason;      // why not gripped or not held (see above); empty when held
   // The last second of the hold (or the whole hold when shorter), "at rest": the object's largest
   // linear speed (m/s), the deepest contact of an object geom (-dist, m; 0 without contacts), and
   // the whole system's kinetic energy (J, 0.5 qvel^T M qvel) averaged over that window's first

@@ -429,7 +429,8 @@ std::vector<std::string> mesh_warnings(const std::string& path, const MeshStats&
     }
     if (shown < stats.dropped_faces.size()) ids += ", ...";
     out.push_back(head + "dropped " + std::to_string(stats.dropped_faces.size()) +
-                  " zero-area faces (file faces " + ids + "; each spans a segment or a point)");
+                  " zero-area faces (faces " + ids +
+                  " counted from 1 in the file's order; each spans a segment or a point)");
   }
   if (stats.closedness.faces > 0 && !stats.closedness.closed() && !changes_only) {
     out.push_back(head + "the mesh is " + stats.closedness.describe() +

@@ -308,7 +308,7 @@ Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::st
             if (hygiene.dropped_faces.size() > 5) ids += ", ...";
             warn("mesh_zero_area_faces", source + ": " + what + ": dropped " +
                                              std::to_string(hygiene.dropped_faces.size()) +
-                                             " zero-area faces (MuJoCo faces " + ids +
+                                             " zero-area faces (MuJoCo face ids, from 0: " + ids +
                                              "; each spans a segment or a point)");
           }
           MeshTree built_tree = make_tree(tris);

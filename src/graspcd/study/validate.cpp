@@ -140,6 +140,7 @@ class Validator {
     bridge::Registry* registry = bridge::find_registry(m);
     if (!registry) throw std::runtime_error("validate: no pair registry is attached to the model");
     if (pairs_.empty()) set_up(*registry);
+    bool any_contact = false;
     for (std::size_t i = 0; i < pairs_.size(); ++i) {
       const CheckedPair& p = pairs_[i];
       // A placement MuJoCo calls bad (NaN, inf, beyond 1e10), as the served path: not checked,
@@ -149,13 +150,11 @@ class Validator {
         continue;
       }
       const Pose pose = bridge::relative_pose(d, p.geom1, p.geom2);
-      if (p.box_box) {
-        check_boxes(i, pose, step);
-      } else {
-        check_trees(i, pose, step);
-      }
+      const bool truth = p.box_box ? check_boxes(i, pose, step) : check_trees(i, pose, step);
+      any_contact = any_contact || truth;
     }
     report_.steps = step;
+    if (any_contact) ++report_.steps_with_contact;
     if (options_.on_step) options_.on_step(step);
   }
 
@@ -217,7 +216,8 @@ class Validator {
     return it->second;
   }
 
-  void check_trees(std::size_t i, const Pose& pose, int step) {
+  // Checks pair i at this step with every tester; returns CGAL's answer (the pair intersects).
+  bool check_trees(std::size_t i, const Pose& pose, int step) {
     const CheckedPair& p = pairs_[i];
     Clock::time_point start = Clock::now();
     std::vector<Triangle> moved = *p.faces2;
@@ -241,9 +241,10 @@ class Validator {
         if (!options_.out_dir.empty()) write_tree_case(k, row, p, pose, step);
       }
     }
+    return !truth.empty();
   }
 
-  void check_boxes(std::size_t i, const Pose& pose, int step) {
+  bool check_boxes(std::size_t i, const Pose& pose, int step) {
     const CheckedPair& p = pairs_[i];
     Obb a;
     a.half = p.half1;
@@ -265,6 +266,7 @@ class Validator {
         if (!options_.out_dir.empty()) write_box_case(k, row, a, b, step);
       }
     }
+    return truth;
   }
 
   void add_time(std::size_t k, Clock::time_point start) {

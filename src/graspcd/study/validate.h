@@ -112,9 +112,10 @@ struct MethodTable {
 struct ValidationReport {
   std::string scene;
   std::string config;
-  std::string grasp_method;  // the method that drove the grasp
-  int steps = 0;             // closing grasp steps checked
-  bool gripped = false;      // the grasp closed on every finger within the steps
+  std::string grasp_method;    // the method that drove the grasp
+  int steps = 0;               // closing grasp steps checked
+  int steps_with_contact = 0;  // those at which CGAL found some pair intersecting
+  bool gripped = false;        // the grasp's verdict (bridge::GraspResult::gripped)
   std::vector<MethodTable> methods;
   double exact_seconds = 0;   // CGAL's time over the run
   double tester_seconds = 0;  // the testers' time over the run

@@ -12,7 +12,8 @@ nlohmann::json provenance_json() {
 nlohmann::json warnings_json(const std::vector<Warning>& list) {
   nlohmann::json out = nlohmann::json::array();
   for (const Warning& w : list) {
-    out.push_back({{"code", w.code}, {"message", w.message}, {"count", w.count}});
+    out.push_back(
+        {{"source", w.source}, {"code", w.code}, {"message", w.message}, {"count", w.count}});
   }
   return out;
 }

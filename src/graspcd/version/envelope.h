@@ -1,7 +1,7 @@
 // The JSON envelope every graspcd document carries (docs/design.md, "The command line"):
 //
 //   "graspcd":  {"version": "0.2.0", "commit": "<git describe --always --dirty>", "dirty": false}
-//   "warnings": [{"code": "...", "message": "...", "count": 1}, ...]
+//   "warnings": [{"source": "mujoco", "code": "...", "message": "...", "count": 1}, ...]
 //
 // beside the document's own keys, which it never changes. The commit is taken at build time
 // (provenance.h), so a committed reference report names the code it was made from; the warnings

@@ -1,0 +1,57 @@
+// A scene for a user's object, generated from a template scene (graspcd grasp --object; README,
+// "A new object"). The template is any MJCF scene with a pair config beside it
+// (TEMPLATE.pairs.json) whose object is the body `object`, a child of <worldbody> with a free
+// joint and one mesh geom. The new scene is the template read and written by tinyxml2 with:
+//  - that mesh asset's file replaced by the user's mesh and its scale set (the asset is renamed
+//    "object_mesh", the geom "object");
+//  - the object body turned (the file's `up` axis along -gravity, then `yaw` about it, or the
+//    quaternion `pose`) and placed with its lowest point along gravity kSupportGap above the
+//    support point, centred on it across gravity;
+//  - every file path (<include file>, <compiler meshdir/texturedir/assetdir>, and asset files
+//    when no meshdir is set) rewritten relative to the new scene's folder;
+//  - <size nconmax njmax> raised to at least 1000 and 4000 (the contacts of a fine mesh);
+//  - the template's comments replaced by a header saying what the scene is and how it was made.
+// The template may carry its placement in <custom>: <numeric name="graspcd_support" data="x y z"/>
+// (the support point, world frame; default: the object body's pos) and <numeric
+// name="graspcd_fit" data="width height"/> (the room the hand has for an object: its width across
+// gravity and its height along it, m; needed by `fit`).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+
+namespace graspcd::bridge {
+
+// How far above the support the object's lowest point is placed, m: clear of it by much less
+// than the start check's tolerance (start_check.h), so that the object drops onto it at once.
+inline constexpr double kSupportGap = 0.5e-3;
+
+struct ObjectPlacement {
+  std::string file;        // the user's mesh (OBJ or binary STL)
+  double scale = 1;        // file units -> m; the file's units are kept by default
+  bool fit = false;        // scale to the template's graspcd_fit instead
+  std::string up = "z";    // the file axis pointing up: x, y, z, -x, -y or -z
+  double yaw_degrees = 0;  // then a turn about the up direction
+  std::optional<std::array<double, 4>> pose;  // w x y z: the object's rotation, instead of up/yaw
+};
+
+struct ObjectScene {
+  std::string scene;  // DIR/STEM.xml
+  std::string pairs;  // DIR/STEM.pairs.json
+  double scale = 1;
+  bool fitted = false;
+  std::array<double, 3> size{};  // the placed object's extent: across gravity (2), along it, m
+  std::array<double, 3> pos{};   // the object body's position
+  std::array<double, 4> quat{};  // and rotation (w x y z)
+};
+
+// Writes the scene into `dir` (created). `hand` names the template in the header (e.g.
+// "robotiq"). `default_fit` is used when the template has no graspcd_fit. Throws
+// io::InputError naming the mesh file for a bad mesh, naming the template (and its line) for a
+// template that breaks the contract above; std::invalid_argument for a bad `up`.
+ObjectScene write_object_scene(const ObjectPlacement& placement, const std::string& template_path,
+                               const std::string& hand, const std::string& dir,
+                               const std::optional<std::array<double, 2>>& default_fit = {});
+
+}  // namespace graspcd::bridge

@@ -1,0 +1,171 @@
+#include "graspcd/grasp/start_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <vector>
+
+#include "graspcd/core/containment.h"
+#include "graspcd/core/obb_tree.h"
+#include "graspcd/core/penetration.h"
+#include "graspcd/core/warnings.h"
+#include "graspcd/mujoco/collision_pose.h"
+#include "graspcd/mujoco/primitives.h"
+#include "graspcd/mujoco/registry.h"
+
+namespace graspcd::bridge {
+
+namespace {
+
+// "geom 'NAME'", or for an unnamed geom "geom N (TYPE of body 'BODY')".
+std::string geom_name(const mjModel* m, int g) {
+  const char* name = mj_id2name(m, mjOBJ_GEOM, g);
+  if (name != nullptr && *name != '\0') return "geom '" + std::string(name) + "'";
+  const char* body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]);
+  std::string type = geom_type_name(m->geom_type[g]);
+  if (m->geom_type[g] == mjGEOM_MESH) {
+    const char* mesh = mj_id2name(m, mjOBJ_MESH, m->geom_dataid[g]);
+    if (mesh != nullptr) type += " '" + std::string(mesh) + "'";
+  }
+  return "geom " + std::to_string(g) + " (" + type + " of body '" +
+         (body != nullptr ? body : "world") + "')";
+}
+
+std::string millimetres(double metres) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f mm", metres * 1e3);
+  return text;
+}
+
+// A geom's surface in the world: its triangles, their tree, whether it bounds a solid, and the
+// points that probe the other geom's solid: its vertices and points along its edges at most
+// kStartPenetration apart (an edge can cross a solid with both its ends outside).
+struct WorldSurface {
+  ObbTree tree;
+  Closedness closedness;
+  std::vector<Vec3> probes;
+};
+
+std::optional<WorldSurface> world_surface(const mjModel* m, const mjData* d, int g) {
+  std::vector<Triangle> local;
+  const int type = m->geom_type[g];
+  if (type == mjGEOM_MESH) {
+    local = Registry::mesh_triangles(m, m->geom_dataid[g]);
+  } else if (is_primitive(type)) {
+    const TriangleMesh mesh = tessellate_primitive(type, m->geom_size + 3 * g);
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) local.push_back(mesh.triangle(f));
+  }
+  if (local.empty()) return std::nullopt;
+  const Pose pose{from_row_major(d->geom_xmat + 9 * g), geom_position(d, g)};
+  std::vector<Triangle> world;
+  world.reserve(local.size());
+  WorldSurface out;
+  out.probes.reserve(3 * local.size());
+  for (const Triangle& t : local) {
+    world.push_back(apply_pose(pose, t));
+    const Triangle& w = world.back();
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& a = w.v[static_cast<std::size_t>(k)];
+      const Vec3& b = w.v[static_cast<std::size_t>((k + 1) % 3)];
+      out.probes.push_back(a);
+      const int n = static_cast<int>(std::ceil((b - a).norm() / kStartPenetration));
+      for (int i = 1; i < n; ++i) out.probes.push_back(a + (b - a) * (static_cast<double>(i) / n));
+    }
+  }
+  // MuJoCo gives each face fresh vertices, and each edge is walked from both faces: one copy of
+  // each point is enough to test.
+  std::sort(out.probes.begin(), out.probes.end(), [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  out.probes.erase(std::unique(out.probes.begin(), out.probes.end()), out.probes.end());
+  out.tree = ObbTree::build(std::move(world));
+  out.closedness = closedness(out.tree);
+  return out;
+}
+
+// Once per geom and check (`warned` by geom id).
+void warn_open(const mjModel* m, int g, std::vector<char>& warned) {
+  if (warned[static_cast<std::size_t>(g)]) return;
+  warned[static_cast<std::size_t>(g)] = 1;
+  warnings().add("start_check_open",
+                 "start check: " + geom_name(m, g) +
+                     " is not a closed mesh: what lies inside it is not checked");
+}
+
+bool may_collide(const mjModel* m, int a, int b) {
+  return (m->geom_contype[a] & m->geom_conaffinity[b]) != 0 ||
+         (m->geom_contype[b] & m->geom_conaffinity[a]) != 0;
+}
+
+}  // namespace
+
+std::string check_start_state(const mjModel* m, const mjData* d, int object_body) {
+  const int root = m->body_rootid[object_body];
+  const auto in_object = [&](int g) { return m->body_rootid[m->geom_bodyid[g]] == root; };
+  std::vector<char> warned(static_cast<std::size_t>(m->ngeom), 0);
+  for (int o = 0; o < m->ngeom; ++o) {
+    if (!in_object(o) || (m->geom_contype[o] == 0 && m->geom_conaffinity[o] == 0)) continue;
+    std::optional<WorldSurface> object;  // built at the first geom near it
+    for (int g = 0; g < m->ngeom; ++g) {
+      if (in_object(g) || !may_collide(m, o, g)) continue;
+      const int type = m->geom_type[g];
+      if (type == mjGEOM_HFIELD) continue;
+      if (type != mjGEOM_PLANE) {
+        const double gap = (geom_position(d, o) - geom_position(d, g)).norm() - m->geom_rbound[o] -
+                           m->geom_rbound[g];
+        if (gap > kStartPenetration) continue;
+      }
+      if (!object) {
+        object = world_surface(m, d, o);
+        if (!object) return "";  // a plane or height field as the object: nothing to check
+      }
+      const std::string what = geom_name(m, o) + " of the object";
+      if (type == mjGEOM_PLANE) {
+        // The plane's solid is the half-space below it (its z axis points out).
+        const Mat3 R = from_row_major(d->geom_xmat + 9 * g);
+        const Vec3 normal = R.col(2);
+        const Vec3 at = geom_position(d, g);
+        double depth = 0;
+        for (const Vec3& v : object->probes) depth = std::max(depth, -normal.dot(v - at));
+        if (depth > kStartPenetration) {
+          return what + " lies " + millimetres(depth) + " below the plane " + geom_name(m, g) +
+                 " (at most " + millimetres(kStartPenetration) +
+                 " allowed): put its lowest point on the support";
+        }
+        continue;
+      }
+      const std::optional<WorldSurface> other = world_surface(m, d, g);
+      if (!other) continue;
+      const bool object_closed = object->closedness.closed();
+      const bool other_closed = other->closedness.closed();
+      if (object_closed && other_closed) {
+        const MeshContainment c = mesh_containment(object->tree, object->closedness, Pose{},
+                                                   other->tree, other->closedness);
+        if (c.a_inside_b) return what + " lies wholly inside " + geom_name(m, g);
+        if (c.b_inside_a) return geom_name(m, g) + " lies wholly inside the object (" + what + ")";
+      }
+      if (other_closed) {
+        const VertexPenetration p = deepest_point_inside(other->tree, object->probes);
+        if (p.depth > kStartPenetration) {
+          return what + " penetrates " + geom_name(m, g) + " by " + millimetres(p.depth) +
+                 " (at most " + millimetres(kStartPenetration) + " allowed)";
+        }
+      } else {
+        warn_open(m, g, warned);
+      }
+      if (object_closed) {
+        const VertexPenetration p = deepest_point_inside(object->tree, other->probes);
+        if (p.depth > kStartPenetration) {
+          return geom_name(m, g) + " penetrates the object (" + what + ") by " +
+                 millimetres(p.depth) + " (at most " + millimetres(kStartPenetration) + " allowed)";
+        }
+      } else {
+        warn_open(m, o, warned);
+      }
+    }
+  }
+  return "";
+}
+
+}  // namespace graspcd::bridge

@@ -1,0 +1,95 @@
+// grasp/start_check.h on small scenes: a cube object (closed OBJ, 2 cm) resting on a floor, sunk
+// into it, inside a box "finger", wholly inside one, and a finger wholly inside a large object.
+#include "graspcd/grasp/start_check.h"
+
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <string>
+
+#include "graspcd/core/warnings.h"
+#include "support/temp_dir.h"
+
+namespace graspcd::bridge {
+namespace {
+
+// A closed cube of half-extent h (OBJ, outward faces), its centre at the origin.
+std::string cube_obj(double h) {
+  std::string out;
+  for (int k = 0; k < 8; ++k) {
+    out += "v " + std::to_string(k & 1 ? h : -h) + ' ' + std::to_string(k & 2 ? h : -h) + ' ' +
+           std::to_string(k & 4 ? h : -h) + '\n';
+  }
+  return out +
+         "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\n"
+         "f 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n";
+}
+
+class StartCheckTest : public testing::TempDirTest {
+ protected:
+  // The check on a scene: the object (a cube of half-extent `h` at `object_pos`) over a floor,
+  // and a box "finger" of half-extents `finger_half` at `finger_pos`.
+  std::string check(double h, const std::string& object_pos, const std::string& finger_pos,
+                    const std::string& finger_half = "0.005 0.005 0.02") {
+    write("cube.obj", cube_obj(h));
+    const std::string scene =
+        write("s.xml",
+              "<mujoco><compiler meshdir=\".\"/><asset><mesh name=\"cube\" file=\"cube.obj\"/>"
+              "</asset><worldbody><geom name=\"floor\" type=\"plane\" size=\"1 1 0.1\"/>"
+              "<body name=\"finger\" pos=\"" +
+                  finger_pos + "\"><geom name=\"finger\" type=\"box\" size=\"" + finger_half +
+                  "\"/></body><body name=\"object\" pos=\"" + object_pos +
+                  "\"><freejoint/><geom name=\"cube\" type=\"mesh\" mesh=\"cube\"/></body>"
+                  "</worldbody></mujoco>");
+    char error[1000] = "";
+    mjModel* m = mj_loadXML(scene.c_str(), nullptr, error, sizeof error);
+    EXPECT_NE(m, nullptr) << error;
+    if (m == nullptr) return "no model";
+    mjData* d = mj_makeData(m);
+    mj_forward(m, d);
+    const std::string problem = check_start_state(m, d, mj_name2id(m, mjOBJ_BODY, "object"));
+    mj_deleteData(d);
+    mj_deleteModel(m);
+    return problem;
+  }
+};
+
+TEST_F(StartCheckTest, AnObjectRestingOnTheFloorClearOfTheFingerPasses) {
+  EXPECT_EQ(check(0.01, "0 0 0.0104", "0.1 0 0.05"), "");
+  // Touching the finger's face (x = 0.095) and 0.4 mm into the floor: within 0.5 mm.
+  EXPECT_EQ(check(0.01, "0.085 0 0.0096", "0.1 0 0.05"), "");
+}
+
+TEST_F(StartCheckTest, AnObjectSunkIntoTheFloorIsRefusedWithItsDepth) {
+  // Its centre 1 cm below the floor's plane: the lowest point 2 cm deep (the issue's mug: 3.6 cm).
+  const std::string problem = check(0.01, "0 0 -0.01", "0.1 0 0.05");
+  EXPECT_EQ(problem,
+            "geom 'cube' of the object lies 20.0 mm below the plane geom 'floor' (at most 0.5 mm "
+            "allowed): put its lowest point on the support");
+  EXPECT_NE(check(0.01, "0 0 0.0094", "0.1 0 0.05"), "");  // 0.6 mm
+}
+
+TEST_F(StartCheckTest, AnObjectInsideAFingerIsRefusedWithTheDeepestPoint) {
+  // A wide finger (1 x 3 x 4 cm): its face at x = 0.095, the cube's corners at x = 0.097 inside
+  // it, 2 mm deep.
+  EXPECT_EQ(check(0.01, "0.087 0 0.0104", "0.1 0 0.0104", "0.005 0.015 0.02"),
+            "geom 'cube' of the object penetrates geom 'finger' by 2.0 mm (at most 0.5 mm "
+            "allowed)");
+  // A thin finger (1 x 1 x 4 cm) across the cube's edge, 2 mm deep, with no vertex of either
+  // inside the other: found along the edges.
+  EXPECT_EQ(check(0.01, "0.087 0 0.0104", "0.1 0 0.0104"),
+            "geom 'cube' of the object penetrates geom 'finger' by 2.0 mm (at most 0.5 mm "
+            "allowed)");
+}
+
+TEST_F(StartCheckTest, ObjectsWhollyInsideEitherWayAreRefused) {
+  // A 2 mm cube in a 1 x 1 x 4 cm finger (its vertices 4 mm inside, the surfaces apart).
+  EXPECT_EQ(check(0.001, "0.1 0 0.05", "0.1 0 0.05"),
+            "geom 'cube' of the object lies wholly inside geom 'finger'");
+  // A 5 mm finger in a 10 cm cube.
+  EXPECT_EQ(check(0.05, "0 0 0.0504", "0 0 0.05", "0.0025 0.0025 0.0025"),
+            "geom 'finger' lies wholly inside the object (geom 'cube' of the object)");
+}
+
+}  // namespace
+}  // namespace graspcd::bridge
