@@ -3,6 +3,7 @@
 // prints, per grasp step, contacts and detection time, then a summary.
 // graspcd grasp --object FILE [--scale S] [--write-scene DIR]: the same with a user's OBJ or STL
 // in the template scene (example 1's arm and hand, the cup swapped for FILE).
+// graspcd grasp SCENE --decomposed DIR: the object collides as its convex pieces (natively).
 #include <stdlib.h>
 
 #include <algorithm>
@@ -16,14 +17,17 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "command.h"
 #include "graspcd/core/geometry.h"
 #include "graspcd/core/warnings.h"
+#include "graspcd/grasp/decomposed_scene.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/mujoco_messages.h"
+#include "graspcd/mujoco/registry.h"
 #include "graspcd/version/envelope.h"
 #include "method.h"
 
@@ -45,6 +49,7 @@ struct GraspCliOptions {
   std::string object;       // --object FILE: a user's mesh in the template scene
   double scale = 0;         // --scale S (> 0); 0: fit the object to the cup's size
   std::string write_scene;  // --write-scene DIR: keep the generated scene there
+  std::string decomposed;   // --decomposed DIR: the object's collision by its convex pieces
 };
 
 namespace fs = std::filesystem;
@@ -187,6 +192,21 @@ class TempFolder {
   fs::path path_;
 };
 
+// A file removed when this goes out of scope.
+class RemovedFile {
+ public:
+  explicit RemovedFile(std::string path) : path_(std::move(path)) {}
+  ~RemovedFile() {
+    std::error_code ignored;
+    fs::remove(path_, ignored);
+  }
+  RemovedFile(const RemovedFile&) = delete;
+  RemovedFile& operator=(const RemovedFile&) = delete;
+
+ private:
+  std::string path_;
+};
+
 std::string segments_text(const bridge::GraspResult& g, const bridge::GraspStepRecord& r) {
   std::string out;
   for (std::size_t s = 0; s < r.touching.size(); ++s) {
@@ -197,7 +217,8 @@ std::string segments_text(const bridge::GraspResult& g, const bridge::GraspStepR
   return out.empty() ? "-" : out;
 }
 
-void print_text(const bridge::GraspResult& r, const std::optional<ObjectScene>& object) {
+void print_text(const bridge::GraspResult& r, const std::optional<ObjectScene>& object,
+                const std::optional<bridge::DecomposedScene>& decomposed) {
   std::ostringstream out;
   out << "step contacts detection_ns box_tests triangle_tests object_z segments\n";
   out << std::fixed;
@@ -230,10 +251,15 @@ void print_text(const bridge::GraspResult& r, const std::optional<ObjectScene>& 
         << object->scale << (object->fitted ? " (fitted)" : " (given)")
         << " in the template scene\n";
   }
+  if (decomposed) {
+    out << "# decomposed: " << decomposed->replaced_geoms << " geom(s) of " << decomposed->source
+        << " collide as " << decomposed->pieces << " convex pieces each (native)\n";
+  }
   std::cout << out.str();
 }
 
-void print_json(const bridge::GraspResult& r, const std::optional<ObjectScene>& object) {
+void print_json(const bridge::GraspResult& r, const std::optional<ObjectScene>& object,
+                const std::optional<bridge::DecomposedScene>& decomposed, const std::string& dir) {
   nlohmann::json steps = nlohmann::json::array();
   for (const bridge::GraspStepRecord& s : r.steps) {
     nlohmann::json segments = nlohmann::json::array();
@@ -292,6 +318,12 @@ void print_json(const bridge::GraspResult& r, const std::optional<ObjectScene>& 
   if (object) {
     doc["object"] = {{"file", object->file}, {"scale", object->scale}, {"fitted", object->fitted}};
   }
+  if (decomposed) {
+    doc["decomposed"] = {{"dir", dir},
+                         {"source", decomposed->source},
+                         {"pieces", decomposed->pieces},
+                         {"geoms", decomposed->replaced_geoms}};
+  }
   add_envelope(doc);
   std::cout << doc.dump(2) << '\n';
 }
@@ -311,9 +343,29 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app) {
   if (options.object.empty() && (app.count("--scale") > 0 || !options.write_scene.empty())) {
     throw UsageError("grasp: --scale and --write-scene go with --object");
   }
+  if (!options.decomposed.empty() && !options.object.empty()) {
+    throw UsageError(
+        "grasp: --decomposed goes with SCENE (write the --object scene with "
+        "--write-scene first)");
+  }
   std::optional<TempFolder> temp;
   std::optional<ObjectScene> object;
   std::string scene = options.scene;
+  // --decomposed: the scene with the object's pieces, beside SCENE (removed on return), run
+  // natively; the pair config (the drive section of a real hand) stays SCENE's.
+  std::optional<bridge::DecomposedScene> decomposed;
+  std::optional<RemovedFile> remove_decomposed;
+  if (!options.decomposed.empty()) {
+    try {
+      decomposed = bridge::write_decomposed_scene(options.scene, options.decomposed);
+    } catch (const bridge::GraspInputError& e) {
+      throw io::InputError(e.file(), e.line(), e.message());
+    }
+    remove_decomposed.emplace(decomposed->scene);
+    scene = decomposed->scene;
+    grasp.native = true;
+    if (grasp.config_path.empty()) grasp.config_path = bridge::pair_config_path(options.scene);
+  }
   if (!options.object.empty()) {
     if (options.write_scene.empty()) temp.emplace();
     object = write_object_scene(options, temp ? temp->path() : fs::path(options.write_scene));
@@ -321,6 +373,7 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app) {
   }
   // Errors name the user's file, never the temporary scene (removed when this returns).
   const auto named = [&](const std::string& file) {
+    if (decomposed && file == decomposed->scene) return options.scene;
     return object && file == object->scene ? options.object : file;
   };
   bridge::GraspResult result;
@@ -330,16 +383,20 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app) {
     if (object && e.file() == object->scene) {
       throw io::InputError(options.object, 0, "in the template scene: " + e.message());
     }
+    if (decomposed && e.file() == decomposed->scene) {
+      throw io::InputError(options.scene, 0, "with " + options.decomposed + ": " + e.message());
+    }
     throw io::InputError(e.file(), e.line(), e.message());
   } catch (const bridge::MujocoError& e) {
     throw io::InputError(named(scene), 0, e.what());
   }
   if (object && !temp) result.scene = object->scene;
   if (object && temp) result.scene = options.object;
+  if (decomposed) result.scene = options.scene;
   if (options.json) {
-    print_json(result, object);
+    print_json(result, object, decomposed, options.decomposed);
   } else {
-    print_text(result, object);
+    print_text(result, object, decomposed);
   }
 }
 
@@ -363,6 +420,9 @@ Command add_grasp_command(CLI::App& parent) {
   add_method_options(*app, options->method, MethodDefaults::kSceneConfig);
   app->add_flag("--native", options->native,
                 "MuJoCo's own collision (convex hulls) instead of graspcd's callback");
+  app->add_option("--decomposed", options->decomposed,
+                  "A folder written by graspcd decompose: the object collides as its convex "
+                  "pieces, under MuJoCo's native collision (implies --native)");
   app->add_flag("--json", options->json, "Print one JSON document instead of text");
   app->add_option("--config", options->config,
                   "Pair config (JSON); default SCENE.pairs.json beside the scene");
@@ -419,8 +479,19 @@ Command add_grasp_command(CLI::App& parent) {
       "file, scale, fitted). --write-scene DIR keeps the scene (DIR/STEM.xml and its "
       ".pairs.json) for graspcd validate or study; a bad FILE is one line 'FILE: message', "
       "exit code 2.\n"
+      "--decomposed DIR: the route MuJoCo's documentation recommends for a non-convex object. "
+      "DIR is a folder written by 'graspcd decompose MESH --out DIR'; every geom of SCENE whose "
+      "mesh asset reads a file named as MESH keeps its mass but no longer collides, and one "
+      "geom per convex piece (mass 0, the geom's other attributes, the asset's scale) collides "
+      "in its place under MuJoCo's native collision. The scene is written beside SCENE under a "
+      "hidden name and removed at the end; SCENE.pairs.json still drives the hand. A last line "
+      "'# decomposed: G geom(s) of MESH collide as N convex pieces each (native)' (JSON: "
+      "'decomposed': dir, source, pieces, geoms). A DIR without decomposition.json, or a SCENE "
+      "without a mesh of MESH, is one line naming it, exit code 2.\n"
       "Examples:\n"
       "  graspcd grasp mjcf/example1.xml --method perceptron\n"
+      "  graspcd decompose mjcf/meshes/cup.obj --out /tmp/cup8 --pieces 8\n"
+      "  graspcd grasp mjcf/example1.xml --decomposed /tmp/cup8\n"
       "  graspcd grasp --object my_mug.obj --write-scene /tmp/my_mug"));
   return Command{app, [options, app] { run_grasp_command(*options, *app); }};
 }
