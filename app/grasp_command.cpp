@@ -28,6 +28,7 @@
 #include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/registry.h"
+#include "graspcd/study/contact_judge.h"
 #include "graspcd/version/envelope.h"
 #include "method.h"
 
@@ -50,6 +51,7 @@ struct GraspCliOptions {
   double scale = 0;         // --scale S (> 0); 0: fit the object to the cup's size
   std::string write_scene;  // --write-scene DIR: keep the generated scene there
   std::string decomposed;   // --decomposed DIR: the object's collision by its convex pieces
+  bool judge = false;       // --judge: every closing step's contacts against CGAL (the race)
 };
 
 namespace fs = std::filesystem;
@@ -217,8 +219,22 @@ std::string segments_text(const bridge::GraspResult& g, const bridge::GraspStepR
   return out.empty() ? "-" : out;
 }
 
+// --judge: per closing grasp step, phantom and missed contacts (contact_judge.h).
+nlohmann::json judge_json(const study::ContactJudgeSummary& j) {
+  const double steps = j.steps > 0 ? j.steps : 1;
+  return {{"steps", j.steps},
+          {"contacts", j.contacts},
+          {"phantom", j.phantom},
+          {"missed", j.missed},
+          {"truth_hits", j.truth_hits},
+          {"contact_error_per_step", static_cast<double>(j.phantom + j.missed) / steps},
+          {"cgal_first_contact", j.cgal_first_contact},
+          {"phantom_distance", study::kPhantomDistance}};
+}
+
 void print_text(const bridge::GraspResult& r, const std::optional<ObjectScene>& object,
-                const std::optional<bridge::DecomposedScene>& decomposed) {
+                const std::optional<bridge::DecomposedScene>& decomposed,
+                const std::optional<study::ContactJudgeSummary>& judged) {
   std::ostringstream out;
   out << "step contacts detection_ns box_tests triangle_tests object_z segments\n";
   out << std::fixed;
@@ -255,11 +271,17 @@ void print_text(const bridge::GraspResult& r, const std::optional<ObjectScene>& 
     out << "# decomposed: " << decomposed->replaced_geoms << " geom(s) of " << decomposed->source
         << " collide as " << decomposed->pieces << " convex pieces each (native)\n";
   }
+  if (judged) {
+    out << "# judged by CGAL over " << judged->steps << " closing steps: " << judged->contacts
+        << " hand-object contacts, " << judged->phantom << " phantom, " << judged->missed
+        << " missed\n";
+  }
   std::cout << out.str();
 }
 
 void print_json(const bridge::GraspResult& r, const std::optional<ObjectScene>& object,
-                const std::optional<bridge::DecomposedScene>& decomposed, const std::string& dir) {
+                const std::optional<bridge::DecomposedScene>& decomposed, const std::string& dir,
+                const std::optional<study::ContactJudgeSummary>& judged) {
   nlohmann::json steps = nlohmann::json::array();
   for (const bridge::GraspStepRecord& s : r.steps) {
     nlohmann::json segments = nlohmann::json::array();
@@ -324,6 +346,7 @@ void print_json(const bridge::GraspResult& r, const std::optional<ObjectScene>& 
                          {"pieces", decomposed->pieces},
                          {"geoms", decomposed->replaced_geoms}};
   }
+  if (judged) doc["judge"] = judge_json(*judged);
   add_envelope(doc);
   std::cout << doc.dump(2) << '\n';
 }
@@ -376,6 +399,13 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app) {
     if (decomposed && file == decomposed->scene) return options.scene;
     return object && file == object->scene ? options.object : file;
   };
+  std::unique_ptr<study::ContactJudge> judge;
+  if (options.judge) {
+    grasp.on_grasp_step = [&judge](const mjModel* m, const mjData* d, int step) {
+      if (!judge) judge = std::make_unique<study::ContactJudge>(m);
+      judge->judge_step(m, d, step);
+    };
+  }
   bridge::GraspResult result;
   try {
     result = bridge::run_grasp(scene, grasp);
@@ -393,10 +423,12 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app) {
   if (object && !temp) result.scene = object->scene;
   if (object && temp) result.scene = options.object;
   if (decomposed) result.scene = options.scene;
+  std::optional<study::ContactJudgeSummary> judged;
+  if (judge) judged = judge->summary();
   if (options.json) {
-    print_json(result, object, decomposed, options.decomposed);
+    print_json(result, object, decomposed, options.decomposed, judged);
   } else {
-    print_text(result, object, decomposed);
+    print_text(result, object, decomposed, judged);
   }
 }
 
@@ -423,6 +455,8 @@ Command add_grasp_command(CLI::App& parent) {
   app->add_option("--decomposed", options->decomposed,
                   "A folder written by graspcd decompose: the object collides as its convex "
                   "pieces, under MuJoCo's native collision (implies --native)");
+  app->add_flag("--judge", options->judge,
+                "Judge every closing step's hand-object contacts against the true meshes (CGAL)");
   app->add_flag("--json", options->json, "Print one JSON document instead of text");
   app->add_option("--config", options->config,
                   "Pair config (JSON); default SCENE.pairs.json beside the scene");
@@ -488,6 +522,15 @@ Command add_grasp_command(CLI::App& parent) {
       "'# decomposed: G geom(s) of MESH collide as N convex pieces each (native)' (JSON: "
       "'decomposed': dir, source, pieces, geoms). A DIR without decomposition.json, or a SCENE "
       "without a mesh of MESH, is one line naming it, exit code 2.\n"
+      "--judge: the race's contact fidelity (issue 20). After each closing grasp step, every "
+      "contact between the object (body 'object') and a hand mesh geom is judged against the "
+      "true meshes by CGAL: a phantom when its point lies more than 1 mm from the hand geom's "
+      "surface or the object's true surface; and every hand mesh geom whose true mesh meets the "
+      "object's (CGAL) without any contact with the object at that step is a missed contact. "
+      "The judging time is outside the physics steps' wall time. A last line '# judged by CGAL "
+      "over S closing steps: C hand-object contacts, P phantom, M missed' (JSON: 'judge': "
+      "steps, contacts, phantom, missed, truth_hits, contact_error_per_step, "
+      "cgal_first_contact (hand geom -> step), phantom_distance).\n"
       "Examples:\n"
       "  graspcd grasp mjcf/example1.xml --method perceptron\n"
       "  graspcd decompose mjcf/meshes/cup.obj --out /tmp/cup8 --pieces 8\n"

@@ -167,7 +167,7 @@ TEST_F(DecomposeCommand, DecomposedGraspRunsOnThePieces) {
   const fs::path json = dir_ / "grasp.json";
   const Outcome r =
       run(std::string("{ '") + GRASPCD_EXE + "' grasp '" + scene.string() + "' --decomposed '" +
-          (dir_ / "cup8").string() + "' --json > '" + json.string() + "'; }");
+          (dir_ / "cup8").string() + "' --judge --json > '" + json.string() + "'; }");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json g = load(json);
   expect_envelope(g, -1);
@@ -179,6 +179,23 @@ TEST_F(DecomposeCommand, DecomposedGraspRunsOnThePieces) {
   int touched = 0;
   for (const auto& [segment, step] : g.at("first_contact").items()) touched += !step.is_null();
   EXPECT_GT(touched, 0);
+  // The judge (--judge) saw every closing step, and its counts hold together: a missed contact
+  // is a step where CGAL says a hand geom meets the cup, a phantom is one of the judged
+  // contacts, and CGAL's first contacts name the hand's mesh geoms (finger segments).
+  const nlohmann::json& j = g.at("judge");
+  EXPECT_EQ(j.at("steps").get<std::size_t>(), g.at("steps").size());
+  EXPECT_LE(j.at("missed").get<int>(), j.at("truth_hits").get<int>());
+  EXPECT_LE(j.at("phantom").get<int>(), j.at("contacts").get<int>());
+  EXPECT_GT(j.at("contacts").get<int>(), 0);
+  EXPECT_NEAR(
+      j.at("contact_error_per_step").get<double>(),
+      (j.at("phantom").get<double>() + j.at("missed").get<double>()) / j.at("steps").get<double>(),
+      1e-12);
+  EXPECT_FALSE(j.at("cgal_first_contact").empty());
+  for (const auto& [geom, step] : j.at("cgal_first_contact").items()) {
+    EXPECT_EQ(geom.rfind("finger", 0), 0u) << geom;
+    EXPECT_GE(step.get<int>(), 1);
+  }
   for (const auto& entry : fs::directory_iterator(dir_ / "scene")) {
     EXPECT_EQ(entry.path().filename().string().rfind(".cube_cup.decomposed-", 0), std::string::npos)
         << "left behind: " << entry.path();
