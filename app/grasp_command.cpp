@@ -229,6 +229,7 @@ nlohmann::json judge_json(const study::ContactJudgeSummary& j) {
           {"truth_hits", j.truth_hits},
           {"contact_error_per_step", static_cast<double>(j.phantom + j.missed) / steps},
           {"cgal_first_contact", j.cgal_first_contact},
+          {"cgal_first_contact_body", j.cgal_first_contact_body},
           {"phantom_distance", study::kPhantomDistance}};
 }
 
@@ -523,14 +524,16 @@ Command add_grasp_command(CLI::App& parent) {
       "'decomposed': dir, source, pieces, geoms). A DIR without decomposition.json, or a SCENE "
       "without a mesh of MESH, is one line naming it, exit code 2.\n"
       "--judge: the race's contact fidelity (issue 20). After each closing grasp step, every "
-      "contact between the object (body 'object') and a hand mesh geom is judged against the "
+      "contact between the object (body 'object') and a hand geom is judged against the "
       "true meshes by CGAL: a phantom when its point lies more than 1 mm from the hand geom's "
-      "surface or the object's true surface; and every hand mesh geom whose true mesh meets the "
+      "surface or the object's true surface; and every hand geom whose true surface meets the "
       "object's (CGAL) without any contact with the object at that step is a missed contact. "
-      "The judging time is outside the physics steps' wall time. A last line '# judged by CGAL "
+      "Primitive hand geoms are judged on graspcd's tessellation (a box exactly). The judging time "
+      "is outside the physics steps' wall time. A last line '# judged by CGAL "
       "over S closing steps: C hand-object contacts, P phantom, M missed' (JSON: 'judge': "
       "steps, contacts, phantom, missed, truth_hits, contact_error_per_step, "
-      "cgal_first_contact (hand geom -> step), phantom_distance).\n"
+      "cgal_first_contact (hand geom -> step), cgal_first_contact_body (hand body -> step), "
+      "phantom_distance).\n"
       "Examples:\n"
       "  graspcd grasp mjcf/example1.xml --method perceptron\n"
       "  graspcd decompose mjcf/meshes/cup.obj --out /tmp/cup8 --pieces 8\n"

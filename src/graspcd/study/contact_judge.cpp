@@ -8,13 +8,18 @@
 #include "graspcd/exact/exact.h"
 #include "graspcd/exact/surface_distance.h"
 #include "graspcd/mujoco/collision_pose.h"
+#include "graspcd/mujoco/primitives.h"
 
 namespace graspcd::study {
 
 namespace {
 
-// A mesh geom's triangles in its geom frame (MuJoCo's float vertices, as the bridge's trees).
+// A geom's triangles in its geom frame: a mesh's from MuJoCo's float vertices (as the bridge's
+// trees), a primitive's tessellation (bridge/primitives.h: a box exactly, curved ones
+// circumscribed within tessellation_tolerance).
 TriangleMesh geom_mesh(const mjModel* m, int g) {
+  if (m->geom_type[g] != mjGEOM_MESH)
+    return bridge::tessellate_primitive(m->geom_type[g], m->geom_size + 3 * g);
   const int mesh = m->geom_dataid[g];
   TriangleMesh out;
   const int vadr = m->mesh_vertadr[mesh];
@@ -49,6 +54,7 @@ Vec3 in_geom_frame(const mjData* d, int g, const mjtNum* p) {
 struct JudgedGeom {
   int id = -1;
   std::string name;
+  std::string body;
   TriangleMesh mesh;
   std::vector<Triangle> triangles;
   std::unique_ptr<exact::SurfaceDistance> surface;
@@ -58,6 +64,8 @@ JudgedGeom judged(const mjModel* m, int g) {
   JudgedGeom j;
   j.id = g;
   j.name = geom_name(m, g);
+  const char* body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]);
+  j.body = body != nullptr ? body : "body" + std::to_string(m->geom_bodyid[g]);
   j.mesh = geom_mesh(m, g);
   for (std::size_t f = 0; f < j.mesh.faces.size(); ++f) j.triangles.push_back(j.mesh.triangle(f));
   j.surface = std::make_unique<exact::SurfaceDistance>(j.mesh);
@@ -86,9 +94,12 @@ ContactJudge::ContactJudge(const mjModel* m, const std::string& object_body)
     bool inside = false;
     for (int b = body; b > 0; b = m->body_parentid[b]) inside = inside || b == s.object;
     s.in_object[static_cast<std::size_t>(g)] = inside;
-    if (m->geom_type[g] != mjGEOM_MESH) continue;
     if (inside) {
-      if (geom_name(m, g).find("__piece_") == std::string::npos) s.truth.push_back(judged(m, g));
+      if (m->geom_type[g] == mjGEOM_MESH && geom_name(m, g).find("__piece_") == std::string::npos) {
+        s.truth.push_back(judged(m, g));
+      }
+    } else if (m->geom_type[g] != mjGEOM_MESH && !bridge::is_primitive(m->geom_type[g])) {
+      continue;  // a plane or a height field
     } else if (body != 0 && (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0)) {
       s.hand_index[static_cast<std::size_t>(g)] = static_cast<int>(s.hand.size());
       s.hand.push_back(judged(m, g));
@@ -135,6 +146,7 @@ void ContactJudge::judge_step(const mjModel* /*m*/, const mjData* d, int step) {
     if (!meets) continue;
     ++s.summary.truth_hits;
     s.summary.cgal_first_contact.emplace(s.hand[h].name, step);
+    s.summary.cgal_first_contact_body.emplace(s.hand[h].body, step);
     if (!touched[h]) ++s.summary.missed;
   }
 }

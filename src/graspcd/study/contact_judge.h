@@ -23,6 +23,7 @@ struct ContactJudgeSummary {
   // Per hand geom (by name), the first closing grasp step at which CGAL says its true mesh meets
   // the object's (absent: never).
   std::map<std::string, int> cgal_first_contact;
+  std::map<std::string, int> cgal_first_contact_body;  // the same per hand body (by name)
 };
 
 // A contact point farther than this from either true surface is a phantom (metres).
@@ -33,9 +34,11 @@ constexpr double kPhantomDistance = 1e-3;
 //  - The object: the body named `object_body` (and its subtree). Its true surfaces are its mesh
 //    geoms whose names do not contain "__piece_" (grasp --decomposed keeps the original geom,
 //    without collision, beside its pieces).
-//  - The hand: every mesh geom that can collide (contype or conaffinity non-zero) outside the
-//    object's subtree and the world body. Primitive geoms (a box palm) are not judged.
-//  - At each step: every contact between an object geom and a hand mesh geom is judged by the
+//  - The hand: every mesh or primitive geom that can collide (contype or conaffinity non-zero)
+//    outside the object's subtree and the world body; a primitive's true surface is
+//    bridge::tessellate_primitive's (a box exactly, curved ones circumscribed within
+//    bridge::tessellation_tolerance, far below the 1 mm of a phantom).
+//  - At each step: every contact between an object geom and a hand geom is judged by the
 //    distance of its point (MuJoCo's contact pos) to the hand geom's true surface and to the
 //    nearest true object surface (exact::SurfaceDistance, CGAL's AABB tree, in each geom's frame
 //    from MuJoCo's float vertices); and every (hand geom, true object geom) pair is decided by
