@@ -566,6 +566,7 @@ def contacts_section(contacts):
           " budget costs).")
     return lines
 
+
 def race_section(race, fig_dir, fig_rel):
     """The "The race" section from race.json (study/race/run_race.py, issue 20)."""
     lines = []

@@ -51,6 +51,14 @@ class DecomposeCommand : public CommandTest {
     return load(json);
   }
 
+  // Example 1's hand grasping `cup` (grasp --object writes the scene, DIR/scene/cube_cup.xml).
+  fs::path write_cube_cup_scene(const fs::path& cup) {
+    const Outcome r = graspcd("grasp --object '" + cup.string() + "' --write-scene '" +
+                              (dir_ / "scene").string() + "' --max-steps 1");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return dir_ / "scene/cube_cup.xml";
+  }
+
   // The fragment included by a model whose meshdir is the output folder: it must load, with one
   // mesh and one geom per piece. (MuJoCo 2.2 reads an include's file relative to the including
   // file's folder.)
@@ -157,11 +165,7 @@ TEST_F(DecomposeCommand, BadInputIsOneLineNamingTheFile) {
 TEST_F(DecomposeCommand, DecomposedGraspRunsOnThePieces) {
   const fs::path cup = kModels / "objects/mujoco/cube_cup.obj";
   if (!fs::exists(cup)) GTEST_SKIP() << "real models not found at " << kModels;
-  ASSERT_EQ(graspcd("grasp --object '" + cup.string() + "' --write-scene '" +
-                    (dir_ / "scene").string() + "' --max-steps 1")
-                .exit_code,
-            0);
-  const fs::path scene = dir_ / "scene/cube_cup.xml";
+  const fs::path scene = write_cube_cup_scene(cup);
   const nlohmann::json d = decompose(cup, 8, "cup8");
   ASSERT_TRUE(d.contains("piece_count"));
   const fs::path json = dir_ / "grasp.json";
@@ -208,11 +212,7 @@ TEST_F(DecomposeCommand, DecomposedGraspRunsOnThePieces) {
 TEST_F(DecomposeCommand, DecomposedSceneKeepsMassAndPlace) {
   const fs::path cup = kModels / "objects/mujoco/cube_cup.obj";
   if (!fs::exists(cup)) GTEST_SKIP() << "real models not found at " << kModels;
-  ASSERT_EQ(graspcd("grasp --object '" + cup.string() + "' --write-scene '" +
-                    (dir_ / "scene").string() + "' --max-steps 1")
-                .exit_code,
-            0);
-  const std::string scene = (dir_ / "scene/cube_cup.xml").string();
+  const std::string scene = write_cube_cup_scene(cup).string();
   const nlohmann::json d = decompose(cup, 4, "cup4");
   const bridge::DecomposedScene written =
       bridge::write_decomposed_scene(scene, (dir_ / "cup4").string());
