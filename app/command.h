@@ -35,6 +35,7 @@ Command add_study_command(CLI::App& parent);
 Command add_stress_command(CLI::App& parent);
 Command add_validate_command(CLI::App& parent);
 Command add_trajectory_command(CLI::App& parent);
+Command add_decompose_command(CLI::App& parent);
 
 // CLI11 validators of a numeric option: a finite number > 0 (positive_number) or >= 0
 // (non_negative_number). CLI11's PositiveNumber passes nan and says "Value 0 not in range 0.000000

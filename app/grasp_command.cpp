@@ -3,6 +3,7 @@
 // prints, per grasp step, contacts and detection time, then a summary.
 // graspcd grasp --object FILE [--scale S] [--write-scene DIR]: the same with a user's OBJ or STL
 // in the template scene (example 1's arm and hand, the cup swapped for FILE).
+// graspcd grasp SCENE --decomposed DIR: the object collides as its convex pieces (natively).
 #include <stdlib.h>
 
 #include <algorithm>
@@ -17,16 +18,20 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "command.h"
 #include "graspcd/core/geometry.h"
 #include "graspcd/core/warnings.h"
+#include "graspcd/grasp/decomposed_scene.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/grasp/object_scene.h"
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/mujoco_messages.h"
+#include "graspcd/mujoco/registry.h"
+#include "graspcd/study/contact_judge.h"
 #include "graspcd/version/envelope.h"
 #include "method.h"
 
@@ -54,6 +59,8 @@ struct GraspCliOptions {
   double yaw = 0;
   std::vector<double> pose;  // --pose W X Y Z
   std::string write_scene;   // --write-scene DIR: keep the generated scene there
+  std::string decomposed;    // --decomposed DIR: the object's collision by its convex pieces
+  bool judge = false;        // --judge: every closing step's contacts against CGAL (the race)
 };
 
 namespace fs = std::filesystem;
@@ -107,6 +114,21 @@ class TempFolder {
   fs::path path_;
 };
 
+// A file removed when this goes out of scope.
+class RemovedFile {
+ public:
+  explicit RemovedFile(std::string path) : path_(std::move(path)) {}
+  ~RemovedFile() {
+    std::error_code ignored;
+    fs::remove(path_, ignored);
+  }
+  RemovedFile(const RemovedFile&) = delete;
+  RemovedFile& operator=(const RemovedFile&) = delete;
+
+ private:
+  std::string path_;
+};
+
 std::string segments_text(const bridge::GraspResult& g, const bridge::GraspStepRecord& r) {
   std::string out;
   for (std::size_t s = 0; s < r.touching.size(); ++s) {
@@ -115,6 +137,20 @@ std::string segments_text(const bridge::GraspResult& g, const bridge::GraspStepR
     out += g.segments[s];
   }
   return out.empty() ? "-" : out;
+}
+
+// --judge: per closing grasp step, phantom and missed contacts (contact_judge.h).
+nlohmann::json judge_json(const study::ContactJudgeSummary& j) {
+  const double steps = j.steps > 0 ? j.steps : 1;
+  return {{"steps", j.steps},
+          {"contacts", j.contacts},
+          {"phantom", j.phantom},
+          {"missed", j.missed},
+          {"truth_hits", j.truth_hits},
+          {"contact_error_per_step", static_cast<double>(j.phantom + j.missed) / steps},
+          {"cgal_first_contact", j.cgal_first_contact},
+          {"cgal_first_contact_body", j.cgal_first_contact_body},
+          {"phantom_distance", study::kPhantomDistance}};
 }
 
 // "# object FILE at scale S (given|fitted) ... in the HAND template": the first line of the text.
@@ -127,7 +163,9 @@ std::string object_line(const ObjectRun& o) {
   return out.str();
 }
 
-void print_text(const bridge::GraspResult& r, const std::optional<ObjectRun>& object) {
+void print_text(const bridge::GraspResult& r, const std::optional<ObjectRun>& object,
+                const std::optional<bridge::DecomposedScene>& decomposed,
+                const std::optional<study::ContactJudgeSummary>& judged) {
   std::ostringstream out;
   if (object) out << object_line(*object) << '\n';
   out << "step contacts detection_ns box_tests triangle_tests object_z segments\n";
@@ -158,10 +196,21 @@ void print_text(const bridge::GraspResult& r, const std::optional<ObjectRun>& ob
       << " s simulated, " << std::setprecision(4) << r.step_wall_ms << " ms per physics step; "
       << r.contained_calls << " containment findings; " << r.nonfinite_skips
       << " non-finite skips\n";
+  if (decomposed) {
+    out << "# decomposed: " << decomposed->replaced_geoms << " geom(s) of " << decomposed->source
+        << " collide as " << decomposed->pieces << " convex pieces each (native)\n";
+  }
+  if (judged) {
+    out << "# judged by CGAL over " << judged->steps << " closing steps: " << judged->contacts
+        << " hand-object contacts, " << judged->phantom << " phantom, " << judged->missed
+        << " missed\n";
+  }
   std::cout << out.str();
 }
 
-void print_json(const bridge::GraspResult& r, const std::optional<ObjectRun>& object) {
+void print_json(const bridge::GraspResult& r, const std::optional<ObjectRun>& object,
+                const std::optional<bridge::DecomposedScene>& decomposed, const std::string& dir,
+                const std::optional<study::ContactJudgeSummary>& judged) {
   nlohmann::json steps = nlohmann::json::array();
   for (const bridge::GraspStepRecord& s : r.steps) {
     nlohmann::json segments = nlohmann::json::array();
@@ -229,6 +278,13 @@ void print_json(const bridge::GraspResult& r, const std::optional<ObjectRun>& ob
                      {"size", o.size},       {"pos", o.pos},
                      {"quat", o.quat},       {"scene", object->scene.scene}};
   }
+  if (decomposed) {
+    doc["decomposed"] = {{"dir", dir},
+                         {"source", decomposed->source},
+                         {"pieces", decomposed->pieces},
+                         {"geoms", decomposed->replaced_geoms}};
+  }
+  if (judged) doc["judge"] = judge_json(*judged);
   add_envelope(doc);
   std::cout << doc.dump(2) << '\n';
 }
@@ -256,9 +312,29 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   if (app.count("--pose") > 0 && (app.count("--up") > 0 || app.count("--yaw") > 0)) {
     throw UsageError("grasp: --pose and --up/--yaw exclude each other");
   }
+  if (!options.decomposed.empty() && !options.object.empty()) {
+    throw UsageError(
+        "grasp: --decomposed goes with SCENE (write the --object scene with "
+        "--write-scene first)");
+  }
   std::optional<TempFolder> temp;
   std::optional<ObjectRun> object;
   std::string scene = options.scene;
+  // --decomposed: the scene with the object's pieces, beside SCENE (removed on return), run
+  // natively; the pair config (the drive section of a real hand) stays SCENE's.
+  std::optional<bridge::DecomposedScene> decomposed;
+  std::optional<RemovedFile> remove_decomposed;
+  if (!options.decomposed.empty()) {
+    try {
+      decomposed = bridge::write_decomposed_scene(options.scene, options.decomposed);
+    } catch (const bridge::GraspInputError& e) {
+      throw io::InputError(e.file(), e.line(), e.message());
+    }
+    remove_decomposed.emplace(decomposed->scene);
+    scene = decomposed->scene;
+    grasp.native = true;
+    if (grasp.config_path.empty()) grasp.config_path = bridge::pair_config_path(options.scene);
+  }
   if (!options.object.empty()) {
     const HandTemplate hand = hand_template(options.hand);
     bridge::ObjectPlacement placement;
@@ -284,8 +360,16 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   }
   // Errors name the user's file, never the temporary scene (removed when this returns).
   const auto named = [&](const std::string& file) {
+    if (decomposed && file == decomposed->scene) return options.scene;
     return object && file == object->scene.scene ? options.object : file;
   };
+  std::unique_ptr<study::ContactJudge> judge;
+  if (options.judge) {
+    grasp.on_grasp_step = [&judge](const mjModel* m, const mjData* d, int step) {
+      if (!judge) judge = std::make_unique<study::ContactJudge>(m);
+      judge->judge_step(m, d, step);
+    };
+  }
   bridge::GraspResult result;
   try {
     result = bridge::run_grasp(scene, grasp);
@@ -293,16 +377,22 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
     if (object && e.file() == object->scene.scene) {
       throw io::InputError(options.object, 0, "in the template scene: " + e.message());
     }
+    if (decomposed && e.file() == decomposed->scene) {
+      throw io::InputError(options.scene, 0, "with " + options.decomposed + ": " + e.message());
+    }
     throw io::InputError(e.file(), e.line(), e.message());
   } catch (const bridge::MujocoError& e) {
     throw io::InputError(named(scene), 0, e.what());
   }
   if (object && !temp) result.scene = object->scene.scene;
   if (object && temp) result.scene = options.object;
+  if (decomposed) result.scene = options.scene;
+  std::optional<study::ContactJudgeSummary> judged;
+  if (judge) judged = judge->summary();
   if (options.json) {
-    print_json(result, object);
+    print_json(result, object, decomposed, options.decomposed, judged);
   } else {
-    print_text(result, object);
+    print_text(result, object, decomposed, judged);
   }
   if (options.require_held && !result.held) *exit_code = 1;
 }
@@ -345,6 +435,11 @@ Command add_grasp_command(CLI::App& parent) {
   add_method_options(*app, options->method, MethodDefaults::kSceneConfig);
   app->add_flag("--native", options->native,
                 "MuJoCo's own collision (convex hulls) instead of graspcd's callback");
+  app->add_option("--decomposed", options->decomposed,
+                  "A folder written by graspcd decompose: the object collides as its convex "
+                  "pieces, under MuJoCo's native collision (implies --native)");
+  app->add_flag("--judge", options->judge,
+                "Judge every closing step's hand-object contacts against the true meshes (CGAL)");
   app->add_flag("--json", options->json, "Print one JSON document instead of text");
   app->add_option("--config", options->config,
                   "Pair config (JSON); default SCENE.pairs.json beside the scene");
@@ -415,10 +510,32 @@ Command add_grasp_command(CLI::App& parent) {
       "'object': file, hand, scale, fitted, size, pos, quat, scene). --write-scene DIR keeps the "
       "scene (DIR/STEM.xml, its paths relative to DIR, and its .pairs.json) for graspcd "
       "validate or study; a bad FILE is one line 'FILE: message', exit code 2.\n"
+      "--decomposed DIR: the route MuJoCo's documentation recommends for a non-convex object. "
+      "DIR is a folder written by 'graspcd decompose MESH --out DIR'; every geom of SCENE whose "
+      "mesh asset reads a file named as MESH keeps its mass but no longer collides, and one "
+      "geom per convex piece (mass 0, the geom's other attributes, the asset's scale) collides "
+      "in its place under MuJoCo's native collision. The scene is written beside SCENE under a "
+      "hidden name and removed at the end; SCENE.pairs.json still drives the hand. A last line "
+      "'# decomposed: G geom(s) of MESH collide as N convex pieces each (native)' (JSON: "
+      "'decomposed': dir, source, pieces, geoms). A DIR without decomposition.json, or a SCENE "
+      "without a mesh of MESH, is one line naming it, exit code 2.\n"
+      "--judge: the race's contact fidelity (issue 20). After each closing grasp step, every "
+      "contact between the object (body 'object') and a hand geom is judged against the "
+      "true meshes by CGAL: a phantom when its point lies more than 1 mm from the hand geom's "
+      "surface or the object's true surface; and every hand geom whose true surface meets the "
+      "object's (CGAL) without any contact with the object at that step is a missed contact. "
+      "Primitive hand geoms are judged on graspcd's tessellation (a box exactly). The judging time "
+      "is outside the physics steps' wall time. A last line '# judged by CGAL "
+      "over S closing steps: C hand-object contacts, P phantom, M missed' (JSON: 'judge': "
+      "steps, contacts, phantom, missed, truth_hits, contact_error_per_step, "
+      "cgal_first_contact (hand geom -> step), cgal_first_contact_body (hand body -> step), "
+      "phantom_distance).\n"
       "Examples:\n"
       "  graspcd grasp mjcf/example1.xml --method perceptron\n"
       "  graspcd grasp --object my_mug.obj --scale 0.001 --write-scene /tmp/my_mug\n"
-      "  graspcd grasp --object drill.obj --hand robotiq --up y --yaw 90 --require-held"));
+      "  graspcd grasp --object drill.obj --hand robotiq --up y --yaw 90 --require-held\n"
+      "  graspcd decompose mjcf/meshes/cup.obj --out /tmp/cup8 --pieces 8\n"
+      "  graspcd grasp mjcf/example1.xml --decomposed /tmp/cup8"));
   auto exit_code = std::make_shared<int>(0);
   return Command{app,
                  [options, app, exit_code] { run_grasp_command(*options, *app, exit_code.get()); },

@@ -133,10 +133,11 @@ int main(int argc, char** argv) {
                        "Print the version and the versions built with");
   app.footer("Run 'graspcd SUBCOMMAND --help' for the input format of each subcommand.");
   const std::vector<graspcd::cli::Command> commands = {
-      graspcd::cli::add_tritri_command(app),   graspcd::cli::add_boxbox_command(app),
-      graspcd::cli::add_meshpair_command(app), graspcd::cli::add_grasp_command(app),
-      graspcd::cli::add_study_command(app),    graspcd::cli::add_stress_command(app),
-      graspcd::cli::add_validate_command(app), graspcd::cli::add_trajectory_command(app),
+      graspcd::cli::add_tritri_command(app),    graspcd::cli::add_boxbox_command(app),
+      graspcd::cli::add_meshpair_command(app),  graspcd::cli::add_grasp_command(app),
+      graspcd::cli::add_study_command(app),     graspcd::cli::add_stress_command(app),
+      graspcd::cli::add_validate_command(app),  graspcd::cli::add_trajectory_command(app),
+      graspcd::cli::add_decompose_command(app),
   };
 
   try {

@@ -6,7 +6,9 @@ Reads OUT_DIR/study.json (Table 1, the box hand of Figures 13-15, recordings, ma
 OUT_DIR/sweep.json (the run-time/error sweep, possibly merged from shards) and, if present,
 OUT_DIR/stress.json (`graspcd stress --json`, the numerical stress suite of issue 7) and
 OUT_DIR/perf.json (`./run perf`, graspcd against FCL and MuJoCo, issue 6),
-OUT_DIR/contacts.json (study/contacts_solver.py, what MuJoCo's solver gets, issue 18), writes
+OUT_DIR/contacts.json (study/contacts_solver.py, what MuJoCo's solver gets, issue 18) and
+OUT_DIR/race.json, else the cached report/data/race.json (study/race/run_race.py, graspcd
+against the hull and convex decompositions, issue 20), writes
 OUT_DIR/REPORT.md and OUT_DIR/figures/*.png. Every number in the report comes from those files; the text around a
 number is chosen by comparing numbers, never written in advance.
 
@@ -586,6 +588,102 @@ def contacts_section(contacts):
     return lines
 
 
+def race_section(race, fig_dir, fig_rel):
+    """The "The race" section from race.json (study/race/run_race.py, issue 20)."""
+    lines = []
+    w = lines.append
+    m = race["machine"]
+    w("## The race: the hull, convex decompositions and graspcd")
+    w("")
+    w("From `race.json` (`study/race/run_race.py build/graspcd`, not part of `./run test`; the"
+      " decompositions are cached in `report/out/race`). Each scene's grasp runs as graspcd"
+      " serves it (the contact manifold), natively on MuJoCo's convex hull, and natively on"
+      " HACD decompositions of the object into at most N convex pieces (`graspcd decompose`,"
+      " `grasp --decomposed`). The step cost is the wall time per physics step over the whole"
+      " grasp (single runs one after another, not a benchmark); contacts are hand-object"
+      " contacts per physics step; the contact error is phantom plus missed contacts per closing"
+      " grasp step, judged by CGAL on the true meshes (`grasp --judge`: a phantom's point lies"
+      " more than 1 mm from a true surface; a missed contact is a finger segment whose true mesh"
+      " meets the object's with no contact). \"First contact\" counts the segments whose"
+      " first-contact step is CGAL's on the true meshes at the same poses (never, for both,"
+      " counts as the same). The one-sided Hausdorff distance is from the pieces' surfaces to"
+      " the object's (CGAL's bounded_error_Hausdorff_distance, with its bound); HACD clusters"
+      " the surface, and a cluster that rings a cavity (a cup's rim) has a hull that closes it,"
+      " which the Hausdorff distance and the volume added show."
+      f" Machine: {m['cpu']}, {m['cores']} cores, load average"
+      f" {', '.join(f'{x:.1f}' for x in m['load_average'])} ({m['date']}).")
+    w("")
+    w("| scene | N asked | pieces | HACD (s) | one-sided Hausdorff (mm) | volume added |")
+    w("|---|---|---|---|---|---|")
+    for scene, e in race["scenes"].items():
+        for n, d in e["decompositions"].items():
+            vol = d["volume"]
+            added = "open mesh" if vol is None else f"{100 * vol['added_fraction']:.0f}%"
+            w(f"| {scene} ({e['mesh']}, {d['source_faces']} faces) | {n} | {d['pieces']} |"
+              f" {d['seconds']:.1f} | {1000 * d['hausdorff']:.2f} +- {1000 * d['hausdorff_bound']:.2f}"
+              f" | {added} |")
+    w("")
+    w("| scene | configuration | step cost (ms) | contacts per step | gripped, held |"
+      " first contact as CGAL's | phantom, missed | contact error per step |")
+    w("|---|---|---|---|---|---|---|---|")
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    markers = "osD^v<>"
+    wins = []
+    for k, (scene, e) in enumerate(race["scenes"].items()):
+        xs, ys, held = [], [], []
+        for r in e["rows"]:
+            # A segment is a geom name (the project's hands) or a "body:NAME" touch pattern.
+            segments = r["first_contact"]
+            same = sum(1 for seg, step in segments.items()
+                       if (r["cgal_first_contact_body"].get(seg[5:]) if seg.startswith("body:")
+                           else r["cgal_first_contact"].get(seg)) == step)
+            w(f"| {scene} | {r['configuration']} | {r['ms_per_physics_step']:.3f} |"
+              f" {r['contacts_per_step']:.1f} |"
+              f" {'yes' if r['gripped'] else 'no'}, {'yes' if r['held'] else 'no'} |"
+              f" {same} of {len(segments)} | {r['phantom']}, {r['missed']} |"
+              f" {r['contact_error_per_step']:.2f} |")
+            xs.append(r["ms_per_physics_step"])
+            ys.append(r["contact_error_per_step"])
+            held.append(r["held"])
+            ax.annotate(r["configuration"].replace("decomposed-", "d"),
+                        (r["ms_per_physics_step"], r["contact_error_per_step"]),
+                        fontsize=6, xytext=(3, 3), textcoords="offset points")
+        color = f"C{k}"
+        marker = markers[k % len(markers)]
+        ax.scatter([x for x, h in zip(xs, held) if h], [y for y, h in zip(ys, held) if h],
+                   marker=marker, color=color, label=f"{scene} (held)")
+        ax.scatter([x for x, h in zip(xs, held) if not h], [y for y, h in zip(ys, held) if not h],
+                   marker=marker, facecolors="none", edgecolors=color,
+                   label=f"{scene} (not held)")
+        ours = next(r for r in e["rows"] if r["configuration"] == "graspcd")
+        for r in e["rows"]:
+            if r["configuration"].startswith("decomposed") and \
+                    r["ms_per_physics_step"] < ours["ms_per_physics_step"] and \
+                    r["contact_error_per_step"] <= ours["contact_error_per_step"] and \
+                    (r["held"] or not ours["held"]):
+                wins.append(f"{scene} ({r['configuration']})")
+    ax.set_xscale("log")
+    ax.set_xlabel("step cost: wall ms per physics step (log)")
+    ax.set_ylabel("contact error: phantom + missed per closing step")
+    ax.set_title("The race: every configuration a point")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(fig_dir, "race_pareto.png"), dpi=120)
+    plt.close(fig)
+    w("")
+    w(f"![step cost against contact error]({fig_rel}/race_pareto.png)")
+    w("")
+    w("Filled markers: the object was held through the lift and hold; hollow: it was not.")
+    w("")
+    if wins:
+        w("A decomposition wins (cheaper per step, no more contact error, held whenever graspcd"
+          f" held) on: {', '.join(wins)}.")
+    else:
+        w("No decomposition is both cheaper per step than graspcd and as faithful while holding"
+          " whenever graspcd held, on these scenes.")
+    return lines
+
+
 def real_models_section(real):
     """The "Real hands and objects" section from study/real_models.py's real_models.json."""
     lines = []
@@ -918,6 +1016,17 @@ def main():
         if data is None:
             continue
         section = "\n".join(draw(data)) + "\n\n"
+        at = text.find("## Reproduce")
+        if at < 0:
+            at = len(text)
+        text = text[:at].rstrip("\n") + "\n\n" + section + text[at:]
+    # The race (issue 20): OUT_DIR/race.json, else the cached run, report/data/race.json.
+    race = load(os.path.join(args.out_dir, "race.json"), required=False)
+    if race is None:
+        race = load(os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "race.json"),
+                    required=False)
+    if race is not None:
+        section = "\n".join(race_section(race, fig_dir, args.figures)) + "\n\n"
         at = text.find("## Reproduce")
         if at < 0:
             at = len(text)

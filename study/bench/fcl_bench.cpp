@@ -1,6 +1,11 @@
 // Our tree query against FCL on the same coherent pose sequences: ns per mesh-mesh query for
 // graspcd (sat, sat-cached; all contacts and first contact) and FCL 0.7 (OBB and RSS trees, the
 // same two modes), and the time to build each tree. Compare within one run, as ratios.
+// Bullet's GImpact is the second peer (issue 20): btGImpactMeshShape against btGImpactMeshShape,
+// double precision, margins 0 (src/graspcd/peer/gimpact_peer.h), on the same meshes and poses;
+// "cgal_disagree" counts its answers (and everyone's) that differ from CGAL's exact one.
+//
+// GImpact: F. Leon, GIMPACT (2006), Bullet's concave mesh collision (btGImpactCollisionAlgorithm).
 //
 // FCL: J. Pan, S. Chitta, D. Manocha, "FCL: A General Purpose Library for Collision and Proximity
 // Queries", IEEE ICRA 2012. OBB trees: S. Gottschalk, M. C. Lin, D. Manocha, "OBBTree: A
@@ -28,8 +33,10 @@
 #include "graspcd/core/separators.h"
 #include "graspcd/core/tolerances.h"
 #include "graspcd/core/tree_query.h"
+#include "graspcd/exact/exact.h"
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/peer/fcl_peer.h"
+#include "graspcd/peer/gimpact_peer.h"
 #include "graspcd/support/meshes.h"
 #include "graspcd/support/random_geometry.h"
 
@@ -46,6 +53,9 @@ struct Scene {
   TriangleMesh a, b;
   ObbTree ta, tb;
   std::unique_ptr<peer::FclMesh> fa_obb, fb_obb, fa_rss, fb_rss;
+  std::unique_ptr<peer::GimpactMesh> ga, gb;
+  // CGAL's answer (the surfaces intersect) at every pose of a distance class, made on first use.
+  std::map<double, std::vector<bool>> truth;
   // contact[i]: the offset along `dir` at which B, turned to step i, first touches A coming from
   // far away (the last offset our query answers "intersect", to 40 bisections).
   std::vector<double> contact;
@@ -62,7 +72,21 @@ struct Scene {
         fa_obb(std::make_unique<peer::FclMesh>(a, peer::FclBv::kObb)),
         fb_obb(std::make_unique<peer::FclMesh>(b, peer::FclBv::kObb)),
         fa_rss(std::make_unique<peer::FclMesh>(a, peer::FclBv::kRss)),
-        fb_rss(std::make_unique<peer::FclMesh>(b, peer::FclBv::kRss)) {}
+        fb_rss(std::make_unique<peer::FclMesh>(b, peer::FclBv::kRss)),
+        ga(std::make_unique<peer::GimpactMesh>(a)),
+        gb(std::make_unique<peer::GimpactMesh>(b)) {}
+
+  // CGAL's exact brute force (first contact) at each pose of the distance class `gap`.
+  const std::vector<bool>& cgal_truth(double gap) {
+    auto& t = truth[gap];
+    if (!t.empty()) return t;
+    std::vector<Triangle> ta_tris;
+    for (std::size_t f = 0; f < a.faces.size(); ++f) ta_tris.push_back(a.triangle(f));
+    for (const Pose& p : poses(gap)) {
+      t.push_back(!exact::mesh_mesh_pairs(ta_tris, posed_triangles(b, p), true).empty());
+    }
+    return t;
+  }
 
   Pose pose_at(int step, double s) const {
     Pose p;
@@ -122,7 +146,7 @@ struct Scene {
   }
 };
 
-enum class Who { kOursSat, kOursSatCached, kFclObb, kFclObbFront, kFclRss };
+enum class Who { kOursSat, kOursSatCached, kFclObb, kFclObbFront, kFclRss, kGimpact };
 
 const char* who_name(Who w) {
   switch (w) {
@@ -136,6 +160,8 @@ const char* who_name(Who w) {
       return "fcl-obb-front";
     case Who::kFclRss:
       return "fcl-rss";
+    case Who::kGimpact:
+      return "gimpact";
   }
   return "?";
 }
@@ -144,7 +170,8 @@ const char* who_name(Who w) {
 // kSteps queries; the cached detector and FCL's front list keep their state throughout). Counters,
 // from one extra untimed pass over the whole trajectory after the timed loop, so they are the same
 // for every method up to FCL's rounding at touching poses: share of poses intersecting and pairs
-// per pose; for ours also box and triangle tests per pose.
+// per pose (GImpact: contact points per pose); for ours also box and triangle tests per pose; and
+// the poses whose answer differs from CGAL's (cgal_disagree).
 void BM_Query(benchmark::State& state, Scene* scene, Who who, bool first_contact, double gap) {
   const std::vector<Pose> poses = scene->poses(gap);
   Detector detector(who == Who::kOursSatCached ? Method::kSatCached : Method::kSat);
@@ -154,6 +181,7 @@ void BM_Query(benchmark::State& state, Scene* scene, Who who, bool first_contact
   const peer::FclMesh& fb = who == Who::kFclRss ? *scene->fb_rss : *scene->fb_obb;
   peer::FclFront front;
   peer::FclFront* front_list = who == Who::kFclObbFront ? &front : nullptr;
+  peer::GimpactQuery gimpact;
   QueryCounters counters;
   std::uint64_t fcl_bv_tests = 0;
   // One query: (intersect, pairs).
@@ -161,6 +189,10 @@ void BM_Query(benchmark::State& state, Scene* scene, Who who, bool first_contact
     if (ours) {
       const QueryResult r = detector.collide(scene->ta, scene->tb, pose, mode, counters);
       return {r.intersect, r.pair_count};
+    }
+    if (who == Who::kGimpact) {
+      const peer::GimpactQueryResult r = gimpact.collide(*scene->ga, *scene->gb, pose);
+      return {r.intersect, r.contacts};
     }
     const peer::FclQueryResult r =
         peer::fcl_collide(fa, fb, pose, first_contact, nullptr, front_list);
@@ -174,16 +206,21 @@ void BM_Query(benchmark::State& state, Scene* scene, Who who, bool first_contact
   }
   counters = QueryCounters{};
   fcl_bv_tests = 0;
-  std::uint64_t hits = 0, pairs = 0;
-  for (const Pose& pose : poses) {
-    const auto [hit, count] = query(pose);
+  std::uint64_t hits = 0, pairs = 0, cgal_disagree = 0;
+  const std::vector<bool>& truth = scene->cgal_truth(gap);
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const auto [hit, count] = query(poses[k]);
     hits += hit;
     pairs += count;
+    cgal_disagree += hit != truth[k];
   }
   const double n = static_cast<double>(poses.size());
   state.counters["hit_share"] = static_cast<double>(hits) / n;
+  state.counters["cgal_disagree"] = static_cast<double>(cgal_disagree);
   state.counters["pairs"] = static_cast<double>(pairs) / n;
-  state.counters["box_tests"] = static_cast<double>(ours ? counters.box_tests : fcl_bv_tests) / n;
+  if (who != Who::kGimpact) {
+    state.counters["box_tests"] = static_cast<double>(ours ? counters.box_tests : fcl_bv_tests) / n;
+  }
   if (ours) state.counters["tri_tests"] = static_cast<double>(counters.tri_tests) / n;
 }
 
@@ -327,8 +364,8 @@ struct PlainSatSeparator {  // the previous descent: no hint(), so collide() tak
   }
 };
 
-// who: a Method index, kTransform (the previous SAT descent) or kFcl.
-constexpr int kTransform = -1, kFcl = -2;
+// who: a Method index, kTransform (the previous SAT descent), kFcl or kGimpact.
+constexpr int kTransform = -1, kFcl = -2, kGimpact = -3;
 
 // Mesh queries whose answer differed from FCL's: main() exits 1 when there were any.
 int& disagreements() {
@@ -341,6 +378,27 @@ struct MeshRun {
   std::uint64_t box_tests = 0;
   std::uint64_t tri_tests = 0;  // ours only
 };
+
+// GImpact on the sphere pair: ns per query, contact points, and whether its answer is CGAL's
+// (cgal_disagree 0 or 1). Not compared with FCL's pairs: GImpact reports contact points, not
+// triangle pairs.
+void BM_SpheresGimpact(benchmark::State& state, int rings, double gap) {
+  const SpherePair* s = &sphere_pair(rings);
+  const Pose pose = s->pose(s->contact + gap);
+  const peer::GimpactMesh mesh(s->mesh);
+  peer::GimpactQuery query;
+  for (auto _ : state) {
+    const peer::GimpactQueryResult r = query.collide(mesh, mesh, pose);
+    benchmark::DoNotOptimize(r.intersect);
+  }
+  const peer::GimpactQueryResult r = query.collide(mesh, mesh, pose);
+  std::vector<Triangle> tris;
+  for (std::size_t f = 0; f < s->mesh.faces.size(); ++f) tris.push_back(s->mesh.triangle(f));
+  const bool truth = !exact::mesh_mesh_pairs(tris, posed_triangles(s->mesh, pose), true).empty();
+  state.counters["contacts"] = static_cast<double>(r.contacts);
+  state.counters["cgal_disagree"] = r.intersect != truth ? 1 : 0;
+  state.counters["faces"] = static_cast<double>(s->mesh.faces.size());
+}
 
 void BM_Spheres(benchmark::State& state, int rings, int who, double gap, bool first) {
   const SpherePair* s = &sphere_pair(rings);
@@ -477,6 +535,9 @@ int main(int argc, char** argv) {
                         ->Unit(benchmark::kMicrosecond));
       }
     }
+    const std::string name = std::string("BM_Spheres/3968/") + gap_name + "/all/gimpact";
+    add_min_max(benchmark::RegisterBenchmark(name.c_str(), BM_SpheresGimpact, 32, gap)
+                    ->Unit(benchmark::kMicrosecond));
   }
   for (const double n : {1e3, 1e4, 1e5, 1e6}) {
     for (const bool fcl : {false, true}) {
@@ -507,8 +568,9 @@ int main(int argc, char** argv) {
   for (const auto& scene : scenes) {
     for (const auto& [gap_name, gap] : gaps) {
       for (const bool first : {false, true}) {
-        for (const Who who :
-             {Who::kOursSat, Who::kOursSatCached, Who::kFclObb, Who::kFclObbFront, Who::kFclRss}) {
+        for (const Who who : {Who::kOursSat, Who::kOursSatCached, Who::kFclObb, Who::kFclObbFront,
+                              Who::kFclRss, Who::kGimpact}) {
+          if (who == Who::kGimpact && first) continue;  // GImpact has no first-contact mode
           const std::string name = "BM_Query/" + scene->name + "/" + gap_name + "/" +
                                    (first ? "first/" : "all/") + who_name(who);
           add_min_max(

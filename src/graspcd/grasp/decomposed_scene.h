@@ -1,0 +1,35 @@
+// A scene whose object is replaced, for collision only, by its convex decomposition (`graspcd
+// decompose`, docs/design.md "Convex decomposition"), so that MuJoCo's native collision runs on
+// the pieces: the route MuJoCo's documentation recommends for a non-convex object.
+#pragma once
+
+#include <string>
+
+namespace graspcd::bridge {
+
+struct DecomposedScene {
+  std::string scene;       // the written MJCF (beside the original, so its relative paths hold)
+  std::string source;      // the decomposed mesh file, as decomposition.json names it
+  int mesh_assets = 0;     // <mesh> assets of the scene that read the source file
+  int replaced_geoms = 0;  // geoms of those meshes, now without collision
+  int pieces = 0;          // convex pieces per replaced geom
+};
+
+// Writes a copy of the scene `scene_path` (tinyxml2; the main file only, its includes are left as
+// they are) in which every <mesh> asset whose file has the file name of the decomposition's
+// source (DIR/decomposition.json, "source") gets one sibling <mesh> per piece (the piece's OBJ by
+// absolute path, the asset's scale kept), and every <geom> of such a mesh:
+//  - stays, for its mass and inertia, but no longer collides (contype = conaffinity = 0);
+//  - gets one sibling <geom> per piece with all its attributes (pos, quat, class, friction,
+//    contype, ...) but name (NAME__piece_K), mesh, and mass 0 (the density attribute dropped),
+//    so the body's dynamics stay those of the original geom and only its collision changes.
+// MuJoCo places each piece by its own centre of mass and the geom's pos and quat, so the pieces
+// stand where the mesh stood. The copy is written into the scene's folder as a hidden file whose
+// name is unique (removed by the caller); its <include>s and meshdir keep working.
+// Throws GraspInputError (grasp.h) naming DIR for a missing or bad decomposition.json, naming
+// the scene when it cannot be read, holds no mesh of the source file, or its folder cannot be
+// written.
+DecomposedScene write_decomposed_scene(const std::string& scene_path,
+                                       const std::string& decomposition_dir);
+
+}  // namespace graspcd::bridge

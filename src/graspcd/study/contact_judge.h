@@ -1,0 +1,65 @@
+// The race's judge (issue 20, docs/design.md "The race"): each contact a grasp hands to MuJoCo's
+// solver, whatever made it (graspcd's manifold, MuJoCo on the hull, MuJoCo on convex pieces),
+// judged against the true meshes by the exact module at the same poses.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace graspcd::study {
+
+struct ContactJudgeSummary {
+  int steps = 0;                 // closing grasp steps judged
+  std::uint64_t contacts = 0;    // hand-object contacts judged (both geoms meshes)
+  std::uint64_t phantom = 0;     // contacts whose point lies > kPhantomDistance from a true surface
+  std::uint64_t missed = 0;      // (hand geom, step) where CGAL says the true meshes intersect and
+                                 // the configuration gave that geom no contact with the object
+  std::uint64_t truth_hits = 0;  // (hand geom, step) where CGAL says they intersect
+  // Per hand geom (by name), the first closing grasp step at which CGAL says its true mesh meets
+  // the object's (absent: never).
+  std::map<std::string, int> cgal_first_contact;
+  std::map<std::string, int> cgal_first_contact_body;  // the same per hand body (by name)
+};
+
+// A contact point farther than this from either true surface is a phantom (metres).
+constexpr double kPhantomDistance = 1e-3;
+
+// Built on the model a grasp runs (after mj_loadXML, before the grasp), it is then called after
+// each closing grasp step (GraspOptions::on_grasp_step).
+//  - The object: the body named `object_body` (and its subtree). Its true surfaces are its mesh
+//    geoms whose names do not contain "__piece_" (grasp --decomposed keeps the original geom,
+//    without collision, beside its pieces).
+//  - The hand: every mesh or primitive geom that can collide (contype or conaffinity non-zero)
+//    outside the object's subtree and the world body; a primitive's true surface is
+//    bridge::tessellate_primitive's (a box exactly, curved ones circumscribed within
+//    bridge::tessellation_tolerance, far below the 1 mm of a phantom).
+//  - At each step: every contact between an object geom and a hand geom is judged by the
+//    distance of its point (MuJoCo's contact pos) to the hand geom's true surface and to the
+//    nearest true object surface (exact::SurfaceDistance, CGAL's AABB tree, in each geom's frame
+//    from MuJoCo's float vertices); and every (hand geom, true object geom) pair is decided by
+//    exact::mesh_mesh_pairs (first contact) on the geom-frame triangles posed by
+//    bridge::relative_pose. A hand geom whose true mesh meets the object's with no contact with
+//    any object geom at that step is a missed contact.
+// Not judged: whether the true meshes are more than 1 mm apart when a contact's point is within
+// 1 mm of both surfaces (the meshes are then within 2 mm).
+class ContactJudge {
+ public:
+  ContactJudge(const mjModel* m, const std::string& object_body = "object");
+  ~ContactJudge();
+  ContactJudge(const ContactJudge&) = delete;
+  ContactJudge& operator=(const ContactJudge&) = delete;
+
+  void judge_step(const mjModel* m, const mjData* d, int step);
+  const ContactJudgeSummary& summary() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace graspcd::study
