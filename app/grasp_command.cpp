@@ -221,6 +221,7 @@ void print_json(const bridge::GraspResult& r, const std::optional<ObjectRun>& ob
                      {"contacts", s.contacts},
                      {"detection_ns", s.detection_ns},
                      {"box_tests", s.box_tests},
+                     {"front_skips", s.front_skips},
                      {"triangle_tests", s.triangle_tests},
                      {"served_calls", s.served_calls},
                      {"contained", s.contained},
@@ -466,7 +467,9 @@ Command add_grasp_command(CLI::App& parent) {
       "skips (served calls whose geom placement held NaN, inf or a number beyond 1e10: no "
       "contacts, no query).\n"
       "--json: one document with the same: scene, method, native, steps (step, contacts, "
-      "detection_ns, box_tests, triangle_tests, served_calls, contained, nonfinite_skips, "
+      "detection_ns, box_tests, front_skips (front node pairs still disjoint by their last gap, "
+      "kept "
+      "without a box test), triangle_tests, served_calls, contained, nonfinite_skips, "
       "object_z, segments), first_contact (segment -> step or null), gripped, held, reason "
       "(null when held), object_rise and hand_travel (m, from the start of the lift to the end "
       "of the hold), slip_time (s, or null), "

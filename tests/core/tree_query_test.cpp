@@ -192,11 +192,17 @@ TEST(TreeQuery, FrontListFindsTheSameTrianglePairsAsADescentFromTheRoots) {
     EXPECT_LT(cc.box_tests, cf.box_tests) << method_name(method);
     if (method == Method::kSat) {
       EXPECT_GE(checked, n / 100);
+      // SAT's gaps let restarted descents keep disjoint front pairs untested.
+      EXPECT_GT(cc.front_skips, 0u);
+    } else {
+      EXPECT_EQ(cc.front_skips, 0u);  // the perceptron measures no gap
     }
     std::printf(
-        "%s front list: %d of %d queries restarted, box tests %llu vs %llu from the roots\n",
+        "%s front list: %d of %d queries restarted, box tests %llu vs %llu from the roots, %llu "
+        "front pairs kept untested\n",
         method_name(method), restarts, n, static_cast<unsigned long long>(cc.box_tests),
-        static_cast<unsigned long long>(cf.box_tests));
+        static_cast<unsigned long long>(cf.box_tests),
+        static_cast<unsigned long long>(cc.front_skips));
   }
 }
 
@@ -219,7 +225,10 @@ TEST(TreeQuery, AStaleFrontStillGivesTheSameAnswer) {
     Pose second;
     second.R = testing::random_rotation(rng);
     second.t = testing::uniform_vec3(rng, -0.05, 0.05);
-    front.pose = second;  // pretend it was recorded here, so that it is followed
+    // Pretend it was recorded here, so that it is followed; its gaps were measured at `first`, so
+    // they go (QueryFront: they hold at the front's pose only).
+    front.pose = second;
+    for (NodePair& p : front.pairs) p.gap = 0;
     ASSERT_TRUE(front_applies(front, tb, second));
     std::vector<TrianglePair> pf, pc;
     sat.collide(ta, tb, second, QueryMode::kAllContacts, c, &pf);
@@ -228,6 +237,50 @@ TEST(TreeQuery, AStaleFrontStillGivesTheSameAnswer) {
     std::sort(pc.begin(), pc.end());
     ASSERT_EQ(pf, pc) << "pose " << i;
   }
+}
+
+// The gaps a front keeps are lower bounds on the distance between their boxes at the front's pose,
+// measured or carried over untested from an earlier pose less B's motion (front_motion): B's box
+// grown by gap / sqrt(3) on every half-extent lies within the gap's distance of the box, so grown
+// by 0.9 of that it must still be disjoint from A's box. Along the path of the test above, small
+// steps and jumps.
+TEST(TreeQuery, FrontGapsAreLowerBoundsOnTheBoxDistance) {
+  const TriangleMesh torus = testing::make_torus(0.04, 0.012, 30, 16);
+  const TriangleMesh sphere = testing::make_uv_sphere(0.015, 12, 16);
+  const ObbTree ta = ObbTree::build(torus), tb = ObbTree::build(sphere);
+  testing::Rng rng(34);
+  Detector sat(Method::kSat);
+  QueryFront front;
+  QueryCounters c;
+  std::uint64_t carried = 0, checked = 0;
+  for (int i = 0; i < 200; ++i) {
+    Pose pose;
+    pose.R = testing::rotation_about(Vec3(0.3, 0.5, 0.8).normalized(), 0.004 * i);
+    const double r = 0.066 + 0.004 * std::sin(0.05 * i), angle = 0.004 * i;
+    pose.t = Vec3(r * std::cos(angle), r * std::sin(angle), 0.002);
+    if (i % 50 == 30) pose.t += testing::uniform_vec3(rng, -0.003, 0.003);
+    const std::uint64_t skips_before = c.front_skips;
+    std::vector<TrianglePair> pairs;
+    sat.collide_coherent(ta, tb, pose, c, &pairs, front);
+    carried += c.front_skips - skips_before;
+    for (const NodePair& p : front.pairs) {
+      if (!p.disjoint) continue;
+      ASSERT_GE(p.gap, 0.0) << "pose " << i;
+      Obb grown = tb.nodes()[static_cast<std::size_t>(p.b)].box;
+      // 0.9: room for SAT's slack where the gap is tight.
+      grown.half.array() += 0.9 * p.gap / std::sqrt(3.0);
+      ASSERT_NE(sat_separating_axis(ta.nodes()[static_cast<std::size_t>(p.a)].box,
+                                    transform(pose, grown)),
+                kSatNoAxis)
+          << "pose " << i << " pair " << p.a << ", " << p.b << " gap " << p.gap;
+      ++checked;
+    }
+  }
+  // Pairs were carried over untested, and many gaps were checked.
+  EXPECT_GT(carried, 1000u);
+  EXPECT_GT(checked, 10000u);
+  std::printf("%llu front gaps checked, %llu front pairs kept untested\n",
+              static_cast<unsigned long long>(checked), static_cast<unsigned long long>(carried));
 }
 
 // A non-finite pose intersects nothing and costs no descent, and a front the coherent query kept

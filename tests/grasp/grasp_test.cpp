@@ -95,7 +95,8 @@ TEST_P(OursLiftsAndHolds, FingersTouchThenTheObjectIsLiftedAndHeldAndDetectionTi
     if (s.served_calls > 0) {
       ++served_steps;
       EXPECT_GT(s.detection_ns, 0u) << "step " << s.step;
-      EXPECT_GT(s.box_tests, 0u) << "step " << s.step;
+      // Box tests, or front pairs kept untested because B moved less than their gap.
+      EXPECT_GT(s.box_tests + s.front_skips, 0u) << "step " << s.step;
     } else {
       EXPECT_EQ(s.detection_ns, 0u) << "step " << s.step;
     }

@@ -102,7 +102,13 @@ ObbTree ObbTree::build(std::vector<Triangle> triangles, const ObbTreeOptions& op
 
 void ObbTree::link_frames() {
   in_parent_.assign(nodes_.size(), NodeFrame{});
+  reach_ = 0;
   if (nodes_.empty()) return;
+  for (const ObbNode& node : nodes_) {
+    // The centre's distance plus the half-diagonal: the farthest a corner can be.
+    reach_ =
+        std::max(reach_, (node.box.center - nodes_[0].box.center).norm() + node.box.half.norm());
+  }
   in_parent_[0] = {nodes_[0].box.axes, nodes_[0].box.center};
   const auto child_in = [](const Obb& parent, const Obb& child) {
     return NodeFrame{parent.axes.transpose() * child.axes,

@@ -52,6 +52,10 @@ class ObbTree {
   const std::vector<Triangle>& triangles() const { return triangles_; }
   const std::vector<std::int32_t>& face_ids() const { return face_ids_; }
   int depth() const { return depth_; }
+  // The largest distance from the root box's centre to a point of any node's box: every box of the
+  // tree lies in the ball of this radius around the root's centre (a child's box may reach outside
+  // its parent's). Metres; 0 for an empty tree.
+  double reach() const { return reach_; }
   const ObbNode& root() const { return nodes_.front(); }
 
   // The same tree with every node box stored as floats would store it (centre, axes and
@@ -62,7 +66,7 @@ class ObbTree {
   ObbTree rounded_to_float(bool pad) const;
 
  private:
-  // Fills in_parent_ from nodes_.
+  // Fills in_parent_ and reach_ from nodes_.
   void link_frames();
 
   std::vector<ObbNode> nodes_;
@@ -70,6 +74,7 @@ class ObbTree {
   std::vector<Triangle> triangles_;
   std::vector<std::int32_t> face_ids_;
   int depth_ = 0;
+  double reach_ = 0;
 };
 
 }  // namespace graspcd

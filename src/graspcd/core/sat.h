@@ -19,12 +19,15 @@ inline constexpr SatAxis kSatNoAxis = 0;
 // others, for temporal coherence.
 SatAxis sat_separating_axis(const Obb& a, const Obb& b, SatAxis first_axis = kSatNoAxis);
 
-// The gap test on one axis, B given in A's frame (R = A^T B, T = A^T (cB - cA), absR = |R|):
-// separated when |T . L| > r_A + r_B + slack (Ericson, Real-Time Collision Detection, 4.4.1). The
-// cross axis A_i x B_j uses i1, i2 = the other two indices of A in cyclic order and j1, j2 those
-// of B.
-inline bool sat_axis_separates(const Mat3& R, const Mat3& absR, const Vec3& T, const Vec3& a,
-                               const Vec3& b, double slack, SatAxis axis) {
+// The gap on one axis, B given in A's frame (R = A^T B, T = A^T (cB - cA), absR = |R|):
+// |T . L| - (r_A + r_B + slack) (Ericson, Real-Time Collision Detection, 4.4.1), positive exactly
+// when the axis separates (sat_axis_separates). The cross axis A_i x B_j uses i1, i2 = the other
+// two indices of A in cyclic order and j1, j2 those of B. With the slack covering the rounding of
+// R and T (tolerances.h), a positive gap is a lower bound on the distance between the boxes: L is
+// unit for the face axes and shorter for the cross axes (|A_i x B_j| <= 1), so the gap along the
+// unnormalised L underestimates the gap along L / |L|, which the distance bounds.
+inline double sat_axis_gap(const Mat3& R, const Mat3& absR, const Vec3& T, const Vec3& a,
+                           const Vec3& b, double slack, SatAxis axis) {
   double dist, ra, rb;
   if (axis <= 3) {  // L = A_i
     const int i = axis - 1;
@@ -43,7 +46,15 @@ inline bool sat_axis_separates(const Mat3& R, const Mat3& absR, const Vec3& T, c
     ra = a[i1] * absR(i2, j) + a[i2] * absR(i1, j);
     rb = b[j1] * absR(i, j2) + b[j2] * absR(i, j1);
   }
-  return dist > ra + rb + slack;
+  // dist > bound exactly when dist - bound > 0 (a difference of two distinct finite doubles never
+  // rounds to zero), so this agrees with sat_separating_axis_in_a's comparisons bit for bit.
+  return dist - (ra + rb + slack);
+}
+
+// The gap test on one axis: separated when the gap is positive (sat_axis_gap).
+inline bool sat_axis_separates(const Mat3& R, const Mat3& absR, const Vec3& T, const Vec3& a,
+                               const Vec3& b, double slack, SatAxis axis) {
+  return sat_axis_gap(R, absR, T, a, b, slack, axis) > 0;
 }
 
 // The 15-axis test on B given in A's frame, RAPID's form (Gottschalk, Lin, Manocha 1996;

@@ -61,6 +61,12 @@ inline constexpr double kFrontMaxShift = 0.1;
 // (tree_query.h, pull_up_front): each attempt costs a box test whether or not it succeeds, so a
 // front is not pulled up at every step. Speed only.
 inline constexpr unsigned kFrontPullUpPeriod = 4;
+// front_motion (tree_query.h) bounds how far B's boxes moved between two poses; the bound is
+// computed in doubles from a few products and sums (rounding well below 1e-15 relative), so it is
+// enlarged by kFrontMotionRelative times itself plus kFrontMotionRelative times the magnitudes
+// that entered it (metres). Smaller risks keeping a front pair that now overlaps untested (a
+// missed collision); larger only tests front pairs a little earlier. Dimensionless.
+inline constexpr double kFrontMotionRelative = 1e-9;
 
 // An OBB fit pads each half-extent by this fraction of the largest |coordinate| of the fitted
 // points (metres per metre), so that every vertex lies inside the box although the projections that

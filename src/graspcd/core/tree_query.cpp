@@ -12,6 +12,7 @@ QueryCounters& QueryCounters::operator+=(const QueryCounters& o) {
   perceptron_passes += o.perceptron_passes;
   sat_fallbacks += o.sat_fallbacks;
   cache_hits += o.cache_hits;
+  front_skips += o.front_skips;
   tri_tests += o.tri_tests;
   tri_pairs += o.tri_pairs;
   return *this;
@@ -28,6 +29,16 @@ bool front_applies(const QueryFront& front, const ObbTree& b, const Pose& b_in_a
   return moved.norm() <= tol::kFrontMaxShift * 2 * root.half.norm();
 }
 
+double front_motion(const QueryFront& front, const ObbTree& b, const Pose& b_in_a) {
+  if (b.nodes().empty()) return 0;
+  const Vec3& c = b.root().box.center;
+  const Mat3 dR = b_in_a.R - front.pose.R;
+  const double moved = (dR * c + (b_in_a.t - front.pose.t)).norm() + dR.norm() * b.reach();
+  // The rounding of the lines above: relative to the magnitudes that entered them.
+  const double scale = c.lpNorm<1>() + b.reach() + b_in_a.t.lpNorm<1>() + front.pose.t.lpNorm<1>();
+  return moved * (1 + tol::kFrontMotionRelative) + tol::kFrontMotionRelative * scale;
+}
+
 // A bottom-up reduction over the front in its depth-first order (the descent pushes a split's
 // second child below its first, so the two children of a parent are adjacent when both stopped):
 // a stack of kept pairs, whose top two merge into their parent while they are disjoint siblings
@@ -41,12 +52,12 @@ void pull_up_front(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, Query
   const auto parent_of = [&](const NodePair& x, const NodePair& y, NodePair& parent) {
     if (x.b == y.b && x.a > 0 && !na[static_cast<std::size_t>(x.a - 1)].is_leaf() &&
         na[static_cast<std::size_t>(x.a - 1)].right == y.a) {
-      parent = {x.a - 1, x.b, true};
+      parent = {x.a - 1, x.b, true, 0.0};
       return true;
     }
     if (x.a == y.a && x.b > 0 && !nb[static_cast<std::size_t>(x.b - 1)].is_leaf() &&
         nb[static_cast<std::size_t>(x.b - 1)].right == y.b) {
-      parent = {x.a, x.b - 1, true};
+      parent = {x.a, x.b - 1, true, 0.0};
       return true;
     }
     return false;

@@ -24,8 +24,9 @@ struct QueryCounters {
   std::uint64_t perceptron_passes = 0;  // passes over the 16 corners (perceptron separators)
   std::uint64_t sat_fallbacks = 0;      // perceptron tests that fell back to SAT (Neuro-SAT)
   std::uint64_t cache_hits = 0;         // node pairs answered from a temporal-coherence cache
-  std::uint64_t tri_tests = 0;          // triangle pairs tested
-  std::uint64_t tri_pairs = 0;          // triangle pairs found intersecting
+  std::uint64_t front_skips = 0;  // disjoint front pairs kept without a test (collide_coherent)
+  std::uint64_t tri_tests = 0;    // triangle pairs tested
+  std::uint64_t tri_pairs = 0;    // triangle pairs found intersecting
 
   QueryCounters& operator+=(const QueryCounters& o);
 };
@@ -48,11 +49,14 @@ struct QueryResult {
 };
 
 // A node pair of the two trees: indices into A's and B's nodes(). On a front, `disjoint` says
-// whether the descent stopped there on a box test (true) or tested its two leaves (false).
+// whether the descent stopped there on a box test (true) or tested its two leaves (false), and
+// `gap` (metres) is, for a disjoint pair, a lower bound on the distance between its two boxes at
+// the front's pose (SAT's gap on the separating axis, sat_axis_gap), 0 when none is known.
 struct NodePair {
   std::int32_t a = 0;
   std::int32_t b = 0;
   bool disjoint = false;
+  double gap = 0;
 };
 
 // The front of an all-contacts query (collide_coherent): the node pairs where its descent stopped,
@@ -60,10 +64,11 @@ struct NodePair {
 // the two trees exactly once, whatever the pose, so a descent restarted from them finds every
 // intersecting triangle pair a descent from the roots finds (the box tests never claim "disjoint"
 // for overlapping boxes, and the triangle test is exact): the same set, only the work differs.
+// The pairs' gaps hold at `pose` only: a front moved to another pose must have them set to 0.
 // It belongs to one pair of trees; hand it to no other.
 struct QueryFront {
   std::vector<NodePair> pairs;
-  Pose pose;                         // B in A when it was recorded
+  Pose pose;                         // B in A when it was recorded (where the gaps hold)
   std::uint64_t root_box_tests = 0;  // box tests of the last descent from the roots
   std::uint32_t queries = 0;         // queries that restarted from it (pull-up every few)
   bool valid = false;                // false: the next query descends from the roots
@@ -139,16 +144,22 @@ bool test_leaves(const ObbTree& a, const ObbTree& b, const ObbNode& x, const Obb
 // (kSatCarriedRoundoffFactor), covers the rounding carried down. The visiting order, and so
 // every counter, is that of the generic descent.
 //
-// `starts`, when given, replaces the root pair: the descent starts from each of these node pairs,
-// whose frames are formed directly from the boxes as the root's is (so the carried rounding below
-// them is what the slack already covers). `stops`, when given, receives every node pair where the
-// descent stopped (disjoint, or two leaves tested): the front of QueryFront.
+// `starts`, when given, replaces the root pair: the descent starts from each of these node pairs in
+// turn, whose frames are formed directly from the boxes as the root's is (so the carried rounding
+// below them is what the slack already covers). `stops`, when given, receives every node pair where
+// the descent stopped (disjoint with SAT's gap, or two leaves tested): the front of QueryFront.
+// `moved` (metres, or negative for none), given with both: a bound on how far any point of B's
+// boxes moved since the starts' gaps were measured (front_motion). A disjoint start whose gap
+// exceeds it is still disjoint, since the distance between two boxes shrinks by at most what
+// either moved: it goes to `stops` untested with its gap less `moved` (motion-bounded front
+// tracking: Ehmann and Lin 2001 keep a front of the bounding volume test tree, and conservative
+// advancement, Mirtich 1996, bounds the approach of two bodies by their motion).
 template <class Separator, class TriTest>
 QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, QueryMode mode,
                             Separator& separator, QueryCounters& counters,
                             std::vector<TrianglePair>* pairs, TriTest& tri_test,
                             const std::vector<NodePair>* starts = nullptr,
-                            std::vector<NodePair>* stops = nullptr) {
+                            std::vector<NodePair>* stops = nullptr, double moved = -1) {
   QueryResult result;
   const auto& na = a.nodes();
   const auto& nb = b.nodes();
@@ -168,48 +179,67 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
     stack.push_back({ia, ib, x.axes.transpose() * (b_in_a.R * y.axes),
                      x.axes.transpose() * ((b_in_a.R * y.center + b_in_a.t) - x.center)});
   };
-  if (starts) {
-    // In reverse, so that the stack pops them in the order given.
-    for (auto it = starts->rbegin(); it != starts->rend(); ++it) push_direct(it->a, it->b);
-  } else {
+  // The descent below what is on the stack; true when the query is over (first contact found).
+  const auto descend_stack = [&]() {
+    while (!stack.empty()) {
+      const FramedPair p = stack.back();
+      stack.pop_back();
+      const ObbNode& x = na[p.ia];
+      const ObbNode& y = nb[p.ib];
+      // Node pair: SAT in x's frame, the hinted axis first.
+      ++counters.box_tests;
+      const double slack =
+          tol::kSatRelativeSlack * (x.box.half.sum() + y.box.half.sum() + 2 * p.T.lpNorm<1>()) +
+          carried_slack;
+      const SatAxis hint = separator.hint(p.ia, p.ib);
+      const SatAxis axis = sat_separating_axis_in_a(p.R, p.T, x.box.half, y.box.half, slack, hint);
+      if (axis != kSatNoAxis) {
+        separator.record(p.ia, p.ib, axis, hint, counters);
+        if (stops) {
+          const double gap =
+              sat_axis_gap(p.R, p.R.cwiseAbs(), p.T, x.box.half, y.box.half, slack, axis);
+          stops->push_back({p.ia, p.ib, true, gap});
+        }
+        continue;
+      }
+      // Two leaves: test their triangles.
+      if (x.is_leaf() && y.is_leaf()) {
+        if (stops) stops->push_back({p.ia, p.ib, false, 0.0});
+        if (test_leaves(a, b, x, y, b_in_a, mode, counters, pairs, tri_test, result)) return true;
+        continue;
+      }
+      // Otherwise split the larger node (a leaf is never split), carrying the frame down.
+      const bool split_a = !x.is_leaf() && (y.is_leaf() || x.box.half.sum() >= y.box.half.sum());
+      if (split_a) {
+        for (const std::int32_t c : {x.right, p.ia + 1}) {
+          const NodeFrame& f = fa[static_cast<std::size_t>(c)];
+          stack.push_back({c, p.ib, f.R.transpose() * p.R, f.R.transpose() * (p.T - f.t)});
+        }
+      } else {
+        for (const std::int32_t c : {y.right, p.ib + 1}) {
+          const NodeFrame& f = fb[static_cast<std::size_t>(c)];
+          stack.push_back({p.ia, c, p.R * f.R, p.R * f.t + p.T});
+        }
+      }
+    }
+    return false;
+  };
+  if (!starts) {
     push_direct(0, 0);
+    descend_stack();
+    return result;
   }
-  while (!stack.empty()) {
-    const FramedPair p = stack.back();
-    stack.pop_back();
-    const ObbNode& x = na[p.ia];
-    const ObbNode& y = nb[p.ib];
-    // Node pair: SAT in x's frame, the hinted axis first.
-    ++counters.box_tests;
-    const double slack =
-        tol::kSatRelativeSlack * (x.box.half.sum() + y.box.half.sum() + 2 * p.T.lpNorm<1>()) +
-        carried_slack;
-    const SatAxis hint = separator.hint(p.ia, p.ib);
-    const SatAxis axis = sat_separating_axis_in_a(p.R, p.T, x.box.half, y.box.half, slack, hint);
-    if (axis != kSatNoAxis) {
-      separator.record(p.ia, p.ib, axis, hint, counters);
-      if (stops) stops->push_back({p.ia, p.ib, true});
+  // Each start in turn, with the descent below it: the depth-first order of a descent that pushed
+  // them all at once.
+  const bool skip = stops && moved >= 0;
+  for (const NodePair& s : *starts) {
+    if (skip && s.disjoint && s.gap > moved) {
+      ++counters.front_skips;
+      stops->push_back({s.a, s.b, true, s.gap - moved});
       continue;
     }
-    // Two leaves: test their triangles.
-    if (x.is_leaf() && y.is_leaf()) {
-      if (stops) stops->push_back({p.ia, p.ib, false});
-      if (test_leaves(a, b, x, y, b_in_a, mode, counters, pairs, tri_test, result)) return result;
-      continue;
-    }
-    // Otherwise split the larger node (a leaf is never split), carrying the frame down.
-    const bool split_a = !x.is_leaf() && (y.is_leaf() || x.box.half.sum() >= y.box.half.sum());
-    if (split_a) {
-      for (const std::int32_t c : {x.right, p.ia + 1}) {
-        const NodeFrame& f = fa[static_cast<std::size_t>(c)];
-        stack.push_back({c, p.ib, f.R.transpose() * p.R, f.R.transpose() * (p.T - f.t)});
-      }
-    } else {
-      for (const std::int32_t c : {y.right, p.ib + 1}) {
-        const NodeFrame& f = fb[static_cast<std::size_t>(c)];
-        stack.push_back({p.ia, c, p.R * f.R, p.R * f.t + p.T});
-      }
-    }
+    push_direct(s.a, s.b);
+    if (descend_stack()) return result;
   }
   return result;
 }
@@ -224,14 +254,15 @@ template <class Separator, class TriTest>
 QueryResult descend(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, QueryMode mode,
                     Separator& separator, QueryCounters& counters, std::vector<TrianglePair>* pairs,
                     TriTest& tri_test, const std::vector<NodePair>* starts,
-                    std::vector<NodePair>* stops) {
+                    std::vector<NodePair>* stops, double moved = -1) {
   QueryResult result;
   if (a.nodes().empty() || b.nodes().empty()) return result;
   // A pose with a NaN or an infinity places no triangle anywhere: every triangle test says
   // "disjoint" (tritri.h), so the answer is known without a descent that no box test could prune.
   if (!b_in_a.R.allFinite() || !b_in_a.t.allFinite()) return result;
   if constexpr (IsAxisSeparator<Separator>::value) {
-    return collide_carried(a, b, b_in_a, mode, separator, counters, pairs, tri_test, starts, stops);
+    return collide_carried(a, b, b_in_a, mode, separator, counters, pairs, tri_test, starts, stops,
+                           moved);
   }
   const auto& na = a.nodes();
   const auto& nb = b.nodes();
@@ -250,12 +281,12 @@ QueryResult descend(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, Quer
     // Node pair: ask the separator.
     ++counters.box_tests;
     if (separator.disjoint(x.box, transform(b_in_a, y.box), ia, ib, counters)) {
-      if (stops) stops->push_back({ia, ib, true});
+      if (stops) stops->push_back({ia, ib, true, 0.0});
       continue;
     }
     // Two leaves: test their triangles.
     if (x.is_leaf() && y.is_leaf()) {
-      if (stops) stops->push_back({ia, ib, false});
+      if (stops) stops->push_back({ia, ib, false, 0.0});
       if (test_leaves(a, b, x, y, b_in_a, mode, counters, pairs, tri_test, result)) return result;
       continue;
     }
@@ -299,6 +330,13 @@ QueryResult collide(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, Quer
 // answer.
 bool front_applies(const QueryFront& front, const ObbTree& b, const Pose& b_in_a);
 
+// A bound (metres) on how far any point of any of B's node boxes moved relative to A between the
+// front's pose and `b_in_a`: for the pose change (R0, t0) -> (R1, t1), a point x of B moves by
+// |(R1 - R0) x + t1 - t0| <= |(R1 - R0) c + t1 - t0| + |R1 - R0|_F * ObbTree::reach() with c B's
+// root box centre (the Frobenius norm bounds the spectral one), enlarged to cover its own rounding
+// (tolerances.h, kFrontMotionRelative). Rigorous for any two poses, whatever happened between them.
+double front_motion(const QueryFront& front, const ObbTree& b, const Pose& b_in_a);
+
 // Pulls a front up where it went deeper than it needs now: two disjoint node pairs that split the
 // same parent pair (adjacent in the front's depth-first order) are replaced by the parent when SAT
 // (sat_separating_axis, which never claims "disjoint" for overlapping boxes) proves the parent's
@@ -312,11 +350,13 @@ void pull_up_front(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, Query
 // test tree (Eurographics 2001): when front_applies, the descent restarts from the node pairs where
 // the last one stopped (pairs above the front, nearly always "may overlap" again at a small
 // motion, are not tested again), otherwise from the roots; either way `front` then holds where
-// this descent stopped. Every tol::kFrontPullUpPeriod restarts the front is pulled up where the
-// pairs moved apart (pull_up_front); when a restarted descent still costs more box tests than the
-// last descent from the roots did, the front is dropped and the next query starts from the roots.
-// The intersecting triangle pairs are exactly those of collide(..., kAllContacts, ...) at the same
-// pose, as a set (the order may differ; sort them to compare). Returns collide's result.
+// this descent stopped. A restarted descent does not test a disjoint front pair whose gap exceeds
+// how far B moved since (front_motion): it is still disjoint. Every tol::kFrontPullUpPeriod
+// restarts the front is pulled up where the pairs moved apart (pull_up_front); when a restarted
+// descent still costs more box tests than the last descent from the roots did, the front is dropped
+// and the next query starts from the roots. The intersecting triangle pairs are exactly those of
+// collide(..., kAllContacts, ...) at the same pose, as a set (the order may differ; sort them to
+// compare). Returns collide's result.
 template <class Separator, class TriTest = FilteredTriTest>
 QueryResult collide_coherent(const ObbTree& a, const ObbTree& b, const Pose& b_in_a,
                              Separator& separator, QueryCounters& counters,
@@ -327,9 +367,9 @@ QueryResult collide_coherent(const ObbTree& a, const ObbTree& b, const Pose& b_i
   const bool restart = front_applies(front, b, b_in_a);
   front.restarted = restart;
   const std::uint64_t before = counters.box_tests;
-  const QueryResult result =
-      detail::descend(a, b, b_in_a, QueryMode::kAllContacts, separator, counters, pairs, tri_test,
-                      restart ? &front.pairs : nullptr, &stops);
+  const QueryResult result = detail::descend(
+      a, b, b_in_a, QueryMode::kAllContacts, separator, counters, pairs, tri_test,
+      restart ? &front.pairs : nullptr, &stops, restart ? front_motion(front, b, b_in_a) : -1.0);
   const std::uint64_t cost = counters.box_tests - before;
   if (stops.empty()) {
     // No descent ran (an empty tree, or a non-finite pose): nothing to follow next time.

@@ -285,6 +285,7 @@ void add_step_record(int k, int contacts, std::vector<bool> touching, const Brid
   record.touching = std::move(touching);
   record.detection_ns = stats.detection_ns;
   record.box_tests = stats.counters.box_tests;
+  record.front_skips = stats.counters.front_skips;
   record.triangle_tests = stats.counters.tri_tests;
   record.served_calls = stats.calls;
   record.contained = stats.contained;
