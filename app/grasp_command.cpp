@@ -33,11 +33,8 @@
 #include "graspcd/mujoco/registry.h"
 #include "graspcd/study/contact_judge.h"
 #include "graspcd/version/envelope.h"
+#include "hand_template.h"
 #include "method.h"
-
-#ifndef GRASPCD_MJCF_DIR
-#error "GRASPCD_MJCF_DIR must name the repository's mjcf folder"
-#endif
 
 namespace graspcd::cli {
 
@@ -64,26 +61,6 @@ struct GraspCliOptions {
 };
 
 namespace fs = std::filesystem;
-
-// The template of each built-in hand (--hand): the scene whose object the user's replaces.
-struct HandTemplate {
-  std::string scene;
-  std::optional<std::array<double, 2>> fit;  // when the scene has no graspcd_fit
-};
-
-HandTemplate hand_template(const std::string& hand) {
-  const std::string mjcf = GRASPCD_MJCF_DIR;
-  // Example 1: the project's arm and 4-finger hand over the cup (7 cm wide, 8 cm tall).
-  if (hand == "project") return {mjcf + "/example1.xml", std::array<double, 2>{0.07, 0.08}};
-  if (hand == "robotiq") return {mjcf + "/real_robotiq_mug.xml", std::nullopt};
-  if (hand == "shadow") return {mjcf + "/real_shadow_glass.xml", std::nullopt};
-  std::error_code ec;
-  if (!fs::is_regular_file(hand, ec)) {
-    throw UsageError("grasp: --hand must be project, robotiq, shadow or a template scene file (" +
-                     hand + " is none)");
-  }
-  return {hand, std::nullopt};
-}
 
 struct ObjectRun {
   std::string file;  // the user's mesh, as given
@@ -336,7 +313,7 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
     if (grasp.config_path.empty()) grasp.config_path = bridge::pair_config_path(options.scene);
   }
   if (!options.object.empty()) {
-    const HandTemplate hand = hand_template(options.hand);
+    const HandTemplate hand = hand_template(options.hand, "grasp");
     bridge::ObjectPlacement placement;
     placement.file = options.object;
     placement.scale = options.scale;

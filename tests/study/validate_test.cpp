@@ -378,6 +378,126 @@ TEST_F(ValidateTest, CommandPrintsTheTableAndJsonAndExitsZeroOnTheBoxHand) {
   EXPECT_GT(truth, 0) << "the box hand touches";
 }
 
+// Issue 22: validate --objects DIR. Every OBJ/STL under DIR (recursively, any case) goes through
+// the --object workflow, one row each; a bad object is a refused row naming its file and line,
+// and a warning, while the others are checked; the shards of the set merge into the same rows; a
+// missing shard is named with its objects.
+TEST_F(ValidateTest, ObjectSetRowsEachObjectAndItsShardsMergeToTheWhole) {
+  const fs::path set = dir_ / "set";
+  fs::create_directories(set / "prisms");
+  write("set/prisms/star.obj", star_prism_obj(0.036, 0.026, 0.08));
+  write("set/Short.OBJ", star_prism_obj(0.03, 0.022, 0.05));
+  write("set/bad.obj", "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n");
+  write("set/readme.txt", "not an object\n");
+  const std::string common =
+      "validate --objects '" + set.string() + "' --method sat --max-steps 60";
+  const Outcome whole = graspcd(common + " --json");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const json doc = json::parse(whole.out);
+  graspcd::testing::expect_envelope(doc, 1);  // object_refused
+  ASSERT_EQ(doc["objects"], json::array({"Short.OBJ", "bad.obj", "prisms/star.obj"}));
+  ASSERT_EQ(doc["rows"].size(), 3u);
+  EXPECT_EQ(doc["hand"], "project");
+  EXPECT_EQ(doc["settings"]["methods"], json::array({"sat"}));
+  // The bad mesh: refused with its file and line, and a warning; the other two checked.
+  const json& bad = doc["rows"][1];
+  EXPECT_EQ(bad["status"], "refused");
+  EXPECT_NE(bad["error"].get<std::string>().find("bad.obj:2:"), std::string::npos) << bad;
+  bool warned = false;
+  for (const json& w : doc["warnings"]) warned = warned || w["code"] == "object_refused";
+  EXPECT_TRUE(warned) << doc["warnings"];
+  int cgal_hits = 0;
+  for (const std::size_t i : {0u, 2u}) {
+    const json& row = doc["rows"][i];
+    ASSERT_EQ(row["status"], "checked") << row;
+    EXPECT_EQ(row["scale"], 1.0) << "the file's units are kept";
+    EXPECT_GT(row["steps"].get<int>(), 0);
+    EXPECT_LE(row["steps"].get<int>(), 60);
+    EXPECT_LE(row["steps_with_contact"].get<int>(), row["steps"].get<int>());
+    ASSERT_EQ(row["methods"].size(), 1u);
+    const json& sat = row["methods"][0];
+    EXPECT_EQ(sat["missed"], 0) << row;
+    EXPECT_EQ(sat["false_contacts"], 0) << row;
+    EXPECT_EQ(sat["agree"], sat["checks"]) << "exact answers agree with CGAL at every check";
+    EXPECT_EQ(sat["checks"].get<int>() % row["steps"].get<int>(), 0) << "every pair every step";
+    EXPECT_GE(row["cgal_hits"].get<int>(), row["steps_with_contact"].get<int>());
+    cgal_hits += row["cgal_hits"].get<int>();
+  }
+  EXPECT_GT(cgal_hits, 0) << "the hand touched: something was checked";
+  if (graspcd::testing::test_scale() < 1) return;  // the shards again: Release pass only
+
+  // Two shards written into OUT, merged: the same rows as the whole set.
+  const fs::path out = dir_ / "shards";
+  for (const char* shard : {"0/2", "1/2"}) {
+    const Outcome r = graspcd(common + " --shard " + shard + " --out '" + out.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find(" objects (shard " + std::string(1, shard[0]) + " of 2)"),
+              std::string::npos)
+        << r.out;
+  }
+  const std::string s0 = "'" + (out / "objects.shard-0-of-2.json").string() + "'";
+  const std::string s1 = "'" + (out / "objects.shard-1-of-2.json").string() + "'";
+  const Outcome merged = graspcd("validate --merge " + s1 + " " + s0 + " --json");
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  const json m = json::parse(merged.out);
+  graspcd::testing::expect_envelope(m, 1);  // the shard's object_refused
+  EXPECT_EQ(m["rows"], doc["rows"]);
+  EXPECT_EQ(m["merged_from"], 2);
+  const Outcome table = graspcd("validate --merge " + s0 + " " + s1);
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_NE(table.out.find("prisms/star.obj"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("# refused: "), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("# result: no missed collision; 2 objects checked, 1 refused"),
+            std::string::npos)
+      << table.out;
+
+  // A shard missing, the same shard twice, a file that is no shard: one line, exit code 2.
+  const Outcome missing = graspcd("validate --merge " + s0);
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("shard 1 of 2 (objects.shard-1-of-2.json) is missing: its objects "
+                             "bad.obj are in no file given"),
+            std::string::npos)
+      << missing.err;
+  EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
+  const Outcome twice = graspcd("validate --merge " + s0 + " " + s0);
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_NE(twice.err.find("appears twice"), std::string::npos) << twice.err;
+  const Outcome other = graspcd("validate --merge '" + (set / "readme.txt").string() + "'");
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.err.find("readme.txt: not an object-set shard"), std::string::npos) << other.err;
+}
+
+TEST_F(ValidateTest, ObjectSetBadUsageIsOneLineAndExitCodeTwo) {
+  fs::create_directories(dir_ / "empty");
+  fs::create_directories(dir_ / "one");
+  write("one/star.obj", star_prism_obj(0.036, 0.026, 0.08));
+  const std::string one = "'" + (dir_ / "one").string() + "'";
+  struct Case {
+    std::string args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {"validate --objects '" + (dir_ / "none").string() + "'", "none: not a folder of objects"},
+      {"validate --objects '" + (dir_ / "empty").string() + "'",
+       "empty: no OBJ or STL file in the folder"},
+      {"validate --objects " + one + " '" + kMjcf + "example1.xml'", "give one of SCENE"},
+      {"validate --objects " + one + " --shard 2/2", "--shard expects i/n with 0 <= i < n"},
+      {"validate --objects " + one + " --fit --scale 2", "--scale and --fit exclude each other"},
+      {"validate --objects " + one + " --hand nohand", "--hand must be project, robotiq, shadow"},
+      {"validate --objects " + one + " --up w",
+       "--up must be one of x, y, z, -x, -y, -z (not 'w')"},
+      {"validate '" + kMjcf + "example1.xml' --fit", "--fit goes with --objects"},
+      {"validate '" + kMjcf + "example1.xml' --shard 0/2", "--shard goes with --objects"},
+      {"validate", "give one of SCENE, --objects DIR or --merge FILE"},
+  };
+  for (const Case& c : cases) {
+    const Outcome r = graspcd(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << "\n" << r.err;
+  }
+}
+
 TEST_F(ValidateTest, BadInputIsOneLineAndExitCodeTwo) {
   const Outcome missing = graspcd("validate '" + (dir_ / "none.xml").string() + "'");
   EXPECT_EQ(missing.exit_code, 2);

@@ -925,10 +925,14 @@ void merge_shards(const std::vector<std::string>& files, const std::string& out_
   }
   const std::size_t n = merged["config_names"].size();
   for (std::size_t i = 0; i < n; ++i) {
-    if (!by_index.count(static_cast<int>(i)))
-      throw std::runtime_error("configuration " + std::to_string(i) + " (" +
-                               merged["config_names"][i].get<std::string>() +
-                               ") is in no shard given");
+    if (by_index.count(static_cast<int>(i))) continue;
+    // Shard k of n holds configurations k, k + n, ...: name the shard file that is missing.
+    const int shard = static_cast<int>(i % static_cast<std::size_t>(count));
+    throw std::runtime_error(
+        "shard " + std::to_string(shard) + " of " + std::to_string(count) + " (sweep.shard-" +
+        std::to_string(shard) + "-of-" + std::to_string(count) +
+        ".json) is missing: configuration " + std::to_string(i) + " (" +
+        merged["config_names"][i].get<std::string>() + ") is in no shard given");
   }
   for (auto& [i, c] : by_index) merged["configs"].push_back(c);
   merged["shard"] = {{"index", 0}, {"count", 1}};
