@@ -3,7 +3,9 @@
 // step (src/graspcd/study/validate.h). Exit code 1 on any missed collision.
 // graspcd validate --objects DIR [--hand H] [--fit | --scale S] [--up A] [--yaw D] [--shard i/N]
 // [--out OUT]: every OBJ/STL under DIR through the --object workflow, one row per object
-// (src/graspcd/study/object_set.h); graspcd validate --merge FILE... joins the shards.
+// (src/graspcd/study/object_set.h); graspcd validate --merge FILE... joins the shards. Their exit
+// code: 1 when a method missed a collision or gave a false one on some object, else 2 when an
+// object was refused, else 0 (object_set_exit_code()).
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -54,6 +56,9 @@ struct ValidateCliOptions {
 
 // The exit code when a method missed a collision (the output is complete).
 constexpr int kExitMissed = 1;
+// The exit code of bad input (main.cpp's for an io::InputError); for an object set, when an
+// object was refused and every object checked agreed with CGAL (the output is complete).
+constexpr int kExitBadInput = 2;
 
 // The methods to check: --all-methods, --method, or the config's (SCENE's, or the template's for
 // --objects); cap and switch from the command line when given, else from the config.
@@ -272,11 +277,24 @@ void print_object_set_text(const nlohmann::json& doc) {
     ++refused;
     out << "# refused: " << r["error"].get<std::string>() << '\n';
   }
+  const bool missed = doc["missed_any"].get<bool>(), false_any = doc["false_any"].get<bool>();
   out << "# result: "
-      << (doc["missed_any"].get<bool>() ? "MISSED COLLISIONS" : "no missed collision") << "; "
-      << rows.size() - static_cast<std::size_t>(refused) << " objects checked, " << refused
+      << (missed && false_any ? "MISSED AND FALSE COLLISIONS"
+          : missed            ? "MISSED COLLISIONS"
+          : false_any         ? "FALSE COLLISIONS"
+                              : "no missed or false collision")
+      << "; " << rows.size() - static_cast<std::size_t>(refused) << " objects checked, " << refused
       << " refused\n";
   std::cout << out.str();
+}
+
+// An object set's exit code: a method that missed a collision or gave a false one on some object
+// is the worst finding (1; on the template hands' triangle pairs every method answers exactly,
+// so a false collision is a defect too), then an object refused (2, bad input), else 0. Every
+// object has its row either way.
+int object_set_exit_code(const nlohmann::json& doc) {
+  if (doc["missed_any"].get<bool>() || doc["false_any"].get<bool>()) return kExitMissed;
+  return doc["refused"].get<int>() > 0 ? kExitBadInput : 0;
 }
 
 void write_json_file(const std::filesystem::path& path, nlohmann::json doc) {
@@ -345,7 +363,7 @@ int run_object_set(ValidateCliOptions& o, const CLI::App& app) {
     write_json_file(std::filesystem::path(o.out_dir) / name, doc);
   }
   print_object_set(doc, o.json);
-  return doc["missed_any"].get<bool>() ? kExitMissed : 0;
+  return object_set_exit_code(doc);
 }
 
 // --merge FILE...: the shards joined, printed and, with --out, written as OUT/objects.json.
@@ -353,7 +371,7 @@ int run_object_merge(ValidateCliOptions& o) {
   const nlohmann::json doc = study::merge_object_shards(o.merge);
   if (!o.out_dir.empty()) write_json_file(std::filesystem::path(o.out_dir) / "objects.json", doc);
   print_object_set(doc, o.json);
-  return doc["missed_any"].get<bool>() ? kExitMissed : 0;
+  return object_set_exit_code(doc);
 }
 
 int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
@@ -487,15 +505,22 @@ Command add_validate_command(CLI::App& parent) {
       "CGAL's hits (pair checks that intersect), missed/false collisions per method, and the "
       "grasp's verdict (held; gripped, not held: REASON; not gripped: REASON). An object that "
       "cannot be checked (a bad mesh, a start state that is not valid) is a row 'refused' with "
-      "its one-line error and a warning; the others go on. --out OUT writes the document as "
+      "its one-line error, and a line 'warning: FILE:LINE: message' on stderr (the line where "
+      "the loader names one); the others go on. Exit code: 1 when some method missed a "
+      "collision or a triangle pair, or gave a false one, on some object (on the template "
+      "hands' triangle pairs every method answers exactly, so a false collision is a defect "
+      "too), else 2 when some object was refused (bad input), else 0; every object has its row "
+      "either way. --out OUT writes the document as "
       "OUT/objects.json (with --shard i/N: OUT/objects.shard-i-of-N.json) and the first "
       "disagreements under OUT/OBJECT/. --json prints the document: objects_dir, hand, template, "
       "settings, objects (the whole set), shard, rows (object, status, error, scale, fitted, "
       "size, steps, steps_with_contact, cgal_hits, gripped, held, reason, methods: method, "
-      "checks, agree, missed, false_contacts, missed_tri_pairs, false_tri_pairs), missed_any.\n"
+      "checks, agree, missed, false_contacts, missed_tri_pairs, false_tri_pairs), missed_any, "
+      "false_any, refused (the number of objects refused).\n"
       "--merge FILE...: joins the shard files of one split of one set (same objects, settings "
       "and N, each shard once) into the table of the whole set (--out OUT: OUT/objects.json); "
-      "a missing shard is named with its objects (exit code 2). study/slurm/"
+      "a missing shard is named with its objects (exit code 2); the exit code of the joined set "
+      "is --objects' own. study/slurm/"
       "validate_objects.sbatch runs the shards as a Slurm array job.\n"
       "Examples:\n"
       "  graspcd validate mjcf/example3.xml\n"

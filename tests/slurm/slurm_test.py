@@ -10,9 +10,11 @@ serves every test of this file:
     every point's errors and counters (timings removed); `study --merge` with a shard missing
     names it;
   - a failed array: its afterok merge never runs and is cancelled (kill_invalid_depend);
-  - an object set: study/slurm/validate_objects.sbatch on three small objects of MODELS_DIR
-    (SAT, --fit, the project's hand) as a 2-task array and its merge; the merged rows equal an
-    unsharded `validate --objects` run's (skipped with a message when MODELS_DIR is absent).
+  - an object set: study/slurm/validate_objects.sbatch on three small objects of MODELS_DIR and
+    a malformed OBJ (SAT, --fit, the project's hand) as a 2-task array and its merge; the shard
+    with the refused object still completes, the merge exits 2 as the unsharded run does, and the
+    merged rows equal the unsharded `validate --objects` run's (skipped with a message when
+    MODELS_DIR is absent).
 The cluster failing to start fails the test with the daemon's log; it never skips.
 """
 
@@ -33,6 +35,8 @@ JOB_DEADLINE_S = 300
 # Small objects of ../shared/models/objects (1-2 s each with SAT on this machine).
 SMALL_OBJECTS = ("mujoco/cube_cup.obj", "prl_assets/plastic_glass_visual.obj",
                  "prl_assets/plastic_bowl_visual.obj")
+# A malformed OBJ beside them (a face index out of range): a refused row, exit code 2.
+BAD_OBJECT = "bad/face_out_of_range.obj"
 
 
 def graspcd(*args):
@@ -140,10 +144,14 @@ class SlurmTest(unittest.TestCase):
         for rel in SMALL_OBJECTS:
             os.makedirs(os.path.dirname(os.path.join(objects, rel)), exist_ok=True)
             shutil.copyfile(os.path.join(objects_root, rel), os.path.join(objects, rel))
+        os.makedirs(os.path.join(objects, os.path.dirname(BAD_OBJECT)))
+        with open(os.path.join(objects, BAD_OBJECT), "w") as f:
+            f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n")
         args = ["--fit", "--method", "sat"]
         whole = os.path.join(WORK, "objects-whole")
         r = graspcd("validate", "--objects", objects, *args, "--out", whole)
-        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.returncode, 2, "one object refused\n" + r.stderr)
+        self.assertIn(f"warning: {objects}/{BAD_OBJECT}:4: face 1: vertex index 7", r.stderr)
         parts = os.path.join(WORK, "objects-parts")
         env = {"OUT": parts, "OBJECTS": objects, "VALIDATE_ARGS": " ".join(args)}
         script = os.path.join(SOURCE, "study/slurm/validate_objects.sbatch")
@@ -152,29 +160,38 @@ class SlurmTest(unittest.TestCase):
                             [f"--dependency=afterok:{array}"])
         states = self.cluster.wait([array, merge], JOB_DEADLINE_S)
         self.assertEqual(len(states), 3, states)
+        # The shards complete (a refused object is a row of the shard's file); the merge, which
+        # writes the whole table, exits 2 as the unsharded run does.
+        self.assertEqual(states.pop(merge), ("FAILED", "2:0"), self.job_outputs())
         self.assert_completed(states)
         a = load(os.path.join(whole, "objects.json"))
         b = load(os.path.join(parts, "objects.json"))
         self.assertEqual(b["merged_from"], 2)
-        self.assertEqual(a["objects"], sorted(SMALL_OBJECTS))
+        self.assertEqual(a["objects"], sorted((*SMALL_OBJECTS, BAD_OBJECT)))
         self.assertEqual(a["objects"], b["objects"])
         self.assertEqual(a["rows"], b["rows"])
+        self.assertEqual(a["refused"], 1)
+        bad = a["rows"][a["objects"].index(BAD_OBJECT)]
+        self.assertEqual(bad["status"], "refused", bad)
         for row in a["rows"]:
+            if row["object"] == BAD_OBJECT:
+                continue
             self.assertEqual(row["status"], "checked", row)
             self.assertEqual([m["method"] for m in row["methods"]], ["sat"])
             self.assertEqual(row["methods"][0]["missed"], 0, row)
             self.assertEqual(row["methods"][0]["checks"] % row["steps"], 0, row)
             self.assertLessEqual(row["steps_with_contact"], row["steps"], row)
             self.assertTrue(row["fitted"], row)
-        self.assertGreater(sum(row["cgal_hits"] for row in a["rows"]), 0,
+        self.assertGreater(sum(row.get("cgal_hits", 0) for row in a["rows"]), 0,
                            "some object was touched: something was checked")
         # The merged table, printed from the shard files directly.
         shard_files = [os.path.join(parts, f"objects.shard-{i}-of-2.json") for i in range(2)]
         r = graspcd("validate", "--merge", *shard_files)
-        self.assertEqual(r.returncode, 0, r.stderr)
-        for rel in SMALL_OBJECTS:
+        self.assertEqual(r.returncode, 2, r.stderr)
+        for rel in (*SMALL_OBJECTS, BAD_OBJECT):
             self.assertIn(rel, r.stdout)
-        self.assertIn("# result: no missed collision; 3 objects checked, 0 refused", r.stdout)
+        self.assertIn("# result: no missed or false collision; 3 objects checked, 1 refused",
+                      r.stdout)
         # A shard missing is named with its objects.
         r = graspcd("validate", "--merge", shard_files[0])
         self.assertEqual(r.returncode, 2, r.stderr)

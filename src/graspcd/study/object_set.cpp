@@ -107,16 +107,27 @@ json checked_row(const std::string& object, const bridge::ObjectScene& scene,
       {"methods", methods}};
 }
 
-bool row_missed(const json& row) {
+// Whether some method of the row counted a check or triangle pair under `checks` or `tri_pairs`
+// (missed: "missed", "missed_tri_pairs"; false: "false_contacts", "false_tri_pairs").
+bool row_has(const json& row, const char* checks, const char* tri_pairs) {
   if (!row.contains("methods")) return false;
-  for (const json& m : row["methods"]) {
-    if (m["missed"].get<int>() > 0 || m["missed_tri_pairs"].get<std::uint64_t>() > 0) return true;
-  }
-  return false;
+  return std::any_of(row["methods"].begin(), row["methods"].end(), [&](const json& m) {
+    return m[checks].get<int>() > 0 || m[tri_pairs].get<std::uint64_t>() > 0;
+  });
 }
 
-bool any_missed(const json& rows) {
-  return std::any_of(rows.begin(), rows.end(), [](const json& r) { return row_missed(r); });
+// The set's verdicts over its rows: missed_any, false_any (some method missed a collision, or
+// gave a false one, on some object) and refused (the objects refused).
+void set_verdicts(json& doc) {
+  const json& rows = doc["rows"];
+  const auto any = [&rows](const char* checks, const char* tri_pairs) {
+    return std::any_of(rows.begin(), rows.end(),
+                       [&](const json& r) { return row_has(r, checks, tri_pairs); });
+  };
+  doc["missed_any"] = any("missed", "missed_tri_pairs");
+  doc["false_any"] = any("false_contacts", "false_tri_pairs");
+  doc["refused"] = std::count_if(rows.begin(), rows.end(),
+                                 [](const json& r) { return r["status"] == "refused"; });
 }
 
 std::string shard_name(int index, int count) {
@@ -190,14 +201,15 @@ json validate_object_set(const ObjectSetOptions& options, const std::vector<Test
       warnings().add("object_refused", rows.back()["error"].get<std::string>(), "scene");
     }
   }
-  return {{"objects_dir", options.dir},
-          {"hand", options.hand},
-          {"template", options.template_path},
-          {"settings", settings_json(options, testers)},
-          {"objects", objects},
-          {"shard", {{"index", shard.index}, {"count", shard.count}}},
-          {"rows", rows},
-          {"missed_any", any_missed(rows)}};
+  json doc = {{"objects_dir", options.dir},
+              {"hand", options.hand},
+              {"template", options.template_path},
+              {"settings", settings_json(options, testers)},
+              {"objects", objects},
+              {"shard", {{"index", shard.index}, {"count", shard.count}}},
+              {"rows", rows}};
+  set_verdicts(doc);
+  return doc;
 }
 
 json merge_object_shards(const std::vector<std::string>& files) {
@@ -278,7 +290,7 @@ json merge_object_shards(const std::vector<std::string>& files) {
   merged["rows"] = rows;
   merged["shard"] = {{"index", 0}, {"count", 1}};
   merged["merged_from"] = files.size();
-  merged["missed_any"] = any_missed(rows);
+  set_verdicts(merged);
   merged.erase("graspcd");
   merged.erase("warnings");
   return merged;

@@ -54,13 +54,16 @@ std::vector<std::string> find_object_files(const std::string& dir);
 // set, relative paths), shard {index, count}, rows (this shard's objects in set order: object,
 // status "checked" or "refused", error, scale, fitted, size, steps, steps_with_contact,
 // cgal_hits, gripped, held, reason, methods: method, checks, agree, missed, false_contacts,
-// missed_tri_pairs, false_tri_pairs), missed_any. No envelope (the caller adds it when it writes
-// the document). Throws std::invalid_argument for a bad `up` (a usage error).
+// missed_tri_pairs, false_tri_pairs), missed_any and false_any (some method missed a collision
+// or a triangle pair, or gave a false one, on some object), refused (the objects refused). No
+// envelope (the caller adds it when it writes the document). Throws std::invalid_argument for a bad
+// `up` (a usage error).
 nlohmann::json validate_object_set(const ObjectSetOptions& options,
                                    const std::vector<TesterSpec>& testers);
 
 // Joins shard documents (files written from validate_object_set, each with its envelope) into
-// one document of the whole set, rows in set order. Throws std::runtime_error naming the file
+// one document of the whole set, rows in set order, its verdicts (missed_any, false_any,
+// refused) counted again over them. Throws std::runtime_error naming the file
 // (not a shard, another set or settings, another split, a shard given twice) or naming the
 // missing shard and its objects.
 nlohmann::json merge_object_shards(const std::vector<std::string>& files);
