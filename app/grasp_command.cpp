@@ -4,7 +4,6 @@
 // graspcd grasp --object FILE [--scale S] [--write-scene DIR]: the same with a user's OBJ or STL
 // in the template scene (example 1's arm and hand, the cup swapped for FILE).
 // graspcd grasp SCENE --decomposed DIR: the object collides as its convex pieces (natively).
-#include <stdlib.h>
 
 #include <algorithm>
 #include <array>
@@ -66,29 +65,6 @@ struct ObjectRun {
   std::string file;  // the user's mesh, as given
   std::string hand;
   bridge::ObjectScene scene;
-};
-
-// A temporary folder, removed with everything in it when it goes out of scope.
-class TempFolder {
- public:
-  TempFolder() {
-    std::string pattern = (fs::temp_directory_path() / "graspcd-object-XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr) {
-      throw std::runtime_error("cannot create a temporary folder in " +
-                               fs::temp_directory_path().string());
-    }
-    path_ = pattern;
-  }
-  ~TempFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempFolder(const TempFolder&) = delete;
-  TempFolder& operator=(const TempFolder&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
 };
 
 // A file removed when this goes out of scope.
@@ -294,7 +270,7 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
         "grasp: --decomposed goes with SCENE (write the --object scene with "
         "--write-scene first)");
   }
-  std::optional<TempFolder> temp;
+  std::optional<bridge::TempFolder> temp;
   std::optional<ObjectRun> object;
   std::string scene = options.scene;
   // --decomposed: the scene with the object's pieces, beside SCENE (removed on return), run

@@ -1,11 +1,8 @@
 #include "graspcd/study/object_set.h"
 
-#include <stdlib.h>
-
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <stdexcept>
 #include <system_error>
@@ -28,29 +25,6 @@ bool is_object_file(const fs::path& p) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext == ".obj" || ext == ".stl";
 }
-
-// A temporary folder for one object's scene, removed with its content when this goes out of scope.
-class SceneFolder {
- public:
-  SceneFolder() {
-    std::string pattern = (fs::temp_directory_path() / "graspcd-objects-XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr) {
-      throw std::runtime_error("cannot create a temporary folder in " +
-                               fs::temp_directory_path().string());
-    }
-    path_ = pattern;
-  }
-  ~SceneFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  SceneFolder(const SceneFolder&) = delete;
-  SceneFolder& operator=(const SceneFolder&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 json settings_json(const ObjectSetOptions& o, const std::vector<TesterSpec>& testers) {
   json methods = json::array();
@@ -124,10 +98,13 @@ void set_verdicts(json& doc) {
     return std::any_of(rows.begin(), rows.end(),
                        [&](const json& r) { return row_has(r, checks, tri_pairs); });
   };
-  doc["missed_any"] = any("missed", "missed_tri_pairs");
-  doc["false_any"] = any("false_contacts", "false_tri_pairs");
-  doc["refused"] = std::count_if(rows.begin(), rows.end(),
-                                 [](const json& r) { return r["status"] == "refused"; });
+  const bool missed = any("missed", "missed_tri_pairs");
+  const bool false_any = any("false_contacts", "false_tri_pairs");
+  const auto refused = std::count_if(rows.begin(), rows.end(),
+                                     [](const json& r) { return r["status"] == "refused"; });
+  doc["missed_any"] = missed;  // `rows` is not used past here: adding keys may move it
+  doc["false_any"] = false_any;
+  doc["refused"] = refused;
 }
 
 std::string shard_name(int index, int count) {
@@ -167,7 +144,7 @@ json validate_object_set(const ObjectSetOptions& options, const std::vector<Test
     }
     bridge::ObjectPlacement placement = options.placement;
     placement.file = file;
-    SceneFolder folder;
+    bridge::TempFolder folder;
     bridge::ObjectScene scene;
     // A bad object is its row and a warning; a bad --up (std::invalid_argument) stops the set.
     try {
@@ -219,20 +196,8 @@ json merge_object_shards(const std::vector<std::string>& files) {
   std::map<std::string, json> rows_by_object;
   int count = 0;
   for (const std::string& f : files) {
-    std::ifstream in(f);
-    if (!in) throw std::runtime_error(f + ": cannot open the shard file");
-    json j;
-    try {
-      in >> j;
-    } catch (const json::exception& e) {
-      throw std::runtime_error(f + ": not an object-set shard (" + std::string(e.what()) + ")");
-    }
-    if (!j.is_object() || !j.contains("rows") || !j.contains("objects") ||
-        !j.contains("settings") || !j.contains("shard") || !j.contains("hand")) {
-      throw std::runtime_error(f +
-                               ": not an object-set shard (no rows, objects, settings, hand or "
-                               "shard)");
-    }
+    json j =
+        read_shard_file(f, "an object-set shard", {"rows", "objects", "settings", "hand", "shard"});
     const int index = j["shard"]["index"].get<int>();
     if (merged.is_null()) {
       merged = j;

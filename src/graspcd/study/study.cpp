@@ -783,6 +783,28 @@ void write_trajectories(const std::filesystem::path& dir, const std::vector<Exam
 
 }  // namespace
 
+json read_shard_file(const std::string& file, const std::string& kind,
+                     const std::vector<std::string>& keys) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(file + ": cannot open the shard file");
+  json j;
+  try {
+    in >> j;
+  } catch (const json::exception& e) {
+    throw std::runtime_error(file + ": not " + kind + " (" + e.what() + ")");
+  }
+  const bool complete = j.is_object() && std::all_of(keys.begin(), keys.end(),
+                                                     [&j](const auto& k) { return j.contains(k); });
+  if (!complete) {
+    std::string names;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      names += (i == 0 ? "" : i + 1 == keys.size() ? " or " : ", ") + keys[i];
+    }
+    throw std::runtime_error(file + ": not " + kind + " (no " + names + ")");
+  }
+  return j;
+}
+
 Shard parse_shard(const std::string& text) {
   const auto slash = text.find('/');
   std::size_t p1 = 0;
@@ -891,16 +913,7 @@ void merge_shards(const std::vector<std::string>& files, const std::string& out_
   std::map<int, json> by_index;
   int count = -1;
   for (const std::string& f : files) {
-    std::ifstream in(f);
-    if (!in) throw std::runtime_error(f + ": cannot open the shard file");
-    json j;
-    try {
-      in >> j;
-    } catch (const json::exception& e) {
-      throw std::runtime_error(f + ": not a sweep shard (" + std::string(e.what()) + ")");
-    }
-    if (!j.contains("configs") || !j.contains("config_names") || !j.contains("shard"))
-      throw std::runtime_error(f + ": not a sweep shard (no configs, config_names or shard)");
+    json j = read_shard_file(f, "a sweep shard", {"configs", "config_names", "shard"});
     if (merged.is_null()) {
       merged = j;
       merged["configs"] = json::array();
