@@ -82,6 +82,16 @@ class SlurmTest(unittest.TestCase):
         return self.cluster.sbatch([f"--chdir={SOURCE}", f"--output={WORK}/%x-%A_%a.out",
                                     *extra, script], env=dict(env, BUILD_DIR=BUILD))
 
+    def array_and_merge(self, script, env):
+        """SCRIPT (under SOURCE) as a 2-task array, then as its merge job (MERGE=1, SHARDS=2) with
+        --dependency=afterok on it, as a user submits them; waits for both. Returns the merge's
+        job id and every task's (state, exit code)."""
+        script = os.path.join(SOURCE, script)
+        array = self.submit(script, env, ["--array=0-1"])
+        merge = self.submit(script, dict(env, MERGE="1", SHARDS="2"),
+                            [f"--dependency=afterok:{array}"])
+        return merge, self.cluster.wait([array, merge], JOB_DEADLINE_S)
+
     def job_outputs(self):
         text = ""
         for name in sorted(os.listdir(WORK)):
@@ -100,11 +110,7 @@ class SlurmTest(unittest.TestCase):
         r = graspcd("study", "--quick", "--no-table", "--repeats", "1", "--out", whole)
         self.assertEqual(r.returncode, 0, r.stderr)
         env = {"OUT": parts, "SWEEP_ARGS": "--quick --repeats 1"}
-        script = os.path.join(SOURCE, "study/slurm/sweep.sbatch")
-        array = self.submit(script, env, ["--array=0-1"])
-        merge = self.submit(script, dict(env, MERGE="1", SHARDS="2"),
-                            [f"--dependency=afterok:{array}"])
-        states = self.cluster.wait([array, merge], JOB_DEADLINE_S)
+        merge, states = self.array_and_merge("study/slurm/sweep.sbatch", env)
         self.assertEqual(len(states), 3, states)  # two array tasks and the merge
         self.assert_completed(states)
         a = load(os.path.join(whole, "sweep.json"))
@@ -126,11 +132,7 @@ class SlurmTest(unittest.TestCase):
     def test_a_failed_shard_cancels_the_merge(self):
         out = os.path.join(WORK, "sweep-failed")
         env = {"OUT": out, "SWEEP_ARGS": "--no-such-option"}
-        script = os.path.join(SOURCE, "study/slurm/sweep.sbatch")
-        array = self.submit(script, env, ["--array=0-1"])
-        merge = self.submit(script, dict(env, MERGE="1", SHARDS="2"),
-                            [f"--dependency=afterok:{array}"])
-        states = self.cluster.wait([array, merge], JOB_DEADLINE_S)
+        merge, states = self.array_and_merge("study/slurm/sweep.sbatch", env)
         for task, (state, _) in states.items():
             expected = "CANCELLED" if task == merge else "FAILED"
             self.assertEqual(state, expected, f"{task}: {states}\n{self.job_outputs()}")
@@ -154,11 +156,7 @@ class SlurmTest(unittest.TestCase):
         self.assertIn(f"warning: {objects}/{BAD_OBJECT}:4: face 1: vertex index 7", r.stderr)
         parts = os.path.join(WORK, "objects-parts")
         env = {"OUT": parts, "OBJECTS": objects, "VALIDATE_ARGS": " ".join(args)}
-        script = os.path.join(SOURCE, "study/slurm/validate_objects.sbatch")
-        array = self.submit(script, env, ["--array=0-1"])
-        merge = self.submit(script, dict(env, MERGE="1", SHARDS="2"),
-                            [f"--dependency=afterok:{array}"])
-        states = self.cluster.wait([array, merge], JOB_DEADLINE_S)
+        merge, states = self.array_and_merge("study/slurm/validate_objects.sbatch", env)
         self.assertEqual(len(states), 3, states)
         # The shards complete (a refused object is a row of the shard's file); the merge, which
         # writes the whole table, exits 2 as the unsharded run does.
