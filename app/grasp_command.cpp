@@ -4,7 +4,6 @@
 // graspcd grasp --object FILE [--scale S] [--write-scene DIR]: the same with a user's OBJ or STL
 // in the template scene (example 1's arm and hand, the cup swapped for FILE).
 // graspcd grasp SCENE --decomposed DIR: the object collides as its convex pieces (natively).
-#include <stdlib.h>
 
 #include <algorithm>
 #include <array>
@@ -33,11 +32,8 @@
 #include "graspcd/mujoco/registry.h"
 #include "graspcd/study/contact_judge.h"
 #include "graspcd/version/envelope.h"
+#include "hand_template.h"
 #include "method.h"
-
-#ifndef GRASPCD_MJCF_DIR
-#error "GRASPCD_MJCF_DIR must name the repository's mjcf folder"
-#endif
 
 namespace graspcd::cli {
 
@@ -65,53 +61,10 @@ struct GraspCliOptions {
 
 namespace fs = std::filesystem;
 
-// The template of each built-in hand (--hand): the scene whose object the user's replaces.
-struct HandTemplate {
-  std::string scene;
-  std::optional<std::array<double, 2>> fit;  // when the scene has no graspcd_fit
-};
-
-HandTemplate hand_template(const std::string& hand) {
-  const std::string mjcf = GRASPCD_MJCF_DIR;
-  // Example 1: the project's arm and 4-finger hand over the cup (7 cm wide, 8 cm tall).
-  if (hand == "project") return {mjcf + "/example1.xml", std::array<double, 2>{0.07, 0.08}};
-  if (hand == "robotiq") return {mjcf + "/real_robotiq_mug.xml", std::nullopt};
-  if (hand == "shadow") return {mjcf + "/real_shadow_glass.xml", std::nullopt};
-  std::error_code ec;
-  if (!fs::is_regular_file(hand, ec)) {
-    throw UsageError("grasp: --hand must be project, robotiq, shadow or a template scene file (" +
-                     hand + " is none)");
-  }
-  return {hand, std::nullopt};
-}
-
 struct ObjectRun {
   std::string file;  // the user's mesh, as given
   std::string hand;
   bridge::ObjectScene scene;
-};
-
-// A temporary folder, removed with everything in it when it goes out of scope.
-class TempFolder {
- public:
-  TempFolder() {
-    std::string pattern = (fs::temp_directory_path() / "graspcd-object-XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr) {
-      throw std::runtime_error("cannot create a temporary folder in " +
-                               fs::temp_directory_path().string());
-    }
-    path_ = pattern;
-  }
-  ~TempFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempFolder(const TempFolder&) = delete;
-  TempFolder& operator=(const TempFolder&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
 };
 
 // A file removed when this goes out of scope.
@@ -318,7 +271,7 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
         "grasp: --decomposed goes with SCENE (write the --object scene with "
         "--write-scene first)");
   }
-  std::optional<TempFolder> temp;
+  std::optional<bridge::TempFolder> temp;
   std::optional<ObjectRun> object;
   std::string scene = options.scene;
   // --decomposed: the scene with the object's pieces, beside SCENE (removed on return), run
@@ -337,7 +290,7 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
     if (grasp.config_path.empty()) grasp.config_path = bridge::pair_config_path(options.scene);
   }
   if (!options.object.empty()) {
-    const HandTemplate hand = hand_template(options.hand);
+    const HandTemplate hand = hand_template(options.hand, "grasp");
     bridge::ObjectPlacement placement;
     placement.file = options.object;
     placement.scale = options.scale;

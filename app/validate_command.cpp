@@ -1,7 +1,14 @@
 // graspcd validate SCENE.xml [--method M | --all-methods] [--max-steps N] [--config F] [--out DIR]
 // [--json]: the scene's grasp, every registered pair checked against CGAL at every closing grasp
 // step (src/graspcd/study/validate.h). Exit code 1 on any missed collision.
+// graspcd validate --objects DIR [--hand H] [--fit | --scale S] [--up A] [--yaw D] [--shard i/N]
+// [--out OUT]: every OBJ/STL under DIR through the --object workflow, one row per object
+// (src/graspcd/study/object_set.h); graspcd validate --merge FILE... joins the shards. Their exit
+// code: 1 when a method missed a collision or gave a false one on some object, else 2 when an
+// object was refused, else 0 (object_set_exit_code()).
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -17,8 +24,11 @@
 #include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/registry.h"
+#include "graspcd/study/object_set.h"
+#include "graspcd/study/study.h"
 #include "graspcd/study/validate.h"
 #include "graspcd/version/envelope.h"
+#include "hand_template.h"
 #include "method.h"
 
 namespace graspcd::cli {
@@ -33,22 +43,31 @@ struct ValidateCliOptions {
   bool all_methods = false;
   bool json = false;
   int steps = 400;
+  // --objects DIR: an object set through the --object workflow (object_set.h).
+  std::string objects;
+  std::string shard;               // --shard i/N of the set
+  std::vector<std::string> merge;  // --merge FILE...: join the shards
+  std::string hand = "project";
+  double scale = 1;
+  bool fit = false;
+  std::string up = "z";
+  double yaw = 0;
 };
 
 // The exit code when a method missed a collision (the output is complete).
 constexpr int kExitMissed = 1;
+// The exit code of bad input (main.cpp's for an io::InputError); for an object set, when an
+// object was refused and every object checked agreed with CGAL (the output is complete).
+constexpr int kExitBadInput = 2;
 
-std::string config_path_of(const ValidateCliOptions& o) {
-  return o.config.empty() ? bridge::pair_config_path(o.scene) : o.config;
-}
-
-// The methods to check: --all-methods, --method, or the config's; cap and switch from the command
-// line when given, else from the config.
-std::vector<study::TesterSpec> testers_of(ValidateCliOptions& o, const CLI::App& app) {
-  const std::string config_path = config_path_of(o);
+// The methods to check: --all-methods, --method, or the config's (SCENE's, or the template's for
+// --objects); cap and switch from the command line when given, else from the config.
+std::vector<study::TesterSpec> testers_of(ValidateCliOptions& o, const CLI::App& app,
+                                          const std::string& scene) {
+  const std::string config_path = o.config.empty() ? bridge::pair_config_path(scene) : o.config;
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(o.scene, ec)) {
-    throw io::InputError(o.scene, 0, "cannot open the scene");
+  if (!std::filesystem::is_regular_file(scene, ec)) {
+    throw io::InputError(scene, 0, "cannot open the scene");
   }
   if (!std::filesystem::is_regular_file(config_path, ec)) {
     throw io::InputError(config_path, 0, "cannot open the pair config");
@@ -199,8 +218,177 @@ void print_json(const study::ValidationReport& report) {
   std::cout << doc.dump(2) << '\n';
 }
 
+// An object set's verdict column: held, or gripped/not gripped with the reason, or refused.
+std::string verdict_text(const nlohmann::json& row) {
+  if (row["status"] != "checked") return "refused";
+  if (row["held"].get<bool>()) return "held";
+  const std::string reason = row["reason"].is_string() ? row["reason"].get<std::string>() : "";
+  return std::string(row["gripped"].get<bool>() ? "gripped, not held" : "not gripped") +
+         (reason.empty() ? "" : ": " + reason);
+}
+
+// The object set's table: a header, one row per object, the refusals, the result.
+void print_object_set_text(const nlohmann::json& doc) {
+  std::ostringstream out;
+  const nlohmann::json& settings = doc["settings"];
+  const nlohmann::json& rows = doc["rows"];
+  out << "# graspcd validate --objects " << doc["objects_dir"].get<std::string>() << ": "
+      << rows.size() << " of " << doc["objects"].size() << " objects";
+  if (doc["shard"]["count"].get<int>() > 1) {
+    out << " (shard " << doc["shard"]["index"].get<int>() << " of "
+        << doc["shard"]["count"].get<int>() << ")";
+  }
+  out << " in the " << doc["hand"].get<std::string>() << " template, "
+      << (settings["fit"].get<bool>() ? "fitted" : "at the given scale") << "; truth: CGAL "
+      << exact::cgal_version() << '\n';
+  std::size_t width = 6;
+  for (const nlohmann::json& r : rows)
+    width = std::max(width, r["object"].get<std::string>().size());
+  out << std::left << std::setw(static_cast<int>(width) + 2) << "object" << std::right
+      << std::setw(9) << "scale" << std::setw(7) << "steps" << std::setw(9) << "contact"
+      << std::setw(7) << "cgal";
+  for (const nlohmann::json& m : settings["methods"]) {
+    out << std::setw(22) << m.get<std::string>() + " missed/false";
+  }
+  out << "  verdict\n";
+  for (const nlohmann::json& r : rows) {
+    out << std::left << std::setw(static_cast<int>(width) + 2) << r["object"].get<std::string>()
+        << std::right;
+    if (r["status"] == "checked") {
+      std::ostringstream scale;
+      scale << std::setprecision(4) << r["scale"].get<double>();
+      out << std::setw(9) << scale.str() << std::setw(7) << r["steps"].get<int>() << std::setw(9)
+          << r["steps_with_contact"].get<int>() << std::setw(7) << r["cgal_hits"].get<int>();
+      for (const nlohmann::json& m : r["methods"]) {
+        out << std::setw(22)
+            << std::to_string(m["missed"].get<int>()) + "/" +
+                   std::to_string(m["false_contacts"].get<int>());
+      }
+    } else {
+      out << std::setw(9) << "-" << std::setw(7) << "-" << std::setw(9) << "-" << std::setw(7)
+          << "-";
+      for (std::size_t k = 0; k < settings["methods"].size(); ++k) out << std::setw(22) << "-";
+    }
+    out << "  " << verdict_text(r) << '\n';
+  }
+  int refused = 0;
+  for (const nlohmann::json& r : rows) {
+    if (r["status"] == "checked") continue;
+    ++refused;
+    out << "# refused: " << r["error"].get<std::string>() << '\n';
+  }
+  const bool missed = doc["missed_any"].get<bool>(), false_any = doc["false_any"].get<bool>();
+  out << "# result: "
+      << (missed && false_any ? "MISSED AND FALSE COLLISIONS"
+          : missed            ? "MISSED COLLISIONS"
+          : false_any         ? "FALSE COLLISIONS"
+                              : "no missed or false collision")
+      << "; " << rows.size() - static_cast<std::size_t>(refused) << " objects checked, " << refused
+      << " refused\n";
+  std::cout << out.str();
+}
+
+// An object set's exit code: a method that missed a collision or gave a false one on some object
+// is the worst finding (1; on the template hands' triangle pairs every method answers exactly,
+// so a false collision is a defect too), then an object refused (2, bad input), else 0. Every
+// object has its row either way.
+int object_set_exit_code(const nlohmann::json& doc) {
+  if (doc["missed_any"].get<bool>() || doc["false_any"].get<bool>()) return kExitMissed;
+  return doc["refused"].get<int>() > 0 ? kExitBadInput : 0;
+}
+
+void write_json_file(const std::filesystem::path& path, nlohmann::json doc) {
+  std::error_code ec;
+  std::filesystem::create_directories(path.parent_path(), ec);
+  if (ec) {
+    throw io::InputError(path.parent_path().string(), 0,
+                         "cannot create the output folder: " + ec.message());
+  }
+  add_envelope(doc);
+  std::ofstream out(path);
+  out << doc.dump(1) << '\n';
+  if (!out) throw io::InputError(path.string(), 0, "cannot write the file");
+}
+
+void print_object_set(const nlohmann::json& doc, bool json) {
+  if (json) {
+    nlohmann::json with_envelope = doc;
+    add_envelope(with_envelope);
+    std::cout << with_envelope.dump(2) << '\n';
+  } else {
+    print_object_set_text(doc);
+  }
+}
+
+// --objects DIR: the set (or one shard of it), printed and, with --out, written as
+// OUT/objects.json or OUT/objects.shard-i-of-N.json.
+int run_object_set(ValidateCliOptions& o, const CLI::App& app) {
+  // A bad --up is a usage error before any object is read (the message of object_scene.h).
+  const std::vector<std::string> axes = {"x", "y", "z", "-x", "-y", "-z"};
+  if (std::find(axes.begin(), axes.end(), o.up) == axes.end()) {
+    throw UsageError("validate: --up must be one of x, y, z, -x, -y, -z (not '" + o.up + "')");
+  }
+  const HandTemplate hand = hand_template(o.hand, "validate");
+  const std::vector<study::TesterSpec> testers = testers_of(o, app, hand.scene);
+  study::ObjectSetOptions options;
+  options.dir = o.objects;
+  options.hand = o.hand;
+  options.template_path = hand.scene;
+  options.default_fit = hand.fit;
+  options.placement.scale = o.scale;
+  options.placement.fit = o.fit;
+  options.placement.up = o.up;
+  options.placement.yaw_degrees = o.yaw;
+  options.max_steps = o.steps;
+  options.out_dir = o.out_dir;
+  if (!o.shard.empty()) {
+    try {
+      options.shard = study::parse_shard(o.shard);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("validate: ") + e.what());
+    }
+  }
+  options.log = [](const std::string& line) { std::cerr << "[validate] " << line << std::endl; };
+  nlohmann::json doc;
+  try {
+    doc = study::validate_object_set(options, testers);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("validate: ") + e.what());
+  }
+  if (!o.out_dir.empty()) {
+    const study::Shard shard = options.shard.value_or(study::Shard{});
+    const std::string name = shard.count > 1 ? "objects.shard-" + std::to_string(shard.index) +
+                                                   "-of-" + std::to_string(shard.count) + ".json"
+                                             : "objects.json";
+    write_json_file(std::filesystem::path(o.out_dir) / name, doc);
+  }
+  print_object_set(doc, o.json);
+  return object_set_exit_code(doc);
+}
+
+// --merge FILE...: the shards joined, printed and, with --out, written as OUT/objects.json.
+int run_object_merge(ValidateCliOptions& o) {
+  const nlohmann::json doc = study::merge_object_shards(o.merge);
+  if (!o.out_dir.empty()) write_json_file(std::filesystem::path(o.out_dir) / "objects.json", doc);
+  print_object_set(doc, o.json);
+  return object_set_exit_code(doc);
+}
+
 int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
-  const std::vector<study::TesterSpec> testers = testers_of(o, app);
+  const int modes =
+      (o.scene.empty() ? 0 : 1) + (o.objects.empty() ? 0 : 1) + (o.merge.empty() ? 0 : 1);
+  if (modes != 1) throw UsageError("validate: give one of SCENE, --objects DIR or --merge FILE...");
+  for (const char* opt : {"--hand", "--fit", "--scale", "--up", "--yaw", "--shard"}) {
+    if (o.objects.empty() && app.count(opt) > 0) {
+      throw UsageError(std::string("validate: ") + opt + " goes with --objects");
+    }
+  }
+  if (app.count("--fit") > 0 && app.count("--scale") > 0) {
+    throw UsageError("validate: --scale and --fit exclude each other");
+  }
+  if (!o.merge.empty()) return run_object_merge(o);
+  if (!o.objects.empty()) return run_object_set(o, app);
+  const std::vector<study::TesterSpec> testers = testers_of(o, app, o.scene);
   study::ValidateOptions options;
   options.config_path = o.config;
   options.max_steps = o.steps;
@@ -237,8 +425,25 @@ Command add_validate_command(CLI::App& parent) {
   auto o = std::make_shared<ValidateCliOptions>();
   CLI::App* app = parent.add_subcommand(
       "validate", "Check a scene's grasp against CGAL: every registered pair at every grasp step");
-  app->add_option("SCENE", o->scene, "The scene: an MJCF file with its SCENE.pairs.json")
-      ->required();
+  app->add_option("SCENE", o->scene, "The scene: an MJCF file with its SCENE.pairs.json");
+  app->add_option("--objects", o->objects,
+                  "A folder of objects (every OBJ and STL under it): one row per object, each "
+                  "grasped in the --hand template as graspcd grasp --object does");
+  app->add_option("--shard", o->shard,
+                  "--objects: only shard i of N of the set (every N-th object from the i-th)");
+  app->add_option("--merge", o->merge,
+                  "Join --objects shard files (OUT/objects.shard-i-of-N.json) into one table")
+      ->expected(1, -1);
+  app->add_option("--hand", o->hand,
+                  "--objects: the template: project, robotiq, shadow or a template scene file")
+      ->capture_default_str();
+  app->add_flag("--fit", o->fit, "--objects: scale each object into the template's room");
+  app->add_option("--scale", o->scale, "--objects: file units to metres for every object")
+      ->check(positive_number());
+  app->add_option("--up", o->up, "--objects: the file axis that points up: x, y, z, -x, -y, -z")
+      ->capture_default_str();
+  app->add_option("--yaw", o->yaw, "--objects: then a turn about the up direction, degrees")
+      ->check(CLI::Range(-360.0, 360.0));
   add_method_options(*app, o->method, MethodDefaults::kSceneConfig);
   app->add_flag("--all-methods", o->all_methods,
                 "Check every method but perceptron-nodisp (default: the config's method)")
@@ -293,9 +498,36 @@ Command add_validate_command(CLI::App& parent) {
       "collisions are reported, not failures: the perceptron may leave boxes it cannot separate "
       "within its cap), 1 when one did, 2 for bad input (a missing or bad scene or config: one "
       "line 'FILE: message').\n"
+      "--objects DIR: every OBJ and STL file under DIR (recursively, sorted by path) goes "
+      "through the graspcd grasp --object workflow (--hand, --fit or --scale, --up, --yaw: the "
+      "same for every object; the start state checked) and is validated as above. One row per "
+      "object: its scale, the closing grasp steps checked, the steps with a contact to check, "
+      "CGAL's hits (pair checks that intersect), missed/false collisions per method, and the "
+      "grasp's verdict (held; gripped, not held: REASON; not gripped: REASON). An object that "
+      "cannot be checked (a bad mesh, a start state that is not valid) is a row 'refused' with "
+      "its one-line error, and a line 'warning: FILE:LINE: message' on stderr (the line where "
+      "the loader names one); the others go on. Exit code: 1 when some method missed a "
+      "collision or a triangle pair, or gave a false one, on some object (on the template "
+      "hands' triangle pairs every method answers exactly, so a false collision is a defect "
+      "too), else 2 when some object was refused (bad input), else 0; every object has its row "
+      "either way. --out OUT writes the document as "
+      "OUT/objects.json (with --shard i/N: OUT/objects.shard-i-of-N.json) and the first "
+      "disagreements under OUT/OBJECT/. --json prints the document: objects_dir, hand, template, "
+      "settings, objects (the whole set), shard, rows (object, status, error, scale, fitted, "
+      "size, steps, steps_with_contact, cgal_hits, gripped, held, reason, methods: method, "
+      "checks, agree, missed, false_contacts, missed_tri_pairs, false_tri_pairs), missed_any, "
+      "false_any, refused (the number of objects refused).\n"
+      "--merge FILE...: joins the shard files of one split of one set (same objects, settings "
+      "and N, each shard once) into the table of the whole set (--out OUT: OUT/objects.json); "
+      "a missing shard is named with its objects (exit code 2); the exit code of the joined set "
+      "is --objects' own. study/slurm/"
+      "validate_objects.sbatch runs the shards as a Slurm array job.\n"
       "Examples:\n"
       "  graspcd validate mjcf/example3.xml\n"
-      "  graspcd validate mjcf/hand_boxes.xml --all-methods --max-steps 100 --json"));
+      "  graspcd validate mjcf/hand_boxes.xml --all-methods --max-steps 100 --json\n"
+      "  graspcd validate --objects ../shared/models/objects --fit --method sat --out /tmp/o\n"
+      "  graspcd validate --objects DIR --fit --shard 0/4 --out /tmp/o\n"
+      "  graspcd validate --merge /tmp/o/objects.shard-*-of-4.json --out /tmp/o"));
   auto exit_code = std::make_shared<int>(0);
   return Command{app, [o, app, exit_code] { *exit_code = run_validate_command(*o, *app); },
                  exit_code};

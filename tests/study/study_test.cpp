@@ -180,10 +180,13 @@ TEST_F(StudyTest, MergedShardsGiveTheAnswersOfOneUnshardedSweep) {
       EXPECT_EQ(x[k], y[k]) << x["name"] << " " << k;
     EXPECT_EQ(x["examples"][0]["pairs_hash"], y["examples"][0]["pairs_hash"]) << x["name"];
   }
-  // A missing shard is an error that names the configuration, exit code 2.
+  // A missing shard is an error that names the shard's file and a configuration, exit code 2.
   const Outcome missing =
       graspcd("study --merge " + shard(1) + " --out '" + (dir_ / "bad").string() + "'");
   EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("shard 0 of 2 (sweep.shard-0-of-2.json) is missing: configuration 0"),
+            std::string::npos)
+      << missing.err;
   EXPECT_NE(missing.err.find("is in no shard given"), std::string::npos) << missing.err;
   EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1);
   // The same shard twice.

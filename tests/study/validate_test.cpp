@@ -378,6 +378,155 @@ TEST_F(ValidateTest, CommandPrintsTheTableAndJsonAndExitsZeroOnTheBoxHand) {
   EXPECT_GT(truth, 0) << "the box hand touches";
 }
 
+// Issue 22: validate --objects DIR. Every OBJ/STL under DIR (recursively, any case) goes through
+// the --object workflow, one row each; a bad object is a refused row naming its file and line,
+// and one warning line on stderr, while the others are checked; the exit code is 1 for a missed
+// or false collision, else 2 for a refused object, else 0; the shards of the set merge into the
+// same rows; a missing shard is named with its objects. One small object is grasped (60 steps):
+// the bad ones are refused before any simulation.
+TEST_F(ValidateTest, ObjectSetRowsEachObjectAndItsShardsMergeToTheWhole) {
+  const fs::path set = dir_ / "set";
+  fs::create_directories(set / "prisms");
+  write("set/prisms/star.obj", star_prism_obj(0.036, 0.026, 0.08));
+  write("set/Bad.OBJ", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");  // a face index out of range
+  write("set/bad.obj", "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n");
+  write("set/readme.txt", "not an object\n");
+  const std::string common =
+      "validate --objects '" + set.string() + "' --method sat --max-steps 60";
+  const Outcome whole = graspcd(common + " --json");
+  ASSERT_EQ(whole.exit_code, 2) << "refused objects, no missed or false collision\n" << whole.err;
+  const json doc = json::parse(whole.out);
+  graspcd::testing::expect_envelope(doc, 2);  // object_refused, twice
+  ASSERT_EQ(doc["objects"], json::array({"Bad.OBJ", "bad.obj", "prisms/star.obj"}));
+  ASSERT_EQ(doc["rows"].size(), 3u);
+  EXPECT_EQ(doc["hand"], "project");
+  EXPECT_EQ(doc["settings"]["methods"], json::array({"sat"}));
+  EXPECT_EQ(doc["refused"], 2);
+  EXPECT_EQ(doc["missed_any"], false);
+  EXPECT_EQ(doc["false_any"], false);
+  // The bad meshes: refused with their file and line, one warning line each on stderr.
+  const std::vector<std::string> errors = {
+      (set / "Bad.OBJ").string() + ":4: face 1: vertex index 7",
+      (set / "bad.obj").string() + ":2: vertex 2: non-finite"};
+  for (std::size_t i = 0; i < errors.size(); ++i) {
+    const json& bad = doc["rows"][i];
+    EXPECT_EQ(bad["status"], "refused");
+    EXPECT_EQ(bad["error"].get<std::string>().rfind(errors[i], 0), 0u) << bad;
+    EXPECT_NE(whole.err.find("\nwarning: " + errors[i]), std::string::npos) << whole.err;
+  }
+  std::size_t warning_lines = 0;
+  for (std::size_t at = whole.err.find("warning: "); at != std::string::npos;
+       at = whole.err.find("warning: ", at + 1)) {
+    ++warning_lines;
+  }
+  EXPECT_EQ(warning_lines, 2u) << whole.err;
+  // The good object: checked, and SAT agrees with CGAL at every check.
+  const json& row = doc["rows"][2];
+  ASSERT_EQ(row["status"], "checked") << row;
+  EXPECT_EQ(row["scale"], 1.0) << "the file's units are kept";
+  EXPECT_GT(row["steps"].get<int>(), 0);
+  EXPECT_LE(row["steps"].get<int>(), 60);
+  EXPECT_LE(row["steps_with_contact"].get<int>(), row["steps"].get<int>());
+  ASSERT_EQ(row["methods"].size(), 1u);
+  const json& sat = row["methods"][0];
+  EXPECT_EQ(sat["missed"], 0) << row;
+  EXPECT_EQ(sat["false_contacts"], 0) << row;
+  EXPECT_EQ(sat["agree"], sat["checks"]) << "exact answers agree with CGAL at every check";
+  EXPECT_EQ(sat["checks"].get<int>() % row["steps"].get<int>(), 0) << "every pair every step";
+  EXPECT_GE(row["cgal_hits"].get<int>(), row["steps_with_contact"].get<int>());
+  EXPECT_GT(row["cgal_hits"].get<int>(), 0) << "the hand touched: something was checked";
+
+  // The exit code's order, through --merge of the document as a one-shard set: a missed or a
+  // false collision (1) comes before a refused object (2); with neither, 0.
+  const auto merged_exit_code = [&](const json& d) {
+    const std::string file = write("one-shard.json", d.dump());
+    return graspcd("validate --merge '" + file + "'").exit_code;
+  };
+  EXPECT_EQ(merged_exit_code(doc), 2);
+  for (const char* key : {"missed", "false_contacts", "missed_tri_pairs", "false_tri_pairs"}) {
+    json d = doc;
+    d["rows"][2]["methods"][0][key] = 1;
+    EXPECT_EQ(merged_exit_code(d), 1) << key;
+  }
+  json checked_only = doc;
+  checked_only["objects"] = json::array({"prisms/star.obj"});
+  checked_only["rows"] = json::array({doc["rows"][2]});
+  EXPECT_EQ(merged_exit_code(checked_only), 0);
+  if (graspcd::testing::test_scale() < 1) return;  // the shards again: Release pass only
+
+  // Two shards written into OUT, merged: the same rows as the whole set.
+  const fs::path out = dir_ / "shards";
+  for (const char* shard : {"0/2", "1/2"}) {
+    const Outcome r = graspcd(common + " --shard " + shard + " --out '" + out.string() + "'");
+    ASSERT_EQ(r.exit_code, 2) << "each shard has a refused object\n" << r.err;
+    EXPECT_NE(r.out.find(" objects (shard " + std::string(1, shard[0]) + " of 2)"),
+              std::string::npos)
+        << r.out;
+  }
+  const std::string s0 = "'" + (out / "objects.shard-0-of-2.json").string() + "'";
+  const std::string s1 = "'" + (out / "objects.shard-1-of-2.json").string() + "'";
+  const Outcome merged = graspcd("validate --merge " + s1 + " " + s0 + " --json");
+  ASSERT_EQ(merged.exit_code, 2) << merged.err;
+  const json m = json::parse(merged.out);
+  graspcd::testing::expect_envelope(m, 2);  // the shards' object_refused
+  EXPECT_EQ(m["rows"], doc["rows"]);
+  EXPECT_EQ(m["refused"], 2);
+  EXPECT_EQ(m["merged_from"], 2);
+  const Outcome table = graspcd("validate --merge " + s0 + " " + s1);
+  ASSERT_EQ(table.exit_code, 2) << table.err;
+  EXPECT_NE(table.out.find("prisms/star.obj"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("# refused: "), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("# result: no missed or false collision; 1 objects checked, 2 refused"),
+            std::string::npos)
+      << table.out;
+
+  // A shard missing, the same shard twice, a file that is no shard: one line, exit code 2.
+  const Outcome missing = graspcd("validate --merge " + s0);
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("shard 1 of 2 (objects.shard-1-of-2.json) is missing: its objects "
+                             "bad.obj are in no file given"),
+            std::string::npos)
+      << missing.err;
+  EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
+  const Outcome twice = graspcd("validate --merge " + s0 + " " + s0);
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_NE(twice.err.find("appears twice"), std::string::npos) << twice.err;
+  const Outcome other = graspcd("validate --merge '" + (set / "readme.txt").string() + "'");
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.err.find("readme.txt: not an object-set shard"), std::string::npos) << other.err;
+}
+
+TEST_F(ValidateTest, ObjectSetBadUsageIsOneLineAndExitCodeTwo) {
+  fs::create_directories(dir_ / "empty");
+  fs::create_directories(dir_ / "one");
+  write("one/star.obj", star_prism_obj(0.036, 0.026, 0.08));
+  const std::string one = "'" + (dir_ / "one").string() + "'";
+  struct Case {
+    std::string args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {"validate --objects '" + (dir_ / "none").string() + "'", "none: not a folder of objects"},
+      {"validate --objects '" + (dir_ / "empty").string() + "'",
+       "empty: no OBJ or STL file in the folder"},
+      {"validate --objects " + one + " '" + kMjcf + "example1.xml'", "give one of SCENE"},
+      {"validate --objects " + one + " --shard 2/2", "--shard expects i/n with 0 <= i < n"},
+      {"validate --objects " + one + " --fit --scale 2", "--scale and --fit exclude each other"},
+      {"validate --objects " + one + " --hand nohand", "--hand must be project, robotiq, shadow"},
+      {"validate --objects " + one + " --up w",
+       "--up must be one of x, y, z, -x, -y, -z (not 'w')"},
+      {"validate '" + kMjcf + "example1.xml' --fit", "--fit goes with --objects"},
+      {"validate '" + kMjcf + "example1.xml' --shard 0/2", "--shard goes with --objects"},
+      {"validate", "give one of SCENE, --objects DIR or --merge FILE"},
+  };
+  for (const Case& c : cases) {
+    const Outcome r = graspcd(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << "\n" << r.err;
+  }
+}
+
 TEST_F(ValidateTest, BadInputIsOneLineAndExitCodeTwo) {
   const Outcome missing = graspcd("validate '" + (dir_ / "none.xml").string() + "'");
   EXPECT_EQ(missing.exit_code, 2);

@@ -1,5 +1,6 @@
 #include "graspcd/grasp/object_scene.h"
 
+#include <stdlib.h>
 #include <tinyxml2.h>
 
 #include <Eigen/Geometry>
@@ -11,6 +12,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 #include <vector>
 
 #include "graspcd/core/geometry.h"
@@ -335,6 +337,20 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
   if (!in) throw io::InputError(pairs, 0, "cannot read the template's pair config");
   std::ofstream(out.pairs, std::ios::binary) << in.rdbuf();
   return out;
+}
+
+TempFolder::TempFolder() {
+  std::string pattern = (fs::temp_directory_path() / "graspcd-object-XXXXXX").string();
+  if (mkdtemp(pattern.data()) == nullptr) {
+    throw std::runtime_error("cannot create a temporary folder in " +
+                             fs::temp_directory_path().string());
+  }
+  path_ = pattern;
+}
+
+TempFolder::~TempFolder() {
+  std::error_code ignored;
+  fs::remove_all(path_, ignored);
 }
 
 }  // namespace graspcd::bridge

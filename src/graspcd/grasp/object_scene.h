@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -53,5 +54,20 @@ struct ObjectScene {
 ObjectScene write_object_scene(const ObjectPlacement& placement, const std::string& template_path,
                                const std::string& hand, const std::string& dir,
                                const std::optional<std::array<double, 2>>& default_fit = {});
+
+// A temporary folder for a scene that the user keeps not (grasp --object without --write-scene,
+// validate --objects): created under the system's temporary folder, removed with everything in
+// it when this goes out of scope. Throws std::runtime_error when it cannot be created.
+class TempFolder {
+ public:
+  TempFolder();
+  ~TempFolder();
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
 
 }  // namespace graspcd::bridge

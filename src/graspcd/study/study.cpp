@@ -783,6 +783,28 @@ void write_trajectories(const std::filesystem::path& dir, const std::vector<Exam
 
 }  // namespace
 
+json read_shard_file(const std::string& file, const std::string& kind,
+                     const std::vector<std::string>& keys) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(file + ": cannot open the shard file");
+  json j;
+  try {
+    in >> j;
+  } catch (const json::exception& e) {
+    throw std::runtime_error(file + ": not " + kind + " (" + e.what() + ")");
+  }
+  const bool complete = j.is_object() && std::all_of(keys.begin(), keys.end(),
+                                                     [&j](const auto& k) { return j.contains(k); });
+  if (!complete) {
+    std::string names;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      names += (i == 0 ? "" : i + 1 == keys.size() ? " or " : ", ") + keys[i];
+    }
+    throw std::runtime_error(file + ": not " + kind + " (no " + names + ")");
+  }
+  return j;
+}
+
 Shard parse_shard(const std::string& text) {
   const auto slash = text.find('/');
   std::size_t p1 = 0;
@@ -891,16 +913,7 @@ void merge_shards(const std::vector<std::string>& files, const std::string& out_
   std::map<int, json> by_index;
   int count = -1;
   for (const std::string& f : files) {
-    std::ifstream in(f);
-    if (!in) throw std::runtime_error(f + ": cannot open the shard file");
-    json j;
-    try {
-      in >> j;
-    } catch (const json::exception& e) {
-      throw std::runtime_error(f + ": not a sweep shard (" + std::string(e.what()) + ")");
-    }
-    if (!j.contains("configs") || !j.contains("config_names") || !j.contains("shard"))
-      throw std::runtime_error(f + ": not a sweep shard (no configs, config_names or shard)");
+    json j = read_shard_file(f, "a sweep shard", {"configs", "config_names", "shard"});
     if (merged.is_null()) {
       merged = j;
       merged["configs"] = json::array();
@@ -925,10 +938,14 @@ void merge_shards(const std::vector<std::string>& files, const std::string& out_
   }
   const std::size_t n = merged["config_names"].size();
   for (std::size_t i = 0; i < n; ++i) {
-    if (!by_index.count(static_cast<int>(i)))
-      throw std::runtime_error("configuration " + std::to_string(i) + " (" +
-                               merged["config_names"][i].get<std::string>() +
-                               ") is in no shard given");
+    if (by_index.count(static_cast<int>(i))) continue;
+    // Shard k of n holds configurations k, k + n, ...: name the shard file that is missing.
+    const int shard = static_cast<int>(i % static_cast<std::size_t>(count));
+    throw std::runtime_error(
+        "shard " + std::to_string(shard) + " of " + std::to_string(count) + " (sweep.shard-" +
+        std::to_string(shard) + "-of-" + std::to_string(count) +
+        ".json) is missing: configuration " + std::to_string(i) + " (" +
+        merged["config_names"][i].get<std::string>() + ") is in no shard given");
   }
   for (auto& [i, c] : by_index) merged["configs"].push_back(c);
   merged["shard"] = {{"index", 0}, {"count", 1}};

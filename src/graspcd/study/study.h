@@ -17,6 +17,7 @@
 #pragma once
 
 #include <functional>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,6 +55,13 @@ void run_study(const StudyOptions& options, const std::function<void(const std::
 // that every configuration appears exactly once. Throws std::runtime_error naming the file.
 void merge_shards(const std::vector<std::string>& files, const std::string& out_dir,
                   const std::function<void(const std::string&)>& log);
+
+// Reads a shard file written by a --shard run (`kind`: "a sweep shard", "an object-set shard"): a
+// JSON object holding every key of `keys`. Throws std::runtime_error naming the file: "FILE:
+// cannot open the shard file", "FILE: not KIND (the parser's message)", "FILE: not KIND (no A, B
+// or C)".
+nlohmann::json read_shard_file(const std::string& file, const std::string& kind,
+                               const std::vector<std::string>& keys);
 
 // Parses "i/n" (0 <= i < n); throws std::invalid_argument otherwise.
 Shard parse_shard(const std::string& text);

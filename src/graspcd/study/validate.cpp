@@ -161,6 +161,8 @@ class Validator {
   ValidationReport finish(const bridge::GraspResult& grasp) {
     report_.grasp_method = grasp.method;
     report_.gripped = grasp.gripped;
+    report_.held = grasp.held;
+    report_.reason = grasp.reason;
     return std::move(report_);
   }
 

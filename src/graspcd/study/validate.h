@@ -116,6 +116,8 @@ struct ValidationReport {
   int steps = 0;               // closing grasp steps checked
   int steps_with_contact = 0;  // those at which CGAL found some pair intersecting
   bool gripped = false;        // the grasp's verdict (bridge::GraspResult::gripped)
+  bool held = false;           // bridge::GraspResult::held
+  std::string reason;          // why not held (bridge::GraspResult::reason); empty when held
   std::vector<MethodTable> methods;
   double exact_seconds = 0;   // CGAL's time over the run
   double tester_seconds = 0;  // the testers' time over the run

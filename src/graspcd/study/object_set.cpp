@@ -1,0 +1,264 @@
+#include "graspcd/study/object_set.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+#include <system_error>
+
+#include "graspcd/core/warnings.h"
+#include "graspcd/grasp/grasp.h"
+#include "graspcd/io/text_input.h"
+#include "graspcd/mujoco/mujoco_messages.h"
+
+namespace graspcd::study {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+bool is_object_file(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".obj" || ext == ".stl";
+}
+
+json settings_json(const ObjectSetOptions& o, const std::vector<TesterSpec>& testers) {
+  json methods = json::array();
+  for (const TesterSpec& t : testers) methods.push_back(t.name);
+  const bridge::ObjectPlacement& p = o.placement;
+  return {{"scale", p.fit ? json() : json(p.scale)},
+          {"fit", p.fit},
+          {"up", p.pose ? json() : json(p.up)},
+          {"yaw", p.pose ? json() : json(p.yaw_degrees)},
+          {"pose", p.pose ? json(*p.pose) : json()},
+          {"max_steps", o.max_steps},
+          {"methods", methods}};
+}
+
+json refused_row(const std::string& object, const std::string& error) {
+  return {{"object", object}, {"status", "refused"}, {"error", error}};
+}
+
+// The row of a checked object from its scene and its validation.
+json checked_row(const std::string& object, const bridge::ObjectScene& scene,
+                 const ValidationReport& report) {
+  // CGAL's hits are the truth, the same in every method's table: read from the first.
+  int cgal_hits = 0;
+  if (!report.methods.empty()) {
+    for (const PairRow& r : report.methods.front().rows) cgal_hits += r.truth_hits;
+  }
+  json methods = json::array();
+  for (const MethodTable& t : report.methods) {
+    int checks = 0, agree = 0, missed = 0, false_contacts = 0;
+    std::uint64_t missed_tri = 0, false_tri = 0;
+    for (const PairRow& r : t.rows) {
+      checks += r.steps;
+      agree += r.agree;
+      missed += r.missed;
+      false_contacts += r.false_contacts;
+      missed_tri += r.missed_tri_pairs;
+      false_tri += r.false_tri_pairs;
+    }
+    methods.push_back({{"method", t.method},
+                       {"checks", checks},
+                       {"agree", agree},
+                       {"missed", missed},
+                       {"false_contacts", false_contacts},
+                       {"missed_tri_pairs", missed_tri},
+                       {"false_tri_pairs", false_tri}});
+  }
+  return {
+      {"object", object},       {"status", "checked"},
+      {"error", nullptr},       {"scale", scene.scale},
+      {"fitted", scene.fitted}, {"size", scene.size},
+      {"steps", report.steps},  {"steps_with_contact", report.steps_with_contact},
+      {"cgal_hits", cgal_hits}, {"gripped", report.gripped},
+      {"held", report.held},    {"reason", report.reason.empty() ? json() : json(report.reason)},
+      {"methods", methods}};
+}
+
+// Whether some method of the row counted a check or triangle pair under `checks` or `tri_pairs`
+// (missed: "missed", "missed_tri_pairs"; false: "false_contacts", "false_tri_pairs").
+bool row_has(const json& row, const char* checks, const char* tri_pairs) {
+  if (!row.contains("methods")) return false;
+  return std::any_of(row["methods"].begin(), row["methods"].end(), [&](const json& m) {
+    return m[checks].get<int>() > 0 || m[tri_pairs].get<std::uint64_t>() > 0;
+  });
+}
+
+// The set's verdicts over its rows: missed_any, false_any (some method missed a collision, or
+// gave a false one, on some object) and refused (the objects refused).
+void set_verdicts(json& doc) {
+  const json& rows = doc["rows"];
+  const auto any = [&rows](const char* checks, const char* tri_pairs) {
+    return std::any_of(rows.begin(), rows.end(),
+                       [&](const json& r) { return row_has(r, checks, tri_pairs); });
+  };
+  const bool missed = any("missed", "missed_tri_pairs");
+  const bool false_any = any("false_contacts", "false_tri_pairs");
+  const auto refused = std::count_if(rows.begin(), rows.end(),
+                                     [](const json& r) { return r["status"] == "refused"; });
+  doc["missed_any"] = missed;  // `rows` is not used past here: adding keys may move it
+  doc["false_any"] = false_any;
+  doc["refused"] = refused;
+}
+
+std::string shard_name(int index, int count) {
+  return "objects.shard-" + std::to_string(index) + "-of-" + std::to_string(count) + ".json";
+}
+
+}  // namespace
+
+std::vector<std::string> find_object_files(const std::string& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw io::InputError(dir, 0, "not a folder of objects");
+  std::vector<std::string> files;
+  fs::recursive_directory_iterator it(dir, fs::directory_options::follow_directory_symlink, ec);
+  if (ec) throw io::InputError(dir, 0, "cannot read the folder: " + ec.message());
+  for (const fs::directory_entry& e : it) {
+    if (e.is_regular_file(ec) && is_object_file(e.path())) {
+      files.push_back(fs::relative(e.path(), dir).generic_string());
+    }
+  }
+  if (files.empty()) throw io::InputError(dir, 0, "no OBJ or STL file in the folder");
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+json validate_object_set(const ObjectSetOptions& options, const std::vector<TesterSpec>& testers) {
+  const std::vector<std::string> objects = find_object_files(options.dir);
+  const Shard shard = options.shard.value_or(Shard{});
+  json rows = json::array();
+  const std::size_t first = static_cast<std::size_t>(shard.index);
+  const std::size_t stride = static_cast<std::size_t>(shard.count);
+  for (std::size_t i = first; i < objects.size(); i += stride) {
+    const std::string& object = objects[i];
+    const std::string file = (fs::path(options.dir) / object).string();
+    if (options.log) {
+      options.log("object " + std::to_string(i + 1) + " of " + std::to_string(objects.size()) +
+                  ": " + object);
+    }
+    bridge::ObjectPlacement placement = options.placement;
+    placement.file = file;
+    bridge::TempFolder folder;
+    bridge::ObjectScene scene;
+    // A bad object is its row and a warning; a bad --up (std::invalid_argument) stops the set.
+    try {
+      scene = bridge::write_object_scene(placement, options.template_path, options.hand,
+                                         folder.path().string(), options.default_fit);
+      ValidateOptions validate;
+      validate.max_steps = options.max_steps;
+      if (!options.out_dir.empty()) {
+        validate.out_dir =
+            (fs::path(options.out_dir) / fs::path(object).replace_extension()).string();
+      }
+      const ValidationReport report = validate_scene(scene.scene, testers, validate);
+      if (report.steps_with_contact == 0) {
+        warnings().add("validate_no_contact",
+                       file + ": no grasp step had a contact to check (no pair ever touched)",
+                       "scene");
+      }
+      rows.push_back(checked_row(object, scene, report));
+    } catch (const io::InputError& e) {
+      rows.push_back(refused_row(object, e.what()));
+    } catch (const bridge::GraspInputError& e) {
+      // The scene is a temporary file: the error names the user's object.
+      const std::string error = e.file() == scene.scene
+                                    ? file + ": in the template scene: " + e.message()
+                                    : std::string(e.what());
+      rows.push_back(refused_row(object, error));
+    } catch (const bridge::MujocoError& e) {
+      rows.push_back(refused_row(object, file + ": " + e.what()));
+    }
+    if (rows.back()["status"] == "refused") {
+      warnings().add("object_refused", rows.back()["error"].get<std::string>(), "scene");
+    }
+  }
+  json doc = {{"objects_dir", options.dir},
+              {"hand", options.hand},
+              {"template", options.template_path},
+              {"settings", settings_json(options, testers)},
+              {"objects", objects},
+              {"shard", {{"index", shard.index}, {"count", shard.count}}},
+              {"rows", rows}};
+  set_verdicts(doc);
+  return doc;
+}
+
+json merge_object_shards(const std::vector<std::string>& files) {
+  if (files.empty()) throw std::runtime_error("--merge needs at least one shard file");
+  json merged;
+  std::map<int, std::string> file_of_shard;
+  std::map<std::string, json> rows_by_object;
+  int count = 0;
+  for (const std::string& f : files) {
+    json j =
+        read_shard_file(f, "an object-set shard", {"rows", "objects", "settings", "hand", "shard"});
+    const int index = j["shard"]["index"].get<int>();
+    if (merged.is_null()) {
+      merged = j;
+      count = j["shard"]["count"].get<int>();
+    } else {
+      if (j["objects"] != merged["objects"] || j["objects_dir"] != merged["objects_dir"]) {
+        throw std::runtime_error(f + ": a shard of another object set (its objects differ)");
+      }
+      if (j["settings"] != merged["settings"] || j["hand"] != merged["hand"] ||
+          j["template"] != merged["template"]) {
+        throw std::runtime_error(f + ": run with other settings (hand, placement, methods)");
+      }
+      if (j["shard"]["count"].get<int>() != count) {
+        throw std::runtime_error(f + ": a shard of another split (" +
+                                 std::to_string(j["shard"]["count"].get<int>()) + " shards, not " +
+                                 std::to_string(count) + ")");
+      }
+    }
+    if (file_of_shard.count(index) > 0) {
+      throw std::runtime_error(f + ": shard " + std::to_string(index) + " of " +
+                               std::to_string(count) + " appears twice (also " +
+                               file_of_shard[index] + ")");
+    }
+    file_of_shard[index] = f;
+    // The shards' warnings (objects refused, nothing to check) go into this process's sink, so
+    // the merged document's envelope carries them.
+    if (j.contains("warnings") && j["warnings"].is_array()) {
+      for (const json& w : j["warnings"]) {
+        warnings().add(w.value("code", std::string()), w.value("message", std::string()),
+                       w.value("source", std::string()));
+      }
+    }
+    for (const json& row : j["rows"]) rows_by_object[row["object"].get<std::string>()] = row;
+  }
+  for (int i = 0; i < count; ++i) {
+    if (file_of_shard.count(i) > 0) continue;
+    std::string names;
+    const json& objects = merged["objects"];
+    for (std::size_t k = static_cast<std::size_t>(i); k < objects.size();
+         k += static_cast<std::size_t>(count)) {
+      names += (names.empty() ? "" : ", ") + objects[k].get<std::string>();
+    }
+    throw std::runtime_error("shard " + std::to_string(i) + " of " + std::to_string(count) + " (" +
+                             shard_name(i, count) + ") is missing: its objects " + names +
+                             " are in no file given");
+  }
+  json rows = json::array();
+  for (const json& object : merged["objects"]) {
+    const auto it = rows_by_object.find(object.get<std::string>());
+    if (it == rows_by_object.end()) {
+      throw std::runtime_error(object.get<std::string>() + ": in no row of the shards given");
+    }
+    rows.push_back(it->second);
+  }
+  merged["rows"] = rows;
+  merged["shard"] = {{"index", 0}, {"count", 1}};
+  merged["merged_from"] = files.size();
+  set_verdicts(merged);
+  merged.erase("graspcd");
+  merged.erase("warnings");
+  return merged;
+}
+
+}  // namespace graspcd::study

@@ -1,0 +1,71 @@
+// `graspcd validate --objects DIR` (issue 22): a set of objects checked against CGAL, one row per
+// object. Every OBJ and STL file under DIR (searched recursively, the extension in any case,
+// sorted by its path relative to DIR) goes through the `grasp --object` workflow
+// (grasp/object_scene.h): placed in the template hand's scene with the same placement options
+// (--fit, --scale, --up, --yaw), its start state checked, then validate_scene() (validate.h) runs
+// the grasp and checks every registered pair at every closing grasp step.
+//
+// A row: the object's scale and size, the closing grasp steps checked, those at which CGAL found
+// some pair intersecting (steps with contact), CGAL's hits (pair checks that intersect, summed
+// over the pairs and steps; the same for every method), per method its missed and false
+// collisions (and triangle pairs), and the grasp's verdict (gripped, held, the reason). An object
+// that cannot be checked (a bad mesh, a start state that is not valid) is a row `refused` with
+// the one-line error naming its file, and a warning (`object_refused`); the other objects go on.
+//
+// Scale-out: a shard i/N takes every N-th object from the i-th (as `study --shard`); the
+// document names the whole set, the settings and the shard, so merge_object_shards() can check
+// that its shards are one split of one set, each present once.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "graspcd/grasp/object_scene.h"
+#include "graspcd/study/study.h"
+#include "graspcd/study/validate.h"
+
+namespace graspcd::study {
+
+struct ObjectSetOptions {
+  std::string dir;            // searched recursively
+  std::string hand;           // the template's name in the output (project, robotiq, ...)
+  std::string template_path;  // the template scene (object_scene.h)
+  std::optional<std::array<double, 2>> default_fit;  // when the template has no graspcd_fit
+  // scale, fit, up, yaw_degrees, pose: the same for every object (file is ignored).
+  bridge::ObjectPlacement placement;
+  int max_steps = 400;  // most closing grasp steps per object
+  // The first disagreement of each (method, pair, object) is written into OUT/<object path
+  // without its extension>/ (validate.h); empty: nothing is written.
+  std::string out_dir;
+  std::optional<Shard> shard;                   // only this shard of the set
+  std::function<void(const std::string&)> log;  // progress, one line per object
+};
+
+// The OBJ and STL files under `dir`, relative to it ('/' separated), sorted. Throws
+// io::InputError naming `dir` when it is not a folder or holds no such file.
+std::vector<std::string> find_object_files(const std::string& dir);
+
+// Validates the objects of the set (of the shard) with every tester. The document: objects_dir,
+// hand, template, settings (scale, fit, up, yaw, pose, max_steps, methods), objects (the whole
+// set, relative paths), shard {index, count}, rows (this shard's objects in set order: object,
+// status "checked" or "refused", error, scale, fitted, size, steps, steps_with_contact,
+// cgal_hits, gripped, held, reason, methods: method, checks, agree, missed, false_contacts,
+// missed_tri_pairs, false_tri_pairs), missed_any and false_any (some method missed a collision
+// or a triangle pair, or gave a false one, on some object), refused (the objects refused). No
+// envelope (the caller adds it when it writes the document). Throws std::invalid_argument for a bad
+// `up` (a usage error).
+nlohmann::json validate_object_set(const ObjectSetOptions& options,
+                                   const std::vector<TesterSpec>& testers);
+
+// Joins shard documents (files written from validate_object_set, each with its envelope) into
+// one document of the whole set, rows in set order, its verdicts (missed_any, false_any,
+// refused) counted again over them. Throws std::runtime_error naming the file
+// (not a shard, another set or settings, another split, a shard given twice) or naming the
+// missing shard and its objects.
+nlohmann::json merge_object_shards(const std::vector<std::string>& files);
+
+}  // namespace graspcd::study
