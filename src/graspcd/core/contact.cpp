@@ -20,18 +20,18 @@ struct Polygon {
   int n = 0;
 };
 
-// One side of a plane through `o` with normal `m`: keeps m.(p - o) >= 0 (Sutherland-Hodgman).
-Polygon clip(const Polygon& in, const Vec3& o, const Vec3& m) {
-  Polygon out;
+// One side of a plane through `o` with normal `m`: keeps m.(p - o) >= 0 (Sutherland-Hodgman),
+// from `in` into `out` (two buffers in turn: no polygon is copied).
+void clip(const Polygon& in, const Vec3& o, const Vec3& m, Polygon& out) {
+  out.n = 0;
   for (int i = 0; i < in.n; ++i) {
     const Vec3& p = in.v[static_cast<std::size_t>(i)];
-    const Vec3& q = in.v[static_cast<std::size_t>((i + 1) % in.n)];
+    const Vec3& q = in.v[static_cast<std::size_t>(i + 1 == in.n ? 0 : i + 1)];
     const double sp = m.dot(p - o), sq = m.dot(q - o);
     if (sp >= 0) out.v[static_cast<std::size_t>(out.n++)] = p;
     if ((sp >= 0) != (sq >= 0))
       out.v[static_cast<std::size_t>(out.n++)] = p + (sp / (sp - sq)) * (q - p);
   }
-  return out;
 }
 
 struct Direction {
@@ -46,15 +46,18 @@ struct Direction {
 // `moving` clipped to the prism over `ref` and measured below `ref`'s plane (unit normal n).
 Direction measure(const Triangle& ref, const Vec3& n, const Triangle& moving) {
   Direction d;
-  Polygon poly;
-  poly.n = 3;
-  for (std::size_t k = 0; k < 3; ++k) poly.v[k] = moving.v[k];
+  Polygon buffers[2];
+  int cur = 0;
+  buffers[0].n = 3;
+  for (std::size_t k = 0; k < 3; ++k) buffers[0].v[k] = moving.v[k];
   // The three edge planes of `ref`, inward normals n x (edge).
-  for (std::size_t k = 0; k < 3 && poly.n > 0; ++k) {
+  for (std::size_t k = 0; k < 3 && buffers[cur].n > 0; ++k) {
     const Vec3& o = ref.v[k];
     const Vec3 edge = ref.v[(k + 1) % 3] - o;
-    poly = clip(poly, o, n.cross(edge));
+    clip(buffers[cur], o, n.cross(edge), buffers[1 - cur]);
+    cur = 1 - cur;
   }
+  const Polygon& poly = buffers[cur];
   if (poly.n == 0) return d;
   d.valid = true;
   d.deepest = poly.v[0];
