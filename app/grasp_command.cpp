@@ -67,21 +67,6 @@ struct ObjectRun {
   bridge::ObjectScene scene;
 };
 
-// A file removed when this goes out of scope.
-class RemovedFile {
- public:
-  explicit RemovedFile(std::string path) : path_(std::move(path)) {}
-  ~RemovedFile() {
-    std::error_code ignored;
-    fs::remove(path_, ignored);
-  }
-  RemovedFile(const RemovedFile&) = delete;
-  RemovedFile& operator=(const RemovedFile&) = delete;
-
- private:
-  std::string path_;
-};
-
 std::string segments_text(const bridge::GraspResult& g, const bridge::GraspStepRecord& r) {
   std::string out;
   for (std::size_t s = 0; s < r.touching.size(); ++s) {
@@ -275,20 +260,10 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   std::optional<ObjectRun> object;
   std::string scene = options.scene;
   // --decomposed: the scene with the object's pieces, beside SCENE (removed on return), run
-  // natively; the pair config (the drive section of a real hand) stays SCENE's.
+  // natively; the pair config (the drive section of a real hand) stays SCENE's
+  // (bridge::run_decomposed_grasp).
   std::optional<bridge::DecomposedScene> decomposed;
-  std::optional<RemovedFile> remove_decomposed;
-  if (!options.decomposed.empty()) {
-    try {
-      decomposed = bridge::write_decomposed_scene(options.scene, options.decomposed);
-    } catch (const bridge::GraspInputError& e) {
-      throw io::InputError(e.file(), e.line(), e.message());
-    }
-    remove_decomposed.emplace(decomposed->scene);
-    scene = decomposed->scene;
-    grasp.native = true;
-    if (grasp.config_path.empty()) grasp.config_path = bridge::pair_config_path(options.scene);
-  }
+  if (!options.decomposed.empty()) decomposed.emplace();
   if (!options.object.empty()) {
     const HandTemplate hand = hand_template(options.hand, "grasp");
     bridge::ObjectPlacement placement;
@@ -314,7 +289,6 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   }
   // Errors name the user's file, never the temporary scene (removed when this returns).
   const auto named = [&](const std::string& file) {
-    if (decomposed && file == decomposed->scene) return options.scene;
     return object && file == object->scene.scene ? options.object : file;
   };
   std::unique_ptr<study::ContactJudge> judge;
@@ -326,13 +300,12 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   }
   bridge::GraspResult result;
   try {
-    result = bridge::run_grasp(scene, grasp);
+    result = decomposed ? bridge::run_decomposed_grasp(options.scene, options.decomposed, grasp,
+                                                       &*decomposed)
+                        : bridge::run_grasp(scene, grasp);
   } catch (const bridge::GraspInputError& e) {
     if (object && e.file() == object->scene.scene) {
       throw io::InputError(options.object, 0, "in the template scene: " + e.message());
-    }
-    if (decomposed && e.file() == decomposed->scene) {
-      throw io::InputError(options.scene, 0, "with " + options.decomposed + ": " + e.message());
     }
     throw io::InputError(e.file(), e.line(), e.message());
   } catch (const bridge::MujocoError& e) {
@@ -340,7 +313,6 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   }
   if (object && !temp) result.scene = object->scene.scene;
   if (object && temp) result.scene = options.object;
-  if (decomposed) result.scene = options.scene;
   std::optional<study::ContactJudgeSummary> judged;
   if (judge) judged = judge->summary();
   if (options.json) {

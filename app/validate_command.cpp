@@ -1,6 +1,6 @@
 // graspcd validate SCENE.xml [--method M | --all-methods] [--max-steps N] [--config F] [--out DIR]
-// [--json]: the scene's grasp, every registered pair checked against CGAL at every closing grasp
-// step (src/graspcd/study/validate.h). Exit code 1 on any missed collision.
+// [--json] [--decomposed DIR]: the scene's grasp, every registered pair checked against CGAL at
+// every closing grasp step (src/graspcd/study/validate.h). Exit code 1 on any missed collision.
 // graspcd validate --objects DIR [--hand H] [--fit | --scale S] [--up A] [--yaw D] [--shard i/N]
 // [--out OUT]: every OBJ/STL under DIR through the --object workflow, one row per object
 // (src/graspcd/study/object_set.h); graspcd validate --merge FILE... joins the shards. Their exit
@@ -39,7 +39,8 @@ struct ValidateCliOptions {
   MethodOptions method;
   std::string scene;
   std::string config;
-  std::string out_dir;  // empty: nothing written
+  std::string out_dir;     // empty: nothing written
+  std::string decomposed;  // --decomposed DIR: the grasp runs on the object's convex pieces
   bool all_methods = false;
   bool json = false;
   int steps = 400;
@@ -111,6 +112,12 @@ void print_text(const study::ValidationReport& report) {
       << report.grasp_method << (report.gripped ? " (gripped)" : " (not gripped)")
       << "; truth: CGAL " << exact::cgal_version()
       << " on the same triangles or boxes in the same poses\n";
+  if (report.decomposed.pieces > 0) {
+    out << "# decomposed: the grasp ran natively with " << report.decomposed.replaced_geoms
+        << " geom(s) of " << report.decomposed.source << " colliding as "
+        << report.decomposed.pieces << " convex pieces each (" << report.decomposed_dir
+        << "); the pairs are checked on the true meshes\n";
+  }
   std::size_t width = 4;
   for (const study::MethodTable& t : report.methods) {
     for (const study::PairRow& r : t.rows) width = std::max(width, r.pair.size());
@@ -213,7 +220,14 @@ void print_json(const study::ValidationReport& report) {
                         {"tester_seconds", report.tester_seconds},
                         {"nonfinite_skips", report.nonfinite_skips},
                         {"missed_any", report.missed_any()},
-                        {"methods", methods}};
+                        {"methods", methods},
+                        {"decomposed", nullptr}};
+  if (report.decomposed.pieces > 0) {
+    doc["decomposed"] = {{"dir", report.decomposed_dir},
+                         {"source", report.decomposed.source},
+                         {"pieces", report.decomposed.pieces},
+                         {"geoms", report.decomposed.replaced_geoms}};
+  }
   add_envelope(doc);
   std::cout << doc.dump(2) << '\n';
 }
@@ -393,6 +407,7 @@ int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
   options.config_path = o.config;
   options.max_steps = o.steps;
   options.out_dir = o.out_dir;
+  options.decomposed_dir = o.decomposed;
   options.on_step = [](int step) {
     if (step % 50 == 0) std::cerr << "[validate] grasp step " << step << " checked" << std::endl;
   };
@@ -458,6 +473,9 @@ Command add_validate_command(CLI::App& parent) {
                   "Write the first disagreement of each method and pair into this folder (only "
                   "when there is one; default: nothing is written)");
   app->add_flag("--json", o->json, "Print one JSON document instead of the table");
+  app->add_option("--decomposed", o->decomposed,
+                  "A folder written by graspcd decompose: the grasp runs on the object's convex "
+                  "pieces under MuJoCo's native collision; the checks stay on the true meshes");
   app->footer(wrap_help(
       "Runs the scene's grasp (as graspcd grasp, driven by the pair config's method) and, after "
       "every closing grasp step, checks each registered pair with each method asked for "
@@ -493,7 +511,16 @@ Command add_validate_command(CLI::App& parent) {
       "path, "
       "steps, agree, truth_hits, missed, false_contacts, pair_mismatch, missed_tri_pairs, "
       "false_tri_pairs, first_disagreement: null or step, truth, answer, truth_pairs, "
-      "answer_pairs, files, command).\n"
+      "answer_pairs, files, command), decomposed (null, or dir, source, pieces, geoms).\n"
+      "--decomposed DIR: the truth side of the race (issue 20). The grasp runs as 'graspcd "
+      "grasp SCENE --decomposed DIR' does: the object's geoms of the mesh DIR decomposes keep "
+      "their mass without colliding, one geom per convex piece collides in their place under "
+      "MuJoCo's native collision, SCENE.pairs.json drives the hand. At each closing grasp step "
+      "of that grasp, every pair the config registers is checked as above on the true meshes "
+      "(the original geoms, not the pieces) in the poses the pieces' contacts produced: the "
+      "methods against CGAL. A line '# decomposed: ...' follows the header. A DIR without "
+      "decomposition.json, or a SCENE without a mesh of its source, is bad input (exit code "
+      "2).\n"
       "Exit code: 0 when no method missed a collision or an intersecting triangle pair (false "
       "collisions are reported, not failures: the perceptron may leave boxes it cannot separate "
       "within its cap), 1 when one did, 2 for bad input (a missing or bad scene or config: one "
@@ -525,6 +552,8 @@ Command add_validate_command(CLI::App& parent) {
       "Examples:\n"
       "  graspcd validate mjcf/example3.xml\n"
       "  graspcd validate mjcf/hand_boxes.xml --all-methods --max-steps 100 --json\n"
+      "  graspcd decompose mjcf/meshes/cup.obj --out /tmp/cup8 --pieces 8\n"
+      "  graspcd validate mjcf/example1.xml --decomposed /tmp/cup8\n"
       "  graspcd validate --objects ../shared/models/objects --fit --method sat --out /tmp/o\n"
       "  graspcd validate --objects DIR --fit --shard 0/4 --out /tmp/o\n"
       "  graspcd validate --merge /tmp/o/objects.shard-*-of-4.json --out /tmp/o"));

@@ -600,7 +600,7 @@ def race_section(race, fig_dir, fig_rel):
     w("## The race: the hull, convex decompositions and graspcd")
     w("")
     w("From `race.json` (`study/race/run_race.py build/graspcd`, not part of `./run test`; the"
-      " decompositions are cached in `report/out/race`). Each scene's grasp runs as graspcd"
+      " decompositions are cached in its `--work` folder, by default `report/out/race`). Each scene's grasp runs as graspcd"
       " serves it (the contact manifold), natively on MuJoCo's convex hull, and natively on"
       " HACD decompositions of the object into at most N convex pieces (`graspcd decompose`,"
       " `grasp --decomposed`). The step cost is the wall time per physics step over the whole"
@@ -614,18 +614,48 @@ def race_section(race, fig_dir, fig_rel):
       " the object's (CGAL's bounded_error_Hausdorff_distance, with its bound); HACD clusters"
       " the surface, and a cluster that rings a cavity (a cup's rim) has a hull that closes it,"
       " which the Hausdorff distance and the volume added show."
-      f" Machine: {m['cpu']}, {m['cores']} cores, load average"
-      f" {', '.join(f'{x:.1f}' for x in m['load_average'])} ({m['date']}).")
+      f" Machine: {m['cpu']}, {m['cores']} cores. Each scene's race ran as below (a scene of an"
+      " earlier run kept by `run_race.py --merge` keeps that run's machine, date and load; the"
+      " load average is the machine's, shared with other builds, so compare step costs within a"
+      " scene, not across scenes).")
+    w("")
+    w("| scene | object | N raced | graspcd | date | load average | race wall time |")
+    w("|---|---|---|---|---|---|---|")
+    for scene, e in race["scenes"].items():
+        p = e.get("provenance", {"machine": m})
+        obj = e.get("object")
+        what = (f"`grasp --object {obj['file']} {' '.join(obj['options'])}`" if obj
+                else f"mjcf/{scene}.xml")
+        counts = ", ".join(str(n) for n in e.get("pieces", race["pieces"])) or "none"
+        if "machine" in p:
+            old = p["machine"]
+            w(f"| {scene} | {what} | {counts} | (not recorded) | {old['date']} |"
+              f" {', '.join(f'{x:.1f}' for x in old['load_average'])} (run's end) | - |")
+        else:
+            g = p["graspcd"]
+            commit = g.get("commit", "?")[:7] + (" (dirty)" if g.get("dirty") else "")
+            w(f"| {scene} | {what} | {counts} | {g.get('version', '?')} {commit} | {p['date']} |"
+              f" {', '.join(f'{x:.1f}' for x in p['load_average'])} |"
+              f" {p['wall_seconds'] / 60:.1f} min |")
+    for scene, e in race["scenes"].items():
+        if e.get("note"):
+            w("")
+            w(f"{scene}: {e['note']}")
+    w("")
+    w("The one-sided Hausdorff distance is in the scene's metres: the decomposition is in the"
+      " mesh file's units, times the scene's mesh scale (`mesh_scale`; 1 where race.json has"
+      " none).")
     w("")
     w("| scene | N asked | pieces | HACD (s) | one-sided Hausdorff (mm) | volume added |")
     w("|---|---|---|---|---|---|")
     for scene, e in race["scenes"].items():
+        scale = e.get("mesh_scale", [1, 1, 1])[0]
         for n, d in e["decompositions"].items():
             vol = d["volume"]
             added = "open mesh" if vol is None else f"{100 * vol['added_fraction']:.0f}%"
             w(f"| {scene} ({e['mesh']}, {d['source_faces']} faces) | {n} | {d['pieces']} |"
-              f" {d['seconds']:.1f} | {1000 * d['hausdorff']:.2f} +- {1000 * d['hausdorff_bound']:.2f}"
-              f" | {added} |")
+              f" {d['seconds']:.1f} | {1000 * scale * d['hausdorff']:.2f} +-"
+              f" {1000 * scale * d['hausdorff_bound']:.2f} | {added} |")
     w("")
     w("| scene | configuration | step cost (ms) | contacts per step | gripped, held |"
       " first contact as CGAL's | phantom, missed | contact error per step |")
@@ -633,6 +663,7 @@ def race_section(race, fig_dir, fig_rel):
     fig, ax = plt.subplots(figsize=(7, 4.5))
     markers = "osD^v<>"
     wins = []
+    verdicts = []
     for k, (scene, e) in enumerate(race["scenes"].items()):
         xs, ys, held = [], [], []
         for r in e["rows"]:
@@ -660,6 +691,7 @@ def race_section(race, fig_dir, fig_rel):
                    marker=marker, facecolors="none", edgecolors=color,
                    label=f"{scene} (not held)")
         ours = next(r for r in e["rows"] if r["configuration"] == "graspcd")
+        verdicts.append(race_verdict(scene, ours, e["rows"]))
         for r in e["rows"]:
             if r["configuration"].startswith("decomposed") and \
                     r["ms_per_physics_step"] < ours["ms_per_physics_step"] and \
@@ -679,13 +711,55 @@ def race_section(race, fig_dir, fig_rel):
     w("")
     w("Filled markers: the object was held through the lift and hold; hollow: it was not.")
     w("")
+    w("Where a decomposition wins, scene by scene (graspcd's step cost and contact error per"
+      " closing step beside the decompositions'):")
+    w("")
+    lines.extend(verdicts)
+    w("")
     if wins:
-        w("A decomposition wins (cheaper per step, no more contact error, held whenever graspcd"
-          f" held) on: {', '.join(wins)}.")
+        w("A decomposition wins outright (cheaper per step, no more contact error, held whenever"
+          f" graspcd held) on: {', '.join(wins)}.")
     else:
         w("No decomposition is both cheaper per step than graspcd and as faithful while holding"
           " whenever graspcd held, on these scenes.")
     return lines
+
+
+def race_verdict(scene, ours, rows):
+    """One line of the race: where the decompositions of `scene` win on step cost, contact error
+    and outcome against graspcd's row `ours`, with the numbers."""
+    decs = [r for r in rows if r["configuration"].startswith("decomposed")]
+    if not decs:
+        return f"- {scene}: no decomposition raced."
+
+    def name(r):
+        return r["configuration"].replace("decomposed-", "")
+
+    def outcome(r):
+        return "held" if r["held"] else ("gripped, not held" if r["gripped"] else "not gripped")
+
+    def span(values, digits):
+        lo, hi = f"{min(values):.{digits}f}", f"{max(values):.{digits}f}"
+        return lo if lo == hi else f"{lo}-{hi}"
+
+    cheaper = [r for r in decs if r["ms_per_physics_step"] < ours["ms_per_physics_step"]]
+    cost = (f"step cost: {len(cheaper)} of {len(decs)} cheaper than graspcd's"
+            f" {ours['ms_per_physics_step']:.3f} ms"
+            f" ({span([r['ms_per_physics_step'] for r in decs], 3)} ms)")
+    e0 = ours["contact_error_per_step"]
+    parts = []
+    for word, keep in (("lower", lambda x: x < e0), ("equal", lambda x: x == e0),
+                       ("higher", lambda x: x > e0)):
+        some = [r for r in decs if keep(r["contact_error_per_step"])]
+        if some:
+            parts.append(f"{word} with {', '.join(name(r) for r in some)} pieces"
+                         f" ({span([r['contact_error_per_step'] for r in some], 2)})")
+    error = f"contact error: graspcd {e0:.2f}, decompositions " + ", ".join(parts)
+    held = [name(r) for r in decs if r["held"]]
+    result = (f"outcome: graspcd {outcome(ours)}; decompositions held with"
+              f" {', '.join(held) if held else 'none'} of {', '.join(name(r) for r in decs)}"
+              " pieces")
+    return f"- {scene}: {cost}; {error}; {result}."
 
 
 def real_models_section(real):

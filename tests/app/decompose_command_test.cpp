@@ -1,5 +1,6 @@
-// `graspcd decompose` and `graspcd grasp --decomposed` (issue 20) through the executable: the
-// pieces are convex, the MJCF fragment and the decomposed scene load in MuJoCo 2.2, bad input is
+// `graspcd decompose`, `graspcd grasp --decomposed` and `graspcd validate --decomposed` (issue 20)
+// through the executable: the pieces are convex, the MJCF fragment and the decomposed scene load
+// in MuJoCo 2.2, validate checks the true meshes at the decomposed grasp's poses, bad input is
 // one line with exit code 2.
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
@@ -58,6 +59,42 @@ class DecomposeCommand : public CommandTest {
                               (dir_ / "scene").string() + "' --max-steps 1");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return dir_ / "scene/cube_cup.xml";
+  }
+
+  // `graspcd COMMAND SCENE --decomposed DIR EXTRA --json` (COMMAND grasp or validate) on example
+  // 1's hand grasping `cup` (write_cube_cup_scene), the cup decomposed into at most `pieces`
+  // (DIR/cupN): the scene, decompose's document and the command's (null when it failed).
+  struct DecomposedRun {
+    fs::path scene;
+    nlohmann::json decomposition;
+    nlohmann::json output;
+  };
+  DecomposedRun run_decomposed(const fs::path& cup, const std::string& command, int pieces,
+                               const std::string& extra) {
+    DecomposedRun out;
+    out.scene = write_cube_cup_scene(cup);
+    const std::string name = "cup" + std::to_string(pieces);
+    out.decomposition = decompose(cup, pieces, name);
+    EXPECT_TRUE(out.decomposition.contains("piece_count"));
+    const fs::path json = dir_ / (command + ".json");
+    const Outcome r = run(std::string("{ '") + GRASPCD_EXE + "' " + command + " '" +
+                          out.scene.string() + "' --decomposed '" + (dir_ / name).string() + "' " +
+                          extra + " --json > '" + json.string() + "'; }");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    if (r.exit_code == 0) {
+      out.output = load(json);
+      expect_envelope(out.output, -1);
+    }
+    return out;
+  }
+
+  // The scene a --decomposed run writes beside the cube_cup scene is gone.
+  void expect_no_written_scene_left() {
+    for (const auto& entry : fs::directory_iterator(dir_ / "scene")) {
+      EXPECT_EQ(entry.path().filename().string().rfind(".cube_cup.decomposed-", 0),
+                std::string::npos)
+          << "left behind: " << entry.path();
+    }
   }
 
   // The fragment included by a model whose meshdir is the output folder: it must load, with one
@@ -166,16 +203,11 @@ TEST_F(DecomposeCommand, BadInputIsOneLineNamingTheFile) {
 TEST_F(DecomposeCommand, DecomposedGraspRunsOnThePieces) {
   const fs::path cup = kModels / "objects/mujoco/cube_cup.obj";
   if (!fs::exists(cup)) GTEST_SKIP() << "real models not found at " << kModels;
-  const fs::path scene = write_cube_cup_scene(cup);
-  const nlohmann::json d = decompose(cup, 8, "cup8");
-  ASSERT_TRUE(d.contains("piece_count"));
-  const fs::path json = dir_ / "grasp.json";
-  const Outcome r =
-      run(std::string("{ '") + GRASPCD_EXE + "' grasp '" + scene.string() + "' --decomposed '" +
-          (dir_ / "cup8").string() + "' --judge --json > '" + json.string() + "'; }");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const nlohmann::json g = load(json);
-  expect_envelope(g, -1);
+  const DecomposedRun run = run_decomposed(cup, "grasp", 8, "--judge");
+  const fs::path& scene = run.scene;
+  const nlohmann::json& d = run.decomposition;
+  const nlohmann::json& g = run.output;
+  ASSERT_FALSE(g.is_null());
   EXPECT_TRUE(g.at("native").get<bool>());
   EXPECT_EQ(g.at("scene").get<std::string>(), scene.string());
   EXPECT_EQ(g.at("decomposed").at("pieces"), d.at("piece_count"));
@@ -201,10 +233,7 @@ TEST_F(DecomposeCommand, DecomposedGraspRunsOnThePieces) {
     EXPECT_EQ(geom.rfind("finger", 0), 0u) << geom;
     EXPECT_GE(step.get<int>(), 1);
   }
-  for (const auto& entry : fs::directory_iterator(dir_ / "scene")) {
-    EXPECT_EQ(entry.path().filename().string().rfind(".cube_cup.decomposed-", 0), std::string::npos)
-        << "left behind: " << entry.path();
-  }
+  expect_no_written_scene_left();
 }
 
 // The decomposed scene as MuJoCo compiles it: the original geom stays with its mass but without
@@ -271,6 +300,45 @@ TEST_F(DecomposeCommand, DecomposedSceneKeepsMassAndPlace) {
     }
   }
   EXPECT_EQ(piece_geoms, pieces);
+}
+
+// validate's truth side on a decomposed scene: the grasp runs natively on the pieces of
+// cube_cup, and at its poses every registered pair is checked on the true meshes: the pairs name
+// the original cup (no piece), every method agrees with CGAL on them (nothing missed), and the
+// written scene is gone afterwards. Bad input (a folder without decomposition.json) is one line.
+TEST_F(DecomposeCommand, ValidateDecomposedChecksTheTrueMeshes) {
+  const fs::path cup = kModels / "objects/mujoco/cube_cup.obj";
+  if (!fs::exists(cup)) GTEST_SKIP() << "real models not found at " << kModels;
+  const DecomposedRun run = run_decomposed(cup, "validate", 4, "");
+  const fs::path& scene = run.scene;
+  const nlohmann::json& d = run.decomposition;
+  const nlohmann::json& v = run.output;
+  ASSERT_FALSE(v.is_null());
+  EXPECT_EQ(v.at("scene").get<std::string>(), scene.string());
+  EXPECT_EQ(v.at("grasp_method").get<std::string>(), "native");
+  EXPECT_EQ(v.at("decomposed").at("pieces"), d.at("piece_count"));
+  EXPECT_EQ(v.at("decomposed").at("geoms").get<int>(), 1);
+  EXPECT_FALSE(v.at("missed_any").get<bool>());
+  EXPECT_GT(v.at("steps").get<int>(), 0);
+  EXPECT_GT(v.at("steps_with_contact").get<int>(), 0);
+  int object_pairs = 0;
+  for (const auto& method : v.at("methods")) {
+    for (const auto& pair : method.at("pairs")) {
+      const std::string name = pair.at("pair").get<std::string>();
+      EXPECT_EQ(name.find("__piece_"), std::string::npos) << name;
+      EXPECT_EQ(pair.at("steps").get<int>(), v.at("steps").get<int>()) << name;
+      EXPECT_EQ(pair.at("missed").get<int>(), 0) << name;
+      object_pairs += name.find("object") != std::string::npos;
+    }
+  }
+  EXPECT_GT(object_pairs, 0);
+  expect_no_written_scene_left();
+  fs::create_directories(dir_ / "empty");
+  const Outcome bad =
+      graspcd("validate '" + scene.string() + "' --decomposed '" + (dir_ / "empty").string() + "'");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_EQ(bad.err.rfind((dir_ / "empty").string() + ":", 0), 0u) << bad.err;
 }
 
 TEST_F(DecomposeCommand, DecomposedGraspBadInput) {

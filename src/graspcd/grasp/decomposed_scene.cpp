@@ -10,10 +10,13 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "graspcd/grasp/grasp.h"
+#include "graspcd/mujoco/registry.h"
 
 namespace graspcd::bridge {
 
@@ -64,6 +67,18 @@ tinyxml2::XMLElement* sibling_copy(tinyxml2::XMLElement* from, tinyxml2::XMLElem
   from->Parent()->InsertAfterChild(after, copy);
   return copy;
 }
+
+// The written scene, removed however the grasp returns.
+struct RemovedOnExit {
+  explicit RemovedOnExit(std::string p) : path(std::move(p)) {}
+  RemovedOnExit(const RemovedOnExit&) = delete;
+  RemovedOnExit& operator=(const RemovedOnExit&) = delete;
+  ~RemovedOnExit() {
+    std::error_code ignored;
+    fs::remove(path, ignored);
+  }
+  std::string path;
+};
 
 }  // namespace
 
@@ -140,6 +155,54 @@ DecomposedScene write_decomposed_scene(const std::string& scene_path,
   }
   out.scene = pattern;
   return out;
+}
+
+GraspResult run_decomposed_grasp(const std::string& scene_path,
+                                 const std::string& decomposition_dir, GraspOptions options,
+                                 DecomposedScene* written) {
+  const DecomposedScene scene = write_decomposed_scene(scene_path, decomposition_dir);
+  const RemovedOnExit remove{scene.scene};
+  if (written != nullptr) *written = scene;
+  options.native = true;
+  if (options.config_path.empty()) options.config_path = pair_config_path(scene_path);
+  GraspResult result;
+  try {
+    result = run_grasp(scene.scene, options);
+  } catch (const GraspInputError& e) {
+    if (e.file() != scene.scene) throw;
+    // Its line would be the written scene's: not the user's.
+    throw GraspInputError(scene_path, "with " + decomposition_dir + ": " + e.message());
+  }
+  result.scene = scene_path;
+  return result;
+}
+
+bool is_piece(const mjModel* m, int g) {
+  if (m->geom_type[g] != mjGEOM_MESH || m->geom_dataid[g] < 0) return false;
+  const char* mesh = mj_id2name(m, mjOBJ_MESH, m->geom_dataid[g]);
+  return mesh != nullptr && std::string(mesh).find("__piece_") != std::string::npos;
+}
+
+ModelPtr true_object_model(const mjModel* m) {
+  ModelPtr copy(mj_copyModel(nullptr, m));
+  if (!copy) throw std::runtime_error("true_object_model: mj_copyModel failed");
+  // The pieces of a geom follow it in its body (write_decomposed_scene inserts them right after
+  // it, and MuJoCo keeps a body's geoms in document order): the replaced geom is the nearest
+  // geom before a piece that is not a piece. Each piece carries the geom's own collision bits.
+  int replaced = -1;
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (!is_piece(m, g)) {
+      replaced = g;
+      continue;
+    }
+    if (replaced >= 0 && m->geom_bodyid[replaced] == m->geom_bodyid[g]) {
+      copy->geom_contype[replaced] = m->geom_contype[g];
+      copy->geom_conaffinity[replaced] = m->geom_conaffinity[g];
+    }
+    copy->geom_contype[g] = 0;
+    copy->geom_conaffinity[g] = 0;
+  }
+  return copy;
 }
 
 }  // namespace graspcd::bridge

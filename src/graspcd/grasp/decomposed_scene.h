@@ -3,7 +3,12 @@
 // the pieces: the route MuJoCo's documentation recommends for a non-convex object.
 #pragma once
 
+#include <mujoco/mujoco.h>
+
 #include <string>
+
+#include "graspcd/grasp/grasp.h"
+#include "graspcd/mujoco/mujoco_ptr.h"
 
 namespace graspcd::bridge {
 
@@ -31,5 +36,25 @@ struct DecomposedScene {
 // written.
 DecomposedScene write_decomposed_scene(const std::string& scene_path,
                                        const std::string& decomposition_dir);
+
+// The grasp of `scene_path` with its object decomposed: write_decomposed_scene, run_grasp under
+// MuJoCo's native collision with SCENE's pair config (options.config_path when given) driving the
+// hand, the written scene removed on return. `written` (when given) gets the DecomposedScene
+// before the grasp runs. The result names `scene_path`; a GraspInputError about the written scene
+// names `scene_path` too ("with DIR: ..."). Used by graspcd grasp --decomposed and by validate's
+// truth side (study/validate.h).
+GraspResult run_decomposed_grasp(const std::string& scene_path,
+                                 const std::string& decomposition_dir, GraspOptions options,
+                                 DecomposedScene* written = nullptr);
+
+// Whether geom `g` of a model compiled from a written scene is one of the pieces (its mesh asset
+// is named MESH__piece_K, whether the geom has a name or not).
+bool is_piece(const mjModel* m, int g);
+
+// A copy of `m` (compiled from a written scene) with the object as it was: every piece out of
+// collision (contype = conaffinity = 0) and every replaced geom colliding again as its pieces did.
+// Geom ids are `m`'s, so a registry built on the copy checks the true meshes at the poses of a
+// grasp run on `m` (validate --decomposed).
+ModelPtr true_object_model(const mjModel* m);
 
 }  // namespace graspcd::bridge

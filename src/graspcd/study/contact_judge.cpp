@@ -7,6 +7,7 @@
 #include "graspcd/core/geometry.h"
 #include "graspcd/exact/exact.h"
 #include "graspcd/exact/surface_distance.h"
+#include "graspcd/grasp/decomposed_scene.h"
 #include "graspcd/mujoco/collision_pose.h"
 #include "graspcd/mujoco/primitives.h"
 
@@ -95,7 +96,7 @@ ContactJudge::ContactJudge(const mjModel* m, const std::string& object_body)
     for (int b = body; b > 0; b = m->body_parentid[b]) inside = inside || b == s.object;
     s.in_object[static_cast<std::size_t>(g)] = inside;
     if (inside) {
-      if (m->geom_type[g] == mjGEOM_MESH && geom_name(m, g).find("__piece_") == std::string::npos) {
+      if (m->geom_type[g] == mjGEOM_MESH && !bridge::is_piece(m, g)) {
         s.truth.push_back(judged(m, g));
       }
     } else if (m->geom_type[g] != mjGEOM_MESH && !bridge::is_primitive(m->geom_type[g])) {

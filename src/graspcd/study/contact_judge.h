@@ -32,8 +32,8 @@ constexpr double kPhantomDistance = 1e-3;
 // Built on the model a grasp runs (after mj_loadXML, before the grasp), it is then called after
 // each closing grasp step (GraspOptions::on_grasp_step).
 //  - The object: the body named `object_body` (and its subtree). Its true surfaces are its mesh
-//    geoms whose names do not contain "__piece_" (grasp --decomposed keeps the original geom,
-//    without collision, beside its pieces).
+//    geoms but the pieces of a decomposition (bridge::is_piece: grasp --decomposed keeps the
+//    original geom, without collision, beside its pieces, named or not).
 //  - The hand: every mesh or primitive geom that can collide (contype or conaffinity non-zero)
 //    outside the object's subtree and the world body; a primitive's true surface is
 //    bridge::tessellate_primitive's (a box exactly, curved ones circumscribed within

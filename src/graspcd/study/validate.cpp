@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <stdexcept>
 
 #include "graspcd/core/clock.h"
@@ -136,10 +137,10 @@ class Validator {
   Validator(const std::vector<TesterSpec>& specs, const ValidateOptions& options)
       : specs_(specs), options_(options) {}
 
-  void check_step(const mjModel* m, const mjData* d, int step) {
-    bridge::Registry* registry = bridge::find_registry(m);
-    if (!registry) throw std::runtime_error("validate: no pair registry is attached to the model");
-    if (pairs_.empty()) set_up(*registry);
+  // After closing grasp step `step`: every pair of `registry` (built on the model `d` steps, or on
+  // a copy of it with the same geom ids) at the poses of `d`.
+  void check_step(const bridge::Registry& registry, const mjData* d, int step) {
+    if (pairs_.empty()) set_up(registry);
     bool any_contact = false;
     for (std::size_t i = 0; i < pairs_.size(); ++i) {
       const CheckedPair& p = pairs_[i];
@@ -377,14 +378,50 @@ ValidationReport validate_scene(const std::string& scene, const std::vector<Test
   bridge::GraspOptions grasp;
   grasp.config_path = options.config_path;
   grasp.max_steps = options.max_steps;
-  grasp.on_grasp_step = [&validator](const mjModel* m, const mjData* d, int step) {
-    validator.check_step(m, d, step);
-  };
   const std::string config =
       options.config_path.empty() ? bridge::pair_config_path(scene) : options.config_path;
-  const bridge::GraspResult result = bridge::run_grasp(scene, grasp);
+  if (options.decomposed_dir.empty()) {
+    grasp.on_grasp_step = [&validator](const mjModel* m, const mjData* d, int step) {
+      const bridge::Registry* registry = bridge::find_registry(m);
+      if (!registry) {
+        throw std::runtime_error("validate: no pair registry is attached to the model");
+      }
+      validator.check_step(*registry, d, step);
+    };
+    const bridge::GraspResult result = bridge::run_grasp(scene, grasp);
+    ValidationReport report = validator.finish(result);
+    report.config = config;
+    return report;
+  }
+  // The decomposed grasp runs natively (no registry): the pairs and trees come from a registry of
+  // the config built, unattached, on a copy of its model with the true object colliding.
+  bridge::RegistryConfig registry_config;
+  try {
+    registry_config = bridge::load_registry_config(config);
+  } catch (const std::runtime_error& e) {
+    throw bridge::config_error(config, e);
+  }
+  bridge::ModelPtr truth;
+  std::unique_ptr<bridge::Registry> registry;
+  grasp.on_grasp_step = [&](const mjModel* m, const mjData* d, int step) {
+    if (!registry) {
+      truth = bridge::true_object_model(m);
+      try {
+        registry = std::make_unique<bridge::Registry>(truth.get(), registry_config, config);
+      } catch (const std::runtime_error& e) {
+        throw bridge::config_error(config, e);
+      }
+    }
+    validator.check_step(*registry, d, step);
+  };
+  bridge::DecomposedScene decomposed;
+  const bridge::GraspResult result =
+      bridge::run_decomposed_grasp(scene, options.decomposed_dir, grasp, &decomposed);
+  registry.reset();  // before its model
   ValidationReport report = validator.finish(result);
   report.config = config;
+  report.decomposed_dir = options.decomposed_dir;
+  report.decomposed = decomposed;
   return report;
 }
 

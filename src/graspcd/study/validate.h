@@ -32,6 +32,7 @@
 #include "graspcd/core/obb_tree.h"
 #include "graspcd/core/separators.h"
 #include "graspcd/core/tree_query.h"
+#include "graspcd/grasp/decomposed_scene.h"
 
 namespace graspcd::study {
 
@@ -67,6 +68,11 @@ struct ValidateOptions {
   std::string out_dir;
   // Called after each checked grasp step (1-based), e.g. for progress.
   std::function<void(int step)> on_step;
+  // A folder written by `graspcd decompose` (empty: none): the grasp runs with the object replaced
+  // by its convex pieces under MuJoCo's native collision (bridge::run_decomposed_grasp, as
+  // `graspcd grasp --decomposed`), and at its poses every registered pair is checked on the true
+  // meshes (the original geoms, bridge::true_object_model), as without it.
+  std::string decomposed_dir;
 };
 
 // The first disagreement of a (method, pair), and the files that reproduce it.
@@ -124,6 +130,9 @@ struct ValidationReport {
   // (step, pair) checks skipped because a geom's placement held NaN, inf or a number beyond 1e10
   // (bridge::bad_geom_placement, the rule of the served path): nothing to check on such a pose.
   std::uint64_t nonfinite_skips = 0;
+  // ValidateOptions::decomposed_dir: the folder and what was replaced (pieces 0 without it).
+  std::string decomposed_dir;
+  bridge::DecomposedScene decomposed;
   bool missed_any() const;
 };
 
