@@ -186,6 +186,7 @@ namespace {
 struct Candidates {
   std::vector<TriContact> contacts;
   std::vector<Triangle> faces_a, faces_b;
+  std::vector<std::size_t> index_a, index_b;  // the faces' indices in their meshes
 };
 
 Candidates candidates_of(const TriangleMesh& ma, const TriangleMesh& mb, const Pose& pose) {
@@ -203,6 +204,8 @@ Candidates candidates_of(const TriangleMesh& ma, const TriangleMesh& mb, const P
           triangle_pair_contact(a[i], b[j], 1.0, Vec3::UnitZ(), sharp_a[i], sharp_b[j]));
       c.faces_a.push_back(a[i]);
       c.faces_b.push_back(b_local[j]);
+      c.index_a.push_back(i);
+      c.index_b.push_back(j);
     }
   }
   return c;
@@ -300,6 +303,63 @@ TEST(ContactManifold, ManyPatchesKeepTheDeepestPatchesFirst) {
   ManifoldOptions two;
   two.max_per_pair = 2;
   EXPECT_EQ(build_contact_manifold(cs, fa, fb, two).contacts.size(), 2u);
+}
+
+// Welding: equal ids exactly for equal coordinates, -0.0 and 0.0 alike, the smallest difference
+// apart.
+TEST(ContactManifold, WeldedIdsAreEqualExactlyForEqualCoordinates) {
+  const auto ids = weld_vertex_ids({tri({0, 0, 0}, {1, 0, 0}, {0, 1, 0}),
+                                    tri({-0.0, 0, -0.0}, {1, 0, 0}, {0, 0, 1}),
+                                    tri({1e-300, 0, 0}, {0, 1, 0}, {0, 0, 1})});
+  ASSERT_EQ(ids.size(), 3u);
+  EXPECT_EQ(ids[0][0], ids[1][0]);  // -0.0 is 0.0
+  EXPECT_EQ(ids[0][1], ids[1][1]);
+  EXPECT_EQ(ids[0][2], ids[2][1]);
+  EXPECT_EQ(ids[1][2], ids[2][2]);
+  EXPECT_NE(ids[0][0], ids[2][0]);  // 1e-300 is not 0
+  EXPECT_NE(ids[0][2], ids[1][2]);
+  std::set<std::uint32_t> distinct;
+  for (const auto& f : ids) distinct.insert(f.begin(), f.end());
+  EXPECT_EQ(distinct.size(), 5u);
+  EXPECT_EQ(*distinct.rbegin(), 4u) << "ids are 0 .. distinct - 1";
+}
+
+// The MuJoCo seam welds each geom's whole mesh once and hands the manifold the candidates' ids;
+// that gives the manifold of the candidates' own triangles, bit for bit, on a pinch (two patches)
+// and a corner.
+TEST(ContactManifold, IdsWeldedPerMeshGiveTheSameManifoldAsTheTriangles) {
+  const TriangleMesh u = testing::make_u_mesh(0.03, 0.04, 0.01, 0.01);
+  const TriangleMesh wall = testing::make_box_mesh(0.0205, 0.01, 0.005);
+  const TriangleMesh cube = testing::make_box_mesh(0.005, 0.005, 0.005);
+  const auto faces = [](const TriangleMesh& m) {
+    std::vector<Triangle> out;
+    for (std::size_t f = 0; f < m.faces.size(); ++f) out.push_back(m.triangle(f));
+    return out;
+  };
+  for (const auto& [mb, t] : {std::pair{&wall, Vec3(0.0001, 0.025, 0.0002)},
+                              std::pair{&cube, Vec3(0.0155, 0.0145, 0.0001)}}) {
+    const Candidates c = candidates_of(u, *mb, at(t));
+    ASSERT_GT(c.contacts.size(), 4u);
+    const auto ids_a = weld_vertex_ids(faces(u)), ids_b = weld_vertex_ids(faces(*mb));
+    std::vector<FaceVertexIds> va, vb;
+    for (std::size_t i = 0; i < c.contacts.size(); ++i) {
+      va.push_back(ids_a[c.index_a[i]]);
+      vb.push_back(ids_b[c.index_b[i]]);
+    }
+    const ContactManifold by_ids = build_contact_manifold_by_ids(c.contacts, va, vb);
+    const ContactManifold by_faces = build_contact_manifold(c.contacts, c.faces_a, c.faces_b);
+    ASSERT_EQ(by_ids.patches.size(), by_faces.patches.size());
+    for (std::size_t p = 0; p < by_ids.patches.size(); ++p) {
+      EXPECT_EQ(by_ids.patches[p].members, by_faces.patches[p].members);
+      EXPECT_EQ(by_ids.patches[p].selected, by_faces.patches[p].selected);
+    }
+    ASSERT_EQ(by_ids.contacts.size(), by_faces.contacts.size());
+    for (std::size_t k = 0; k < by_ids.contacts.size(); ++k) {
+      EXPECT_EQ(by_ids.contacts[k].pos, by_faces.contacts[k].pos);
+      EXPECT_EQ(by_ids.contacts[k].normal, by_faces.contacts[k].normal);
+      EXPECT_EQ(by_ids.contacts[k].depth, by_faces.contacts[k].depth);
+    }
+  }
 }
 
 // The same input gives the same manifold, bit for bit, and the empty input an empty one.

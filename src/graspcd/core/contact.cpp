@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <stdexcept>
 #include <utility>
 
 #include "graspcd/core/tolerances.h"
@@ -21,16 +22,24 @@ struct Polygon {
 };
 
 // One side of a plane through `o` with normal `m`: keeps m.(p - o) >= 0 (Sutherland-Hodgman),
-// from `in` into `out` (two buffers in turn: no polygon is copied).
+// from `in` into `out` (two buffers in turn: no polygon is copied). Each vertex's signed distance
+// is computed once, by the same expression for both edges it ends.
 void clip(const Polygon& in, const Vec3& o, const Vec3& m, Polygon& out) {
   out.n = 0;
+  if (in.n == 0) return;
+  std::array<double, 24> s;
   for (int i = 0; i < in.n; ++i) {
+    s[static_cast<std::size_t>(i)] = m.dot(in.v[static_cast<std::size_t>(i)] - o);
+  }
+  for (int i = 0; i < in.n; ++i) {
+    const int j = i + 1 == in.n ? 0 : i + 1;
     const Vec3& p = in.v[static_cast<std::size_t>(i)];
-    const Vec3& q = in.v[static_cast<std::size_t>(i + 1 == in.n ? 0 : i + 1)];
-    const double sp = m.dot(p - o), sq = m.dot(q - o);
+    const double sp = s[static_cast<std::size_t>(i)], sq = s[static_cast<std::size_t>(j)];
     if (sp >= 0) out.v[static_cast<std::size_t>(out.n++)] = p;
-    if ((sp >= 0) != (sq >= 0))
+    if ((sp >= 0) != (sq >= 0)) {
+      const Vec3& q = in.v[static_cast<std::size_t>(j)];
       out.v[static_cast<std::size_t>(out.n++)] = p + (sp / (sp - sq)) * (q - p);
+    }
   }
 }
 
@@ -61,11 +70,16 @@ Direction measure(const Triangle& ref, const Vec3& n, const Triangle& moving) {
   if (poly.n == 0) return d;
   d.valid = true;
   d.deepest = poly.v[0];
+  std::array<double, 24> s;
+  for (int i = 0; i < poly.n; ++i) {
+    s[static_cast<std::size_t>(i)] = n.dot(poly.v[static_cast<std::size_t>(i)] - ref.v[0]);
+  }
   double best = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < poly.n; ++i) {
+    const int j = i + 1 == poly.n ? 0 : i + 1;
     const Vec3& p = poly.v[static_cast<std::size_t>(i)];
-    const Vec3& q = poly.v[static_cast<std::size_t>((i + 1) % poly.n)];
-    const double sp = n.dot(p - ref.v[0]), sq = n.dot(q - ref.v[0]);
+    const Vec3& q = poly.v[static_cast<std::size_t>(j)];
+    const double sp = s[static_cast<std::size_t>(i)], sq = s[static_cast<std::size_t>(j)];
     if (-sp > best) {
       best = -sp;
       d.deepest = p;
@@ -305,42 +319,15 @@ double hull_gain(const std::vector<Point2>& h, const Point2& x) {
   return 0.5 * twice;
 }
 
-// A vertex of a candidate's triangle on one geom (side 0: geom1, 1: geom2), with the candidate.
-// Sorted, equal keys are the candidates that share the vertex. The order is by a 64-bit hash of
-// the vertex first (one integer comparison decides nearly every pair), then by the vertex, then by
-// the candidate: equal vertices have equal hashes, so each run of one vertex is contiguous and in
+// The key of a candidate's vertex on one geom (side 0: geom1, 1: geom2): side << 63 | id << 32 |
+// candidate. Sorted, the candidates that share a vertex are one run of equal upper 32 bits, in
 // candidate order, which is all the manifold reads of the order.
-struct VertexKey {
-  std::uint64_t hash;
-  int side;
-  std::array<double, 3> x;
-  std::uint32_t candidate;
-  bool same_vertex(const VertexKey& o) const {
-    return hash == o.hash && side == o.side && x == o.x;
-  }
-  bool operator<(const VertexKey& o) const {
-    if (hash != o.hash) return hash < o.hash;
-    if (side != o.side) return side < o.side;
-    if (x != o.x) return x < o.x;
-    return candidate < o.candidate;
-  }
-};
-
-VertexKey vertex_key(int side, const Vec3& v, std::size_t candidate) {
-  // + 0.0 folds -0.0 into 0.0, which compare equal as coordinates (and then hash alike).
-  const std::array<double, 3> x = {v[0] + 0.0, v[1] + 0.0, v[2] + 0.0};
-  // FNV-1a over the side and the coordinates' bits, then a final mix (splitmix64's).
-  std::uint64_t h = 0xcbf29ce484222325ull ^ static_cast<std::uint64_t>(side);
-  for (const double c : x) {
-    std::uint64_t bits;
-    std::memcpy(&bits, &c, sizeof bits);
-    h = (h ^ bits) * 0x100000001b3ull;
-  }
-  h ^= h >> 31;
-  h *= 0xbf58476d1ce4e5b9ull;
-  h ^= h >> 29;
-  return VertexKey{h, side, x, static_cast<std::uint32_t>(candidate)};
+std::uint64_t vertex_key(std::uint64_t side, std::uint32_t id, std::size_t candidate) {
+  if (id >> 31) throw std::length_error("build_contact_manifold_by_ids: a vertex id beyond 2^31");
+  return side << 63 | std::uint64_t{id} << 32 | static_cast<std::uint64_t>(candidate);
 }
+
+bool same_vertex(std::uint64_t x, std::uint64_t y) { return (x >> 32) == (y >> 32); }
 
 // Chooses at most `k` of the patch's members (deepest first in `members`; q their positions in
 // the patch plane) by the rule of build_contact_manifold, step 2. Returns positions in `members`.
@@ -349,15 +336,18 @@ std::vector<std::size_t> choose_patch_points(const std::vector<std::size_t>& mem
   std::vector<std::size_t> chosen;  // positions in `members`
   if (members.empty() || k == 0) return chosen;
   chosen.push_back(0);
-  std::vector<bool> taken(members.size(), false);
-  taken[0] = true;
+  thread_local std::vector<char> taken;
+  taken.assign(members.size(), 0);
+  taken[0] = 1;
   const auto dist2 = [&](std::size_t a, std::size_t b) {
     const double dx = q[a][0] - q[b][0], dy = q[a][1] - q[b][1];
     return dx * dx + dy * dy;
   };
   double extent2 = 0;  // squared largest distance from the deepest point: the patch's scale
   for (std::size_t i = 1; i < members.size(); ++i) extent2 = std::max(extent2, dist2(i, 0));
-  std::vector<Point2> chosen_pts = {q[0]}, hull = {q[0]};
+  thread_local std::vector<Point2> chosen_pts, hull, sorted;
+  chosen_pts.assign(1, q[0]);
+  hull.assign(1, q[0]);
   while (chosen.size() < k) {
     // The largest hull-area gain; members are deepest first, so the strict > keeps ties deepest.
     std::size_t best = members.size();
@@ -387,10 +377,10 @@ std::vector<std::size_t> choose_patch_points(const std::vector<std::size_t>& mem
       }
     }
     if (best == members.size()) break;  // every other member sits on a chosen point
-    taken[best] = true;
+    taken[best] = 1;
     chosen.push_back(best);
     chosen_pts.push_back(q[best]);
-    std::vector<Point2> sorted = chosen_pts;
+    sorted.assign(chosen_pts.begin(), chosen_pts.end());
     convex_hull(sorted, hull);
   }
   return chosen;
@@ -398,18 +388,58 @@ std::vector<std::size_t> choose_patch_points(const std::vector<std::size_t>& mem
 
 }  // namespace
 
+std::vector<FaceVertexIds> weld_vertex_ids(const std::vector<Triangle>& faces) {
+  // Each corner by the bits of its coordinates (+ 0.0 folds -0.0 into 0.0; equal bits are equal
+  // coordinates), sorted, then numbered run by run.
+  using Bits = std::array<std::uint64_t, 3>;
+  std::vector<std::pair<Bits, std::size_t>> corners;  // (bits, 3 * face + k)
+  corners.reserve(3 * faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      Bits bits;
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double x = faces[f].v[k][static_cast<Eigen::Index>(c)] + 0.0;
+        std::memcpy(&bits[c], &x, sizeof x);
+      }
+      corners.emplace_back(bits, 3 * f + k);
+    }
+  }
+  std::sort(corners.begin(), corners.end());
+  std::vector<FaceVertexIds> ids(faces.size());
+  std::uint64_t id = 0;
+  for (std::size_t r = 0; r < corners.size(); ++r) {
+    if (r > 0 && corners[r].first != corners[r - 1].first) ++id;
+    if (id >> 31) throw std::length_error("weld_vertex_ids: more than 2^31 distinct vertices");
+    ids[corners[r].second / 3][corners[r].second % 3] = static_cast<std::uint32_t>(id);
+  }
+  return ids;
+}
+
 ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates,
                                        const std::vector<Triangle>& faces_a,
                                        const std::vector<Triangle>& faces_b,
                                        const ManifoldOptions& options) {
   const std::size_t n = candidates.size();
+  if (n == 0 || faces_a.size() != n || faces_b.size() != n) return {};
+  return build_contact_manifold_by_ids(candidates, weld_vertex_ids(faces_a),
+                                       weld_vertex_ids(faces_b), options);
+}
+
+ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& candidates,
+                                              const std::vector<FaceVertexIds>& vertices_a,
+                                              const std::vector<FaceVertexIds>& vertices_b,
+                                              const ManifoldOptions& options) {
+  const std::size_t n = candidates.size();
   ContactManifold out;
-  if (n == 0 || faces_a.size() != n || faces_b.size() != n) return out;
+  if (n == 0 || vertices_a.size() != n || vertices_b.size() != n) return out;
+  if (n >> 32) throw std::length_error("build_contact_manifold_by_ids: more than 2^32 candidates");
   const auto per_patch = static_cast<std::size_t>(std::max(options.max_per_patch, 1));
   const auto per_pair = static_cast<std::size_t>(std::max(options.max_per_pair, 1));
 
-  // Deepest first, ties in the given order.
-  std::vector<std::size_t> order(n);
+  // Deepest first, ties in the given order. (Scratch vectors are thread_local: the seam calls this
+  // for every touching pair of every physics step, and allocating them each time cost a tenth.)
+  thread_local std::vector<std::size_t> order;
+  order.resize(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return candidates[a].depth > candidates[b].depth;
@@ -417,25 +447,29 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
 
   // Which candidates share each triangle vertex, on geom1 (side 0) and on geom2 (side 1): the
   // keys sorted, and each candidate's six vertices as the start of their run of equal keys.
-  thread_local std::vector<VertexKey> keys;
+  thread_local std::vector<std::uint64_t> keys;
   thread_local std::vector<std::uint32_t> run_of;  // 6 * candidate + k -> start of its run
   thread_local std::vector<std::uint32_t> filled;  // per candidate: entries of run_of set
-  keys.clear();
+  keys.resize(6 * n);
   for (std::size_t i = 0; i < n; ++i) {
-    for (const Vec3& v : faces_a[i].v) keys.push_back(vertex_key(0, v, i));
-    for (const Vec3& v : faces_b[i].v) keys.push_back(vertex_key(1, v, i));
+    for (std::size_t k = 0; k < 3; ++k) {
+      keys[6 * i + k] = vertex_key(0, vertices_a[i][k], i);
+      keys[6 * i + 3 + k] = vertex_key(1, vertices_b[i][k], i);
+    }
   }
   std::sort(keys.begin(), keys.end());
   run_of.assign(6 * n, 0);
   filled.assign(n, 0);
   for (std::size_t r = 0, begin = 0; r < keys.size(); ++r) {
-    if (r > 0 && !keys[r].same_vertex(keys[r - 1])) begin = r;
-    const std::uint32_t c = keys[r].candidate;
+    if (r > 0 && !same_vertex(keys[r], keys[r - 1])) begin = r;
+    const auto c = static_cast<std::uint32_t>(keys[r]);
     run_of[6 * c + filled[c]++] = static_cast<std::uint32_t>(begin);
   }
 
   // 1. Patches, grown breadth-first from the deepest unassigned candidate.
-  std::vector<int> patch_of(n, -1);
+  thread_local std::vector<int> patch_of;
+  patch_of.assign(n, -1);
+  thread_local std::vector<std::size_t> queue;
   thread_local std::vector<int> run_scanned;  // by run start: the last patch that scanned it
   run_scanned.assign(keys.size(), -1);
   for (std::size_t seed : order) {
@@ -444,7 +478,7 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
     ContactPatch patch;
     const Vec3& seed_normal = candidates[seed].normal;
     patch_of[seed] = id;
-    std::vector<std::size_t> queue = {seed};
+    queue.assign(1, seed);
     for (std::size_t head = 0; head < queue.size(); ++head) {
       const std::size_t i = queue[head];
       for (std::size_t k = 0; k < 6; ++k) {
@@ -453,8 +487,8 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
         const std::size_t begin = run_of[6 * i + k];
         if (run_scanned[begin] == id) continue;
         run_scanned[begin] = id;
-        for (std::size_t r = begin; r < keys.size() && keys[r].same_vertex(keys[begin]); ++r) {
-          const std::size_t j = keys[r].candidate;
+        for (std::size_t r = begin; r < keys.size() && same_vertex(keys[r], keys[begin]); ++r) {
+          const std::size_t j = static_cast<std::uint32_t>(keys[r]);
           if (patch_of[j] >= 0 || candidates[j].normal.dot(seed_normal) < options.patch_cosine) {
             continue;
           }
@@ -463,7 +497,7 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
         }
       }
     }
-    patch.members = std::move(queue);
+    patch.members.assign(queue.begin(), queue.end());
     // The patch normal: the seed's, the penetration direction at the deepest point. (A mean over
     // the members mixes in the edge directions of the patch's rim; on a cube resting on a cube
     // their tilt of 0.1 degree made the cube creep 7 mm in 1.5 s.)
@@ -472,7 +506,9 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
   }
 
   // 2. The points of each patch, in the plane across its normal.
-  std::vector<double> along(n, 0);  // each candidate's depth along its patch's normal
+  thread_local std::vector<double> along;  // each candidate's depth along its patch's normal
+  along.assign(n, 0);
+  thread_local std::vector<Point2> q, kept, hull;
   for (ContactPatch& patch : out.patches) {
     for (std::size_t i : patch.members) {
       along[i] = candidates[i].depth * std::clamp(candidates[i].normal.dot(patch.normal), 0.0, 1.0);
@@ -487,12 +523,11 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
                                               : (std::abs(nrm[1]) <= std::abs(nrm[2]) ? 1 : 2)] = 1;
     const Vec3 u = nrm.cross(axis).normalized();
     const Vec3 w = nrm.cross(u);
-    std::vector<Point2> q;
-    q.reserve(patch.members.size());
+    q.clear();
     for (std::size_t i : patch.members) {
       q.push_back({candidates[i].pos.dot(u), candidates[i].pos.dot(w)});
     }
-    std::vector<Point2> kept, hull;
+    kept.clear();
     for (std::size_t pos : choose_patch_points(patch.members, q, per_patch)) {
       patch.selected.push_back(patch.members[pos]);
       kept.push_back(q[pos]);

@@ -6,6 +6,7 @@
 // in a closed, consistently oriented mesh; the normal's sign comes from that orientation.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -113,5 +114,22 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
                                        const std::vector<Triangle>& faces_a,
                                        const std::vector<Triangle>& faces_b,
                                        const ManifoldOptions& options = {});
+
+// The three vertices of a face as ids: two vertices have the same id exactly when their
+// coordinates are equal (-0.0 and 0.0 alike), the relation the manifold grows patches by.
+using FaceVertexIds = std::array<std::uint32_t, 3>;
+
+// Welds `faces` by exact coordinates: one FaceVertexIds per face, ids 0, 1, ... in the order of
+// the coordinates. Throws std::length_error beyond 2^31 distinct vertices.
+std::vector<FaceVertexIds> weld_vertex_ids(const std::vector<Triangle>& faces);
+
+// The same manifold from the candidates' triangles given as welded vertex ids (ids of one geom
+// from one weld_vertex_ids call, e.g. kept with the geom's tree): what the MuJoCo seam calls, with
+// no coordinates to compare per candidate. Ids must be below 2^31. (A name of its own: an
+// overload would make build_contact_manifold(c, {}, {}) ambiguous.)
+ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& candidates,
+                                              const std::vector<FaceVertexIds>& vertices_a,
+                                              const std::vector<FaceVertexIds>& vertices_b,
+                                              const ManifoldOptions& options = {});
 
 }  // namespace graspcd

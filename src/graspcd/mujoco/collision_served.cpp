@@ -44,7 +44,7 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
   ServedPair& served = registry.pair(pair_index);
   thread_local std::vector<TrianglePair> tri_pairs;
   thread_local std::vector<TriContact> candidates;
-  thread_local std::vector<Triangle> faces_a, faces_b;
+  thread_local std::vector<FaceVertexIds> vertices_a, vertices_b;
   const MeshTree* t1 = registry.geom_tree(g1);
   const MeshTree* t2 = registry.geom_tree(g2);
   BridgeStats& stats = registry.stats();
@@ -86,20 +86,22 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
   const double tn = pose.t.norm();
   const Vec3 fallback = tn > 0 ? Vec3(pose.t / tn) : Vec3(Vec3::UnitZ());
   candidates.clear();
-  faces_a.clear();
-  faces_b.clear();
+  vertices_a.clear();
+  vertices_b.clear();
   for (const TrianglePair& tp : tri_pairs) {
     const Triangle& a = t1->face(tp.a);
     const Triangle b = apply_pose(pose, t2->face(tp.b));
     candidates.push_back(triangle_pair_contact(a, b, registry.config().max_depth, fallback,
                                                t1->sharp(tp.a), t2->sharp(tp.b)));
-    faces_a.push_back(a);
-    faces_b.push_back(t2->face(tp.b));  // geom2's own frame: shared vertices stay bit-equal
+    vertices_a.push_back(t1->vertices(tp.a));
+    vertices_b.push_back(t2->vertices(tp.b));
   }
 
-  // The manifold: a few points per patch, the pair's budget in all.
+  // The manifold: a few points per patch, the pair's budget in all; the triangles' shared
+  // vertices by the ids welded once per tree (registry.cpp), as build_contact_manifold would weld
+  // geom1's faces and geom2's in its own frame.
   const ContactManifold manifold =
-      build_contact_manifold(candidates, faces_a, faces_b, served.manifold);
+      build_contact_manifold_by_ids(candidates, vertices_a, vertices_b, served.manifold);
   if (candidates.size() > static_cast<std::size_t>(served.manifold.max_per_pair)) {
     ++stats.capped_pairs;
   }

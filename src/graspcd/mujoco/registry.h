@@ -153,7 +153,11 @@ struct MeshTree {
   std::vector<std::int32_t> source_face;  // tree face id -> MuJoCo face id (mesh trees)
   std::vector<std::int32_t> slot_of_face;
   std::vector<std::uint8_t> sharp_masks;
+  std::vector<FaceVertexIds> vertex_ids;  // per face: its welded vertices (the manifold's patches)
   std::uint8_t sharp(std::int32_t f) const { return sharp_masks[static_cast<std::size_t>(f)]; }
+  const FaceVertexIds& vertices(std::int32_t f) const {
+    return vertex_ids[static_cast<std::size_t>(f)];
+  }
   const Triangle& face(std::int32_t f) const {
     return tree.triangles()[static_cast<std::size_t>(slot_of_face[static_cast<std::size_t>(f)])];
   }
