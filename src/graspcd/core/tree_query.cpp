@@ -63,6 +63,8 @@ void pull_up_front(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, Query
     return false;
   };
   std::vector<NodePair>& kept = front.pairs;
+  if (kept.empty()) return;
+  const double carried = detail::carried_slack(a, b, b_in_a);
   std::size_t top = 0;  // kept[0, top) is the reduced front so far
   for (std::size_t i = 0; i < kept.size(); ++i) {
     kept[top++] = kept[i];
@@ -72,7 +74,11 @@ void pull_up_front(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, Query
       ++counters.box_tests;
       const Obb& x = na[static_cast<std::size_t>(parent.a)].box;
       const Obb& y = nb[static_cast<std::size_t>(parent.b)].box;
-      if (sat_separating_axis(x, transform(b_in_a, y)) == kSatNoAxis) break;
+      const detail::FramedPair f = detail::direct_frame(a, b, b_in_a, parent.a, parent.b);
+      const double slack = detail::node_slack(x, y, f.T, carried);
+      const SatAxis axis = sat_separating_axis_in_a(f.R, f.T, x.half, y.half, slack);
+      if (axis == kSatNoAxis) break;
+      parent.gap = sat_axis_gap(f.R, f.R.cwiseAbs(), f.T, x.half, y.half, slack, axis);
       top -= 2;
       kept[top++] = parent;
     }

@@ -114,6 +114,30 @@ struct FramedPair {
   Vec3 T;
 };
 
+// The absolute part of the descent's SAT slack (tolerances.h, kSatCarriedRoundoffFactor): the
+// rounding carried down both trees, relative to the root pair's size S at `b_in_a`.
+inline double carried_slack(const ObbTree& a, const ObbTree& b, const Pose& b_in_a) {
+  const Obb& a0 = a.nodes()[0].box;
+  const Obb& b0 = b.nodes()[0].box;
+  const Vec3 cb0 = b_in_a.R * b0.center + b_in_a.t;
+  const double size = 2 * (a0.center.lpNorm<1>() + a0.half.sum() + cb0.lpNorm<1>() + b0.half.sum());
+  return tol::kSatCarriedRoundoffFactor * (a.depth() + b.depth() + 2) * size;
+}
+
+// B's node ib in A's node ia's frame, formed directly from the two boxes (as the root pair's is).
+inline FramedPair direct_frame(const ObbTree& a, const ObbTree& b, const Pose& b_in_a,
+                               std::int32_t ia, std::int32_t ib) {
+  const Obb& x = a.nodes()[static_cast<std::size_t>(ia)].box;
+  const Obb& y = b.nodes()[static_cast<std::size_t>(ib)].box;
+  return {ia, ib, x.axes.transpose() * (b_in_a.R * y.axes),
+          x.axes.transpose() * ((b_in_a.R * y.center + b_in_a.t) - x.center)};
+}
+
+// The SAT slack at a node pair with frame T (tolerances.h): relative to the boxes, plus `carried`.
+inline double node_slack(const Obb& x, const Obb& y, const Vec3& T, double carried) {
+  return tol::kSatRelativeSlack * (x.half.sum() + y.half.sum() + 2 * T.lpNorm<1>()) + carried;
+}
+
 // The leaves of a node pair: every triangle pair, B's through apply_pose (the doubles the exact
 // ground truth sees too). True when the query is over (first contact found).
 template <class TriTest>
@@ -165,19 +189,12 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
   const auto& nb = b.nodes();
   const auto& fa = a.in_parent();
   const auto& fb = b.in_parent();
-  // The root pair's frame and the absolute part of the slack.
-  const Obb& a0 = na[0].box;
-  const Obb& b0 = nb[0].box;
-  const Vec3 cb0 = b_in_a.R * b0.center + b_in_a.t;
-  const double size = 2 * (a0.center.lpNorm<1>() + a0.half.sum() + cb0.lpNorm<1>() + b0.half.sum());
-  const double carried_slack = tol::kSatCarriedRoundoffFactor * (a.depth() + b.depth() + 2) * size;
+  // The absolute part of the slack.
+  const double carried = carried_slack(a, b, b_in_a);
   std::vector<FramedPair> stack;
   stack.reserve(64);
   const auto push_direct = [&](std::int32_t ia, std::int32_t ib) {
-    const Obb& x = na[static_cast<std::size_t>(ia)].box;
-    const Obb& y = nb[static_cast<std::size_t>(ib)].box;
-    stack.push_back({ia, ib, x.axes.transpose() * (b_in_a.R * y.axes),
-                     x.axes.transpose() * ((b_in_a.R * y.center + b_in_a.t) - x.center)});
+    stack.push_back(direct_frame(a, b, b_in_a, ia, ib));
   };
   // The descent below what is on the stack; true when the query is over (first contact found).
   const auto descend_stack = [&]() {
@@ -188,9 +205,7 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
       const ObbNode& y = nb[p.ib];
       // Node pair: SAT in x's frame, the hinted axis first.
       ++counters.box_tests;
-      const double slack =
-          tol::kSatRelativeSlack * (x.box.half.sum() + y.box.half.sum() + 2 * p.T.lpNorm<1>()) +
-          carried_slack;
+      const double slack = node_slack(x.box, y.box, p.T, carried);
       const SatAxis hint = separator.hint(p.ia, p.ib);
       const SatAxis axis = sat_separating_axis_in_a(p.R, p.T, x.box.half, y.box.half, slack, hint);
       if (axis != kSatNoAxis) {
@@ -339,9 +354,11 @@ double front_motion(const QueryFront& front, const ObbTree& b, const Pose& b_in_
 
 // Pulls a front up where it went deeper than it needs now: two disjoint node pairs that split the
 // same parent pair (adjacent in the front's depth-first order) are replaced by the parent when SAT
-// (sat_separating_axis, which never claims "disjoint" for overlapping boxes) proves the parent's
-// boxes disjoint at `b_in_a`, repeatedly up the trees. The front still covers every leaf pair
-// once. Counts its box tests.
+// (on the parent's frame formed directly, with the descent's slack: it never claims "disjoint" for
+// overlapping boxes) proves the parent's boxes disjoint at `b_in_a`, repeatedly up the trees; the
+// parent keeps SAT's gap on its separating axis, as a pair where the descent stopped does, so a
+// restart can keep it untested while B moves less. The front still covers every leaf pair once.
+// `b_in_a` must be the front's pose (where its gaps hold). Counts its box tests.
 void pull_up_front(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, QueryFront& front,
                    QueryCounters& counters);
 
