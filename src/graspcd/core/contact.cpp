@@ -23,14 +23,17 @@ struct Polygon {
 
 // One side of a plane through `o` with normal `m`: keeps m.(p - o) >= 0 (Sutherland-Hodgman),
 // from `in` into `out` (two buffers in turn: no polygon is copied). Each vertex's signed distance
-// is computed once, by the same expression for both edges it ends.
-void clip(const Polygon& in, const Vec3& o, const Vec3& m, Polygon& out) {
-  out.n = 0;
-  if (in.n == 0) return;
+// is computed once, by the same expression for both edges it ends. Returns false, leaving `out`
+// untouched, when every vertex is kept: the clipped polygon is `in` itself.
+bool clip(const Polygon& in, const Vec3& o, const Vec3& m, Polygon& out) {
   std::array<double, 24> s;
+  bool all_kept = true;
   for (int i = 0; i < in.n; ++i) {
     s[static_cast<std::size_t>(i)] = m.dot(in.v[static_cast<std::size_t>(i)] - o);
+    all_kept = all_kept && s[static_cast<std::size_t>(i)] >= 0;
   }
+  if (all_kept) return false;
+  out.n = 0;
   for (int i = 0; i < in.n; ++i) {
     const int j = i + 1 == in.n ? 0 : i + 1;
     const Vec3& p = in.v[static_cast<std::size_t>(i)];
@@ -41,6 +44,7 @@ void clip(const Polygon& in, const Vec3& o, const Vec3& m, Polygon& out) {
       out.v[static_cast<std::size_t>(out.n++)] = p + (sp / (sp - sq)) * (q - p);
     }
   }
+  return true;
 }
 
 struct Direction {
@@ -63,8 +67,7 @@ Direction measure(const Triangle& ref, const Vec3& n, const Triangle& moving) {
   for (std::size_t k = 0; k < 3 && buffers[cur].n > 0; ++k) {
     const Vec3& o = ref.v[k];
     const Vec3 edge = ref.v[(k + 1) % 3] - o;
-    clip(buffers[cur], o, n.cross(edge), buffers[1 - cur]);
-    cur = 1 - cur;
+    if (clip(buffers[cur], o, n.cross(edge), buffers[1 - cur])) cur = 1 - cur;
   }
   const Polygon& poly = buffers[cur];
   if (poly.n == 0) return d;
