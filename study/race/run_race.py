@@ -150,6 +150,7 @@ def row(name, g):
             "closing_steps": judge["steps"],
             "judged_contacts": judge["contacts"],
             "phantom": judge["phantom"], "missed": judge["missed"],
+            "phantom_by_geom": judge["phantom_by_geom"], "missed_by_geom": judge["missed_by_geom"],
             "contact_error_per_step": judge["contact_error_per_step"]}
 
 

@@ -336,6 +336,16 @@ TEST_F(DecomposeCommand, DecomposedGraspRunsOnThePieces) {
       j.at("contact_error_per_step").get<double>(),
       (j.at("phantom").get<double>() + j.at("missed").get<double>()) / j.at("steps").get<double>(),
       1e-12);
+  // The per-geom counts add up to the totals.
+  for (const char* what : {"phantom", "missed"}) {
+    int sum = 0;
+    for (const auto& [geom, count] : j.at(std::string(what) + "_by_geom").items()) {
+      EXPECT_FALSE(geom.empty());
+      EXPECT_GT(count.get<int>(), 0) << geom;
+      sum += count.get<int>();
+    }
+    EXPECT_EQ(sum, j.at(what).get<int>()) << what;
+  }
   EXPECT_FALSE(j.at("cgal_first_contact").empty());
   for (const auto& [geom, step] : j.at("cgal_first_contact").items()) {
     EXPECT_EQ(geom.rfind("finger", 0), 0u) << geom;
