@@ -26,8 +26,10 @@ says why in the data and the report). --simplify-above FACES=F decomposes every 
 FACES triangles with `decompose --simplify F` (HACD partitions a copy decimated to at most F faces;
 the pieces are hulls of the original vertices), cached apart (WORK/STEM_N_simplifyF), and records
 it per scene ("simplify": the threshold, F and the mesh's triangles; null when the mesh was
-decomposed as it is) and per decomposition (faces after decimation, its time). --merge OLD.json keeps OLD's scenes
-that this run does not race, each with its own provenance.
+decomposed as it is) and per decomposition (faces after decimation, its time, and the commit of
+the graspcd that made it). The file keeps the command, its wall time and the load at its end;
+each row the phantom and missed contacts per hand geom (a table the object stands on is one).
+--merge OLD.json keeps OLD's scenes that this run does not race, each with its own provenance.
 """
 import argparse
 import datetime

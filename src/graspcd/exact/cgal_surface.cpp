@@ -35,7 +35,8 @@ Mesh surface_of(const std::vector<const TriangleMesh*>& meshes) {
 
 TriangleMesh triangle_mesh_of(const Mesh& mesh) {
   TriangleMesh out;
-  std::vector<std::int32_t> index(mesh.num_vertices() + mesh.number_of_removed_vertices(), -1);
+  // num_vertices() counts the removed vertices too: every index CGAL may hand out.
+  std::vector<std::int32_t> index(mesh.num_vertices(), -1);
   for (const Mesh::Vertex_index v : mesh.vertices()) {
     index[static_cast<std::size_t>(v)] = static_cast<std::int32_t>(out.vertices.size());
     const Point& p = mesh.point(v);

@@ -14,8 +14,8 @@ namespace graspcd::exact {
 // Turk's ("Fast and memory efficient polygonal simplification", IEEE Visualization 1998). The
 // soup is first welded and oriented as for the Hausdorff distance (hausdorff.h). A mesh of at
 // most `max_faces` faces is returned as CGAL's welded copy, not decimated. The count can stay
-// above `max_faces` when no edge may be collapsed any more (CGAL keeps the surface a manifold and
-// each component at least a tetrahedron): the caller reports the count. Throws
+// above `max_faces` when no edge may be collapsed any more (CGAL collapses only edges whose
+// collapse keeps the surface's topology, its link condition): the caller reports the count. Throws
 // std::invalid_argument on an empty mesh or `max_faces` == 0.
 TriangleMesh simplify_edge_collapse(const TriangleMesh& mesh, std::size_t max_faces);
 
