@@ -43,6 +43,17 @@ CLI::Validator non_negative_number() {
   return finite_number([](double x) { return x >= 0; }, ">= 0", "NONNEGATIVE");
 }
 
+CLI::Validator integer_in_range(long long lo, long long hi) {
+  const std::string range = std::to_string(lo) + " .. " + std::to_string(hi);
+  return CLI::Validator(
+      [lo, hi, range](std::string& input) -> std::string {
+        long long x = 0;
+        if (!CLI::detail::lexical_cast(input, x)) return "Value " + input + " is not an integer";
+        return x >= lo && x <= hi ? "" : "Value " + input + " is not in " + range;
+      },
+      "INT in " + range);
+}
+
 void for_each_case(const std::string& path, std::size_t count,
                    const std::function<void(const std::vector<double>&)>& answer) {
   io::TextReader reader(path);

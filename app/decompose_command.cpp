@@ -1,7 +1,10 @@
-// graspcd decompose MESH --out DIR [--pieces N] [--hausdorff-bound B] [--json]: an approximate
-// convex decomposition with HACD (Mamou and Ghorbel, ICIP 2009), written as one OBJ per convex
-// piece and an MJCF fragment, with how far the pieces' hulls lie from the original surface
-// (CGAL's bounded-error one-sided Hausdorff distance) and, for a closed mesh, the volume they add.
+// graspcd decompose MESH --out DIR [--pieces N] [--simplify F] [--hausdorff-bound B] [--json]: an
+// approximate convex decomposition with HACD (Mamou and Ghorbel, ICIP 2009), written as one OBJ
+// per convex piece and an MJCF fragment, with how far the pieces' hulls lie from the original
+// surface (CGAL's bounded-error one-sided Hausdorff distance) and, for a closed mesh, the volume
+// they add. --simplify F: HACD partitions a copy decimated to at most F faces (CGAL's edge
+// collapse), each original face joins the cluster of its nearest decimated face, and the pieces
+// are the hulls of the original vertices.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -22,6 +25,8 @@
 #include "graspcd/decompose/decomposition_files.h"
 #include "graspcd/decompose/hacd.h"
 #include "graspcd/exact/hausdorff.h"
+#include "graspcd/exact/simplify.h"
+#include "graspcd/exact/surface_distance.h"
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/text_input.h"
 #include "graspcd/version/envelope.h"
@@ -43,6 +48,7 @@ struct DecomposeOptions {
   std::string mesh;
   std::string out;
   int pieces = 16;
+  int simplify = 0;            // 0: HACD on the mesh itself; F: on a copy of at most F faces
   double hausdorff_bound = 0;  // 0: kDefaultBoundFraction of the diagonal
   bool json = false;
 };
@@ -54,6 +60,22 @@ double bounding_diagonal(const TriangleMesh& mesh) {
     hi = hi.cwiseMax(v);
   }
   return (hi - lo).norm();
+}
+
+// HACD's partition of `coarse` (the decimated copy) carried over to `mesh`: every face of `mesh`
+// joins the cluster of the face of `coarse` nearest its centroid (CGAL's AABB tree).
+decompose::Partition transfer_partition(const decompose::Partition& coarse_partition,
+                                        const TriangleMesh& coarse, const TriangleMesh& mesh) {
+  const exact::SurfaceDistance nearest(coarse);
+  decompose::Partition out;
+  out.clusters = coarse_partition.clusters;
+  out.cluster_of_face.reserve(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Triangle t = mesh.triangle(f);
+    const Vec3 centroid = (t.v[0] + t.v[1] + t.v[2]) / 3.0;
+    out.cluster_of_face.push_back(coarse_partition.cluster_of_face[nearest.nearest_face(centroid)]);
+  }
+  return out;
 }
 
 void run_decompose(const DecomposeOptions& o) {
@@ -69,13 +91,41 @@ void run_decompose(const DecomposeOptions& o) {
     throw io::InputError(o.out, 0, "cannot create the output folder: " + ec.message());
   }
 
-  // HACD, timed alone.
+  // --simplify: the copy HACD partitions, decimated by CGAL's edge collapse when the mesh has more
+  // than F faces, timed alone.
+  nlohmann::json simplify = nullptr;
+  TriangleMesh coarse;
+  const bool decimate = o.simplify > 0 && mesh.faces.size() > static_cast<std::size_t>(o.simplify);
+  if (o.simplify > 0) {
+    const Clock::time_point s_start = Clock::now();
+    if (decimate) {
+      try {
+        coarse = exact::simplify_edge_collapse(mesh, static_cast<std::size_t>(o.simplify));
+      } catch (const std::invalid_argument& e) {
+        throw io::InputError(o.mesh, 0, e.what());
+      }
+    }
+    simplify = {{"max_faces", o.simplify},
+                {"faces_before", mesh.faces.size()},
+                {"faces_after", decimate ? coarse.faces.size() : mesh.faces.size()},
+                {"decimated", decimate},
+                {"seconds", seconds_since(s_start)}};
+  }
+
+  // HACD, timed with the pieces' hulls (and with --simplify, the transfer of the decimated copy's
+  // partition to the mesh's faces).
   decompose::HacdOptions hacd;
   hacd.max_pieces = static_cast<std::size_t>(o.pieces);
   const Clock::time_point start = Clock::now();
   decompose::Decomposition d;
   try {
-    d = decompose::hacd_decompose(mesh, hacd);
+    if (decimate) {
+      const decompose::Partition partition =
+          transfer_partition(decompose::hacd_partition(coarse, hacd), coarse, mesh);
+      d = decompose::pieces_of_partition(mesh, partition);
+    } else {
+      d = decompose::hacd_decompose(mesh, hacd);
+    }
   } catch (const std::runtime_error& e) {
     throw io::InputError(o.mesh, 0, e.what());
   }
@@ -133,6 +183,7 @@ void run_decompose(const DecomposeOptions& o) {
       {"source_faces", mesh.faces.size()},
       {"closed", stats.closedness.closed()},
       {"max_pieces", o.pieces},
+      {"simplify", simplify},
       {"piece_count", d.pieces.size()},
       {"slabs", d.slabs},
       {"flat_clusters", d.flat_clusters},
@@ -152,6 +203,15 @@ void run_decompose(const DecomposeOptions& o) {
   std::ostringstream out;
   out << std::setprecision(4);
   out << "pieces " << d.pieces.size() << " (at most " << o.pieces << ")\n";
+  if (!simplify.is_null()) {
+    out << "simplify_faces " << mesh.faces.size();
+    if (decimate) {
+      out << " -> " << coarse.faces.size() << " (at most " << o.simplify << ") in "
+          << simplify["seconds"].get<double>() << " s\n";
+    } else {
+      out << " (at most " << o.simplify << ": not decimated)\n";
+    }
+  }
   out << "seconds " << seconds << "\n";
   out << "hausdorff_m " << h.distance << " +- " << h.error_bound << "\n";
   if (!volume.is_null()) {
@@ -176,6 +236,11 @@ Command add_decompose_command(CLI::App& parent) {
   app->add_option("--pieces", options->pieces, "At most this many convex pieces")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
+  app->add_option("--simplify", options->simplify,
+                  "HACD partitions a copy decimated to at most F faces (CGAL's edge collapse); "
+                  "the pieces are hulls of the original vertices")
+      ->type_name("F")
+      ->check(integer_in_range(4, 100000000));
   app->add_option("--hausdorff-bound", options->hausdorff_bound,
                   "Error bound of the Hausdorff distance in m (default 0.001 of the bounding box "
                   "diagonal)")
@@ -188,6 +253,13 @@ Command add_decompose_command(CLI::App& parent) {
       "for a mesh of fewer faces, more for a mesh of more separate components (each gives at "
       "least one piece). A flat cluster (e.g. a flat bottom) becomes a slab 0.5% of the "
       "bounding box diagonal thick, extruded against its outward normal (counted as 'slabs').\n"
+      "--simplify F (4 or more) for a large mesh, where HACD takes minutes to hours (its time "
+      "grows faster than the faces' count): a copy of MESH is decimated to at most F faces by "
+      "CGAL 5.5's edge collapse (Lindstrom-Turk cost and placement), HACD partitions the copy, "
+      "each face of MESH joins the cluster of the copy's face nearest its centroid, and each "
+      "piece is the hull of its cluster's vertices of MESH, so the pieces follow MESH's surface "
+      "(the Hausdorff distance is against MESH). A cluster no face of MESH joins gives no piece. "
+      "A mesh of at most F faces is not decimated (reported).\n"
       "Written into DIR: STEM_piece_K.obj (K = 0, 1, ...; in MESH's own coordinates and scale), "
       "STEM.xml (an MJCF fragment MuJoCo 2.2 includes: <mujocoinclude> with the <mesh> assets, "
       "files relative to DIR, and a <body name=\"STEM\"> with one <geom> per piece) and "
@@ -197,9 +269,13 @@ Command add_decompose_command(CLI::App& parent) {
       "bounded_error_Hausdorff_distance; faces of a piece inside the object count too), and for "
       "a closed mesh the volume the pieces add (the sum of their volumes minus MESH's; overlaps "
       "between pieces count twice).\n"
-      "Text output: lines 'pieces N (at most M)', 'seconds S', 'hausdorff_m D +- B', "
+      "Text output: lines 'pieces N (at most M)', with --simplify 'simplify_faces F0 -> F1 (at "
+      "most F) in S s' or 'simplify_faces F0 (at most F: not decimated)', 'seconds S' (HACD "
+      "and the hulls; with --simplify after the decimation), 'hausdorff_m D +- B', "
       "'volume_added_m3 V (P% of V0)' or '- (open mesh)', 'fragment PATH'. --json: one "
-      "document: source, source_faces, closed, max_pieces, piece_count, slabs, flat_clusters, "
+      "document: source, source_faces, closed, max_pieces, simplify (max_faces, faces_before, "
+      "faces_after, decimated, seconds; null without --simplify), piece_count, slabs, "
+      "flat_clusters, "
       "seconds, "
       "hausdorff (distance, error_bound, seconds), volume (original, pieces, added, "
       "added_fraction; null for an open mesh), fragment, pieces (file, vertices, faces), "
@@ -208,7 +284,9 @@ Command add_decompose_command(CLI::App& parent) {
       "one line 'FILE: message' on stderr, exit code 2.\n"
       "Example:\n"
       "  graspcd decompose ../shared/models/objects/mujoco/cube_cup.obj --out /tmp/cup8 "
-      "--pieces 8"));
+      "--pieces 8\n"
+      "  graspcd decompose ../shared/models/objects/mujoco/mug.obj --out /tmp/mug16 --pieces 16 "
+      "--simplify 3000"));
   return Command{app, [options] { run_decompose(*options); }};
 }
 

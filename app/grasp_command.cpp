@@ -84,6 +84,8 @@ nlohmann::json judge_json(const study::ContactJudgeSummary& j) {
           {"contacts", j.contacts},
           {"phantom", j.phantom},
           {"missed", j.missed},
+          {"phantom_by_geom", j.phantom_by_geom},
+          {"missed_by_geom", j.missed_by_geom},
           {"truth_hits", j.truth_hits},
           {"contact_error_per_step", static_cast<double>(j.phantom + j.missed) / steps},
           {"cgal_first_contact", j.cgal_first_contact},
@@ -455,7 +457,9 @@ Command add_grasp_command(CLI::App& parent) {
       "Primitive hand geoms are judged on graspcd's tessellation (a box exactly). The judging time "
       "is outside the physics steps' wall time. A last line '# judged by CGAL "
       "over S closing steps: C hand-object contacts, P phantom, M missed' (JSON: 'judge': "
-      "steps, contacts, phantom, missed, truth_hits, contact_error_per_step, "
+      "steps, contacts, phantom, missed, phantom_by_geom and missed_by_geom (hand geom -> "
+      "count; every collidable geom outside the object and the world body is a hand geom "
+      "here, a table the object stands on too), truth_hits, contact_error_per_step, "
       "cgal_first_contact (hand geom -> step), cgal_first_contact_body (hand body -> step), "
       "phantom_distance).\n"
       "Examples:\n"

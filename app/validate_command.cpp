@@ -291,13 +291,14 @@ void print_object_set_text(const nlohmann::json& doc) {
     ++refused;
     out << "# refused: " << r["error"].get<std::string>() << '\n';
   }
+  const std::size_t checked = rows.size() - static_cast<std::size_t>(refused);
   const bool missed = doc["missed_any"].get<bool>(), false_any = doc["false_any"].get<bool>();
   out << "# result: "
       << (missed && false_any ? "MISSED AND FALSE COLLISIONS"
           : missed            ? "MISSED COLLISIONS"
           : false_any         ? "FALSE COLLISIONS"
                               : "no missed or false collision")
-      << "; " << rows.size() - static_cast<std::size_t>(refused) << " objects checked, " << refused
+      << "; " << checked << (checked == 1 ? " object" : " objects") << " checked, " << refused
       << " refused\n";
   std::cout << out.str();
 }

@@ -3,7 +3,7 @@
 
 usage: run_race.py GRASPCD [--out FILE] [--work DIR] [--scenes S1,S2,...] [--pieces 4,8,16]
                    [--object "NAME=FILE [grasp --object options]"]... [--scene-pieces S=4,8 ...]
-                   [--merge OLD.json]
+                   [--simplify-above FACES=F] [--merge OLD.json]
 
 For each scene (default: examples 1-3; mjcf/S.xml) and each --object (a user's mesh through
 `graspcd grasp --object FILE OPTIONS --write-scene WORK/scenes/NAME`, raced as that scene under
@@ -22,8 +22,14 @@ Timings are single runs one after another on the same machine, not a benchmark. 
 its own provenance (graspcd's version and commit from the grasp's JSON, the date, the load average
 and the wall time of its race) and its piece counts (--scene-pieces S=4,8 races scene S with
 fewer, or none with S=, where decompositions or grasps would take too long; --scene-note S=TEXT
-says why in the data and the report). --merge OLD.json keeps OLD's scenes
-that this run does not race, each with its own provenance.
+says why in the data and the report). --simplify-above FACES=F decomposes every mesh of more than
+FACES triangles with `decompose --simplify F` (HACD partitions a copy decimated to at most F faces;
+the pieces are hulls of the original vertices), cached apart (WORK/STEM_N_simplifyF), and records
+it per scene ("simplify": the threshold, F and the mesh's triangles; null when the mesh was
+decomposed as it is) and per decomposition (faces after decimation, its time, and the commit of
+the graspcd that made it). The file keeps the command, its wall time and the load at its end;
+each row the phantom and missed contacts per hand geom (a table the object stands on is one).
+--merge OLD.json keeps OLD's scenes that this run does not race, each with its own provenance.
 """
 import argparse
 import datetime
@@ -72,6 +78,21 @@ def object_mesh_and_scale(scene):
                                                       files[g.get("mesh")])),
                         scales[g.get("mesh")])
     fail(f"{scene}: no mesh geom in body 'object'")
+
+
+def triangle_count(mesh):
+    """The triangles of an OBJ (a polygon of n vertices is n - 2 of them, as graspcd reads it) or
+    of a binary STL (its header's count)."""
+    if mesh.lower().endswith(".stl"):
+        with open(mesh, "rb") as f:
+            f.seek(80)
+            return int.from_bytes(f.read(4), "little")
+    count = 0
+    with open(mesh, encoding="utf-8", errors="replace") as f:
+        for line in f:
+            if line.startswith("f "):
+                count += len(line.split()) - 3
+    return count
 
 
 def run_json(command):
@@ -131,6 +152,7 @@ def row(name, g):
             "closing_steps": judge["steps"],
             "judged_contacts": judge["contacts"],
             "phantom": judge["phantom"], "missed": judge["missed"],
+            "phantom_by_geom": judge["phantom_by_geom"], "missed_by_geom": judge["missed_by_geom"],
             "contact_error_per_step": judge["contact_error_per_step"]}
 
 
@@ -147,15 +169,26 @@ def main():
                         help="S=4,8: race scene S with these piece counts only")
     parser.add_argument("--scene-note", action="append", default=[],
                         help="S=TEXT: a note on scene S for the report (e.g. why fewer pieces)")
+    parser.add_argument("--simplify-above", metavar="FACES=F",
+                        help="decompose meshes of more than FACES triangles with --simplify F")
     parser.add_argument("--merge", help="keep this race.json's scenes that are not raced now")
     args = parser.parse_args()
+    simplify_above = None
+    if args.simplify_above:
+        above, _, target = args.simplify_above.partition("=")
+        try:
+            simplify_above = (int(above), int(target))
+        except ValueError:
+            fail(f"--simplify-above {args.simplify_above!r}: give FACES=F, two integers")
     pieces = [int(p) for p in args.pieces.split(",")]
     scene_pieces = {}
     for spec in args.scene_pieces:
         name, _, counts = spec.partition("=")
         scene_pieces[name] = [int(p) for p in counts.split(",") if p]
     notes = dict(spec.partition("=")[::2] for spec in args.scene_note)
-    result = {"machine": machine(), "pieces": pieces, "scenes": {}}
+    result = {"machine": machine(), "pieces": pieces,
+              "command": [os.path.relpath(sys.argv[0], ROOT)] + sys.argv[1:], "scenes": {}}
+    race_started = time.time()
     scenes = [(s, os.path.join(ROOT, "mjcf", s + ".xml"), None)
               for s in args.scenes.split(",") if s]
     scenes += [object_scene(args.graspcd, spec, args.work) for spec in args.object]
@@ -171,25 +204,35 @@ def main():
         entry["pieces"] = counts
         if scene_name in notes:
             entry["note"] = notes[scene_name]
+        faces = triangle_count(mesh)
+        simplify = None
+        if simplify_above and faces > simplify_above[0]:
+            simplify = simplify_above[1]
+        entry["simplify"] = (None if simplify is None else
+                             {"above": simplify_above[0], "max_faces": simplify,
+                              "source_faces": faces})
         base = [args.graspcd, "grasp", scene, "--judge", "--json"]
         print(f"[race] {scene_name}: graspcd, native", file=sys.stderr)
         first = run_json(base)
         entry["rows"].append(row("graspcd", first))
         entry["rows"].append(row("native hull", run_json(base + ["--native"])))
         for n in counts:
-            out = os.path.join(args.work, f"{stem}_{n}")
+            suffix = "" if simplify is None else f"_simplify{simplify}"
+            out = os.path.join(args.work, f"{stem}_{n}{suffix}")
             manifest = os.path.join(out, "decomposition.json")
             if not os.path.exists(manifest):
-                print(f"[race] {scene_name}: decompose {stem} into at most {n}", file=sys.stderr)
+                print(f"[race] {scene_name}: decompose {stem} into at most {n}"
+                      + ("" if simplify is None else f" (--simplify {simplify})"), file=sys.stderr)
                 run_json([args.graspcd, "decompose", mesh, "--out", out, "--pieces", str(n),
-                          "--json"])
+                          "--json"] + ([] if simplify is None else ["--simplify", str(simplify)]))
             with open(manifest, encoding="utf-8") as f:
                 d = json.load(f)
             entry["decompositions"][str(n)] = {
                 "pieces": d["piece_count"], "slabs": d["slabs"], "seconds": d["seconds"],
                 "hausdorff": d["hausdorff"]["distance"],
                 "hausdorff_bound": d["hausdorff"]["error_bound"], "volume": d["volume"],
-                "source_faces": d["source_faces"]}
+                "source_faces": d["source_faces"], "simplify": d.get("simplify"),
+                "graspcd": d.get("graspcd", {}).get("commit")}
             print(f"[race] {scene_name}: decomposed-{n}", file=sys.stderr)
             entry["rows"].append(row(f"decomposed-{n}", run_json(base + ["--decomposed", out])))
         entry["provenance"] = provenance(first, started)
@@ -204,6 +247,8 @@ def main():
             # A scene of a run before per-scene provenance: the old run's machine and date.
             entry.setdefault("provenance", {"machine": old["machine"]})
             result["scenes"][scene_name] = entry
+    result["wall_seconds"] = round(time.time() - race_started, 1)
+    result["load_average_end"] = list(os.getloadavg())
     os.makedirs(os.path.dirname(args.out), exist_ok=True)
     with open(args.out, "w", encoding="utf-8") as f:
         json.dump(result, f, indent=1)

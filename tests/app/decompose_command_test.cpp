@@ -42,14 +42,26 @@ void expect_convex(const TriangleMesh& hull, double tol, const std::string& name
 
 class DecomposeCommand : public CommandTest {
  protected:
-  // Runs decompose with --json into `out` (below the test's folder); the document it printed.
-  nlohmann::json decompose(const fs::path& mesh, int pieces, const std::string& out) {
+  // Runs decompose with --json (and `options`) into `out` (below the test's folder); the document
+  // it printed.
+  nlohmann::json decompose(const fs::path& mesh, int pieces, const std::string& out,
+                           const std::string& options = "") {
     const fs::path json = dir_ / (out + ".json");
-    const Outcome r = run(std::string("{ '") + GRASPCD_EXE + "' decompose '" + mesh.string() +
-                          "' --out '" + (dir_ / out).string() + "' --pieces " +
-                          std::to_string(pieces) + " --json > '" + json.string() + "'; }");
+    const Outcome r =
+        run(std::string("{ '") + GRASPCD_EXE + "' decompose '" + mesh.string() + "' --out '" +
+            (dir_ / out).string() + "' --pieces " + std::to_string(pieces) + " " + options +
+            " --json > '" + json.string() + "'; }");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return load(json);
+  }
+
+  // Runs graspcd with `args`; its stdout (exit code 0 expected).
+  std::string stdout_of(const std::string& args) {
+    const fs::path text = dir_ / "stdout.txt";
+    const Outcome r =
+        run(std::string("{ '") + GRASPCD_EXE + "' " + args + " > '" + text.string() + "'; }");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return read_file(text);
   }
 
   // Example 1's hand grasping `cup` fitted to its room (grasp --object --fit writes the scene,
@@ -170,6 +182,102 @@ TEST_F(DecomposeCommand, GlassPiecesAreConvexAndLoad) {
   expect_fragment_loads(dir_ / "glass4", doc);
 }
 
+// --simplify on the glass (400 faces): HACD partitions a copy of at most 100 faces, the counts
+// before and after are reported, the pieces are convex and load, every vertex of the glass lies
+// in some piece (the pieces are hulls of the glass's own vertices, not of the decimated copy's),
+// and the Hausdorff distance is measured against the glass.
+TEST_F(DecomposeCommand, SimplifiedGlassPiecesHoldEveryOriginalVertex) {
+  const fs::path glass = kModels / "objects/prl_assets/plastic_glass_visual.obj";
+  if (!fs::exists(glass)) GTEST_SKIP() << "real models not found at " << kModels;
+  const TriangleMesh source = io::load_mesh(glass.string());
+  const nlohmann::json doc = decompose(glass, 8, "glass8s", "--simplify 100");
+  expect_envelope(doc, -1);
+  const nlohmann::json& simplify = doc.at("simplify");
+  EXPECT_EQ(simplify.at("max_faces"), 100);
+  EXPECT_EQ(simplify.at("faces_before").get<std::size_t>(), source.faces.size());
+  EXPECT_LE(simplify.at("faces_after").get<int>(), 100);
+  EXPECT_GE(simplify.at("faces_after").get<int>(), 50);
+  EXPECT_TRUE(simplify.at("decimated").get<bool>());
+  EXPECT_GE(simplify.at("seconds").get<double>(), 0.0);
+  EXPECT_EQ(doc.at("source_faces").get<std::size_t>(), source.faces.size());
+  const int pieces = doc.at("piece_count").get<int>();
+  EXPECT_GE(pieces, 2);
+  EXPECT_LE(pieces, 8);
+  std::vector<TriangleMesh> hulls;
+  for (const auto& p : doc.at("pieces")) {
+    const fs::path file = dir_ / "glass8s" / p.at("file").get<std::string>();
+    hulls.push_back(io::load_mesh(file.string()));
+    expect_convex(hulls.back(), 1e-9, file.string());
+  }
+  expect_fragment_loads(dir_ / "glass8s", doc);
+  // Every vertex of the glass inside some piece, within the OBJ's printed precision (the pieces
+  // are written with 17 significant digits: 1e-12 m at the glass's size).
+  std::size_t outside = 0;
+  for (const Vec3& v : source.vertices) {
+    const bool inside_some = std::any_of(hulls.begin(), hulls.end(), [&](const TriangleMesh& h) {
+      for (std::size_t f = 0; f < h.faces.size(); ++f) {
+        const Triangle t = h.triangle(f);
+        const Vec3 n = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
+        if (n.norm() > 0 && n.normalized().dot(v - t.v[0]) > 1e-12) return false;
+      }
+      return true;
+    });
+    if (!inside_some) ++outside;
+  }
+  EXPECT_EQ(outside, 0u) << "of " << source.vertices.size() << " vertices of the glass";
+  // The Hausdorff distance, against the glass, within its size.
+  const double h = doc.at("hausdorff").at("distance").get<double>();
+  EXPECT_GT(h, 0.0);
+  EXPECT_LT(h, 0.2);  // the glass is about 0.12 m across
+
+  // The text output says what was decimated.
+  const std::string text = stdout_of("decompose '" + glass.string() + "' --out '" +
+                                     (dir_ / "glass8t").string() + "' --pieces 8 --simplify 100");
+  EXPECT_NE(text.find("simplify_faces 400 -> "), std::string::npos) << text;
+  EXPECT_NE(text.find(" (at most 100) in "), std::string::npos) << text;
+}
+
+// A mesh of at most F faces is not decimated, and says so: cube_cup (28 faces) with --simplify
+// 100 gives the pieces it gives without --simplify.
+TEST_F(DecomposeCommand, SimplifyLeavesASmallMeshAsItIs) {
+  const fs::path cup = kModels / "objects/mujoco/cube_cup.obj";
+  if (!fs::exists(cup)) GTEST_SKIP() << "real models not found at " << kModels;
+  const nlohmann::json plain = decompose(cup, 4, "cup4");
+  EXPECT_TRUE(plain.at("simplify").is_null());
+  const nlohmann::json doc = decompose(cup, 4, "cup4s", "--simplify 100");
+  EXPECT_FALSE(doc.at("simplify").at("decimated").get<bool>());
+  EXPECT_EQ(doc.at("simplify").at("faces_before"), 28);
+  EXPECT_EQ(doc.at("simplify").at("faces_after"), 28);
+  EXPECT_EQ(doc.at("pieces"), plain.at("pieces"));
+  for (const auto& p : doc.at("pieces")) {
+    const std::string file = p.at("file").get<std::string>();
+    EXPECT_EQ(io::load_mesh((dir_ / "cup4s" / file).string()).vertices,
+              io::load_mesh((dir_ / "cup4" / file).string()).vertices)
+        << file;
+  }
+  const std::string text = stdout_of("decompose '" + cup.string() + "' --out '" +
+                                     (dir_ / "cup4t").string() + "' --pieces 4 --simplify 100");
+  EXPECT_NE(text.find("simplify_faces 28 (at most 100: not decimated)\n"), std::string::npos)
+      << text;
+}
+
+// A bad --simplify (not an integer, or below 4 faces) is one line naming the option, exit code 2,
+// and nothing is written.
+TEST_F(DecomposeCommand, BadSimplifyIsOneLineAndExitCodeTwo) {
+  const std::string tet = write("tet.obj",
+                                "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n");
+  for (const std::string value : {"0", "-5", "3", "abc", "nan", "3.5", "inf", "''"}) {
+    const fs::path out = dir_ / "bad";
+    const Outcome r =
+        graspcd("decompose '" + tet + "' --out '" + out.string() + "' --simplify " + value);
+    EXPECT_EQ(r.exit_code, 2) << value;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << value << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("graspcd: --simplify: Value ", 0), 0u) << value << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << value;
+  }
+}
+
 TEST_F(DecomposeCommand, BadInputIsOneLineNamingTheFile) {
   // A missing file.
   const std::string missing = (dir_ / "missing.obj").string();
@@ -228,6 +336,16 @@ TEST_F(DecomposeCommand, DecomposedGraspRunsOnThePieces) {
       j.at("contact_error_per_step").get<double>(),
       (j.at("phantom").get<double>() + j.at("missed").get<double>()) / j.at("steps").get<double>(),
       1e-12);
+  // The per-geom counts add up to the totals.
+  for (const char* what : {"phantom", "missed"}) {
+    int sum = 0;
+    for (const auto& [geom, count] : j.at(std::string(what) + "_by_geom").items()) {
+      EXPECT_FALSE(geom.empty());
+      EXPECT_GT(count.get<int>(), 0) << geom;
+      sum += count.get<int>();
+    }
+    EXPECT_EQ(sum, j.at(what).get<int>()) << what;
+  }
   EXPECT_FALSE(j.at("cgal_first_contact").empty());
   for (const auto& [geom, step] : j.at("cgal_first_contact").items()) {
     EXPECT_EQ(geom.rfind("finger", 0), 0u) << geom;

@@ -1,5 +1,7 @@
-// HACD's decomposition (src/graspcd/decompose/hacd.h) and CGAL's measures of it
-// (src/graspcd/exact/hausdorff.h) on small closed meshes.
+// HACD's decomposition (src/graspcd/decompose/hacd.h), CGAL's measures of it
+// (src/graspcd/exact/hausdorff.h) and the pieces of decompose --simplify (CGAL's edge collapse,
+// src/graspcd/exact/simplify.h; the nearest face, src/graspcd/exact/surface_distance.h) on small
+// closed meshes.
 #include "graspcd/decompose/hacd.h"
 
 #include <gtest/gtest.h>
@@ -9,12 +11,15 @@
 #include <vector>
 
 #include "graspcd/exact/hausdorff.h"
+#include "graspcd/exact/simplify.h"
+#include "graspcd/exact/surface_distance.h"
 #include "graspcd/support/meshes.h"
 
 namespace graspcd::decompose {
 namespace {
 
 using testing::make_box_mesh;
+using testing::make_torus;
 using testing::make_u_mesh;
 
 // Convex and outward: every vertex of the piece lies on the inner side of every face's plane, to
@@ -123,6 +128,82 @@ TEST(Hausdorff, AnOpenMeshHasNoVolume) {
   TriangleMesh open = make_box_mesh(0.1, 0.1, 0.1);
   open.faces.pop_back();
   EXPECT_THROW(exact::closed_mesh_volume(open), std::invalid_argument);
+}
+
+// CGAL's edge collapse on a torus of 2,304 faces: at most F faces, still closed, its volume kept
+// (Lindstrom-Turk's placement preserves volume); a mesh of at most F faces keeps its faces.
+TEST(Simplify, ATorusKeepsAtMostFFacesClosedAndItsVolume) {
+  const TriangleMesh torus = make_torus(0.05, 0.02, 48, 24);
+  const double volume = exact::closed_mesh_volume(torus);
+  const TriangleMesh coarse = exact::simplify_edge_collapse(torus, 300);
+  EXPECT_LE(coarse.faces.size(), 300u);
+  EXPECT_GE(coarse.faces.size(), 250u);  // stopped at F, not far below it
+  EXPECT_NEAR(exact::closed_mesh_volume(coarse), volume, 0.02 * volume);
+  EXPECT_EQ(exact::simplify_edge_collapse(torus, 2304).faces.size(), torus.faces.size());
+  EXPECT_THROW(exact::simplify_edge_collapse(torus, 0), std::invalid_argument);
+}
+
+// The nearest face is a face at the surface's distance from the point: points inside, outside
+// and on the far side of a torus.
+TEST(SurfaceDistance, NearestFaceIsAtTheSurfacesDistance) {
+  const TriangleMesh torus = make_torus(0.05, 0.02, 24, 12);
+  const exact::SurfaceDistance surface(torus);
+  for (const Vec3& p : {Vec3(0.05, 0, 0), Vec3(0.08, 0.01, 0.005), Vec3(0, 0, 0.01),
+                        Vec3(-0.03, -0.04, -0.03), Vec3(0.001, 0.07, 0.0)}) {
+    const std::size_t f = surface.nearest_face(p);
+    ASSERT_LT(f, torus.faces.size());
+    TriangleMesh one;
+    const Triangle t = torus.triangle(f);
+    one.vertices = {t.v[0], t.v[1], t.v[2]};
+    one.faces = {{0, 1, 2}};
+    EXPECT_NEAR(exact::SurfaceDistance(one).distance(p), surface.distance(p), 1e-12);
+  }
+}
+
+// decompose --simplify's pieces on a torus: HACD partitions the decimated copy, every face of the
+// torus joins the cluster of its nearest decimated face, and the pieces (hulls of the torus's own
+// vertices) hold every vertex of the torus: none lies outside all of them.
+TEST(Simplify, PiecesOfATransferredPartitionHoldEveryOriginalVertex) {
+  const TriangleMesh torus = make_torus(0.05, 0.02, 48, 24);
+  const TriangleMesh coarse = exact::simplify_edge_collapse(torus, 200);
+  HacdOptions options;
+  options.max_pieces = 8;
+  const Partition on_coarse = hacd_partition(coarse, options);
+  ASSERT_EQ(on_coarse.cluster_of_face.size(), coarse.faces.size());
+  const exact::SurfaceDistance nearest(coarse);
+  Partition on_torus;
+  on_torus.clusters = on_coarse.clusters;
+  for (std::size_t f = 0; f < torus.faces.size(); ++f) {
+    const Triangle t = torus.triangle(f);
+    on_torus.cluster_of_face.push_back(
+        on_coarse.cluster_of_face[nearest.nearest_face((t.v[0] + t.v[1] + t.v[2]) / 3.0)]);
+  }
+  const Decomposition d = pieces_of_partition(torus, on_torus);
+  ASSERT_GE(d.pieces.size(), 2u);
+  EXPECT_LE(d.pieces.size(), 8u);
+  const double tol = 1e-12;
+  for (const ConvexPiece& p : d.pieces) expect_convex_piece(p.hull, tol);
+  // The torus's vertices outside every piece of `pieces`.
+  const auto outside_all = [&](const std::vector<ConvexPiece>& pieces) {
+    std::size_t outside = 0;
+    for (const Vec3& v : torus.vertices) {
+      bool inside_some = false;
+      for (const ConvexPiece& p : pieces) {
+        bool inside = true;
+        for (std::size_t f = 0; f < p.hull.faces.size() && inside; ++f) {
+          const Triangle t = p.hull.triangle(f);
+          const Vec3 n = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
+          inside = n.norm() == 0 || n.normalized().dot(v - t.v[0]) <= tol;
+        }
+        inside_some = inside_some || inside;
+      }
+      if (!inside_some) ++outside;
+    }
+    return outside;
+  };
+  EXPECT_EQ(outside_all(d.pieces), 0u);
+  // The hulls of the decimated copy's own clusters would not hold them: the check can fail.
+  EXPECT_GT(outside_all(pieces_of_partition(coarse, on_coarse).pieces), 0u);
 }
 
 }  // namespace

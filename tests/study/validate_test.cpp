@@ -476,7 +476,7 @@ TEST_F(ValidateTest, ObjectSetRowsEachObjectAndItsShardsMergeToTheWhole) {
   ASSERT_EQ(table.exit_code, 2) << table.err;
   EXPECT_NE(table.out.find("prisms/star.obj"), std::string::npos) << table.out;
   EXPECT_NE(table.out.find("# refused: "), std::string::npos) << table.out;
-  EXPECT_NE(table.out.find("# result: no missed or false collision; 1 objects checked, 2 refused"),
+  EXPECT_NE(table.out.find("# result: no missed or false collision; 1 object checked, 2 refused"),
             std::string::npos)
       << table.out;
 

@@ -84,7 +84,7 @@ TriangleMesh qhull_hull(const std::vector<Vec3>& points) {
 
 }  // namespace
 
-Decomposition hacd_decompose(const TriangleMesh& mesh, const HacdOptions& options) {
+Partition hacd_partition(const TriangleMesh& mesh, const HacdOptions& options) {
   if (mesh.faces.empty()) throw std::runtime_error("HACD: the mesh has no faces");
   if (options.max_pieces < 1) throw std::runtime_error("HACD: at least one piece");
   // HACD normalises the points in place and writes them back: give it a copy.
@@ -118,15 +118,29 @@ Decomposition hacd_decompose(const TriangleMesh& mesh, const HacdOptions& option
     throw std::runtime_error("HACD: the decomposition failed");
   }
 
+  Partition out;
+  out.clusters = hacd.GetNClusters();
+  const long* partition = hacd.GetPartition();
+  out.cluster_of_face.reserve(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    out.cluster_of_face.push_back(static_cast<std::size_t>(partition[f]));
+  }
+  return out;
+}
+
+Decomposition pieces_of_partition(const TriangleMesh& mesh, const Partition& partition) {
+  if (partition.cluster_of_face.size() != mesh.faces.size()) {
+    throw std::runtime_error("pieces_of_partition: the partition is not the mesh's");
+  }
   // Each cluster's piece: the convex hull of its faces' vertices (qhull; HACD's own hulls are
   // simplified and built from its normalised points), a flat one as a slab.
   Decomposition out;
-  const std::size_t clusters = hacd.GetNClusters();
-  const long* partition = hacd.GetPartition();
+  const std::size_t clusters = partition.clusters;
   std::vector<std::vector<std::int32_t>> cluster_vertices(clusters);
   std::vector<Vec3> outward(clusters, Vec3::Zero());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const auto c = static_cast<std::size_t>(partition[f]);
+    const std::size_t c = partition.cluster_of_face[f];
+    if (c >= clusters) throw std::runtime_error("pieces_of_partition: a cluster out of range");
     const Triangle t = mesh.triangle(f);
     outward[c] += (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
     cluster_vertices[c].insert(cluster_vertices[c].end(), mesh.faces[f].begin(),
@@ -140,6 +154,7 @@ Decomposition hacd_decompose(const TriangleMesh& mesh, const HacdOptions& option
   const double thickness = kFlatThickness * (hi - lo).norm();
   for (std::size_t c = 0; c < clusters; ++c) {
     std::vector<std::int32_t>& ids = cluster_vertices[c];
+    if (ids.empty()) continue;  // no face chose this cluster
     std::sort(ids.begin(), ids.end());
     ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
     std::vector<Vec3> points;
@@ -160,6 +175,10 @@ Decomposition hacd_decompose(const TriangleMesh& mesh, const HacdOptions& option
   }
   if (out.pieces.empty()) throw std::runtime_error("HACD: no piece has a volume (a flat mesh?)");
   return out;
+}
+
+Decomposition hacd_decompose(const TriangleMesh& mesh, const HacdOptions& options) {
+  return pieces_of_partition(mesh, hacd_partition(mesh, options));
 }
 
 }  // namespace graspcd::decompose

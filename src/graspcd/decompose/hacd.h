@@ -41,8 +41,25 @@ struct Decomposition {
   std::size_t flat_clusters = 0;
 };
 
-// Decomposes `mesh` (at least one face). Throws std::runtime_error when HACD fails or every
-// cluster is flat. The pieces' count is HACD's (see HacdOptions).
+// A partition of a mesh's faces into clusters: cluster_of_face[f] < clusters for every face f.
+struct Partition {
+  std::vector<std::size_t> cluster_of_face;
+  std::size_t clusters = 0;
+};
+
+// HACD's partition of `mesh`'s faces (at least one face; see HacdOptions). Throws
+// std::runtime_error when HACD fails.
+Partition hacd_partition(const TriangleMesh& mesh, const HacdOptions& options);
+
+// The convex pieces of a partition of `mesh`'s faces (`partition` has one entry per face of
+// `mesh`): one per cluster, the hull of the cluster's vertices (see ConvexPiece). A cluster with
+// no face gives no piece and is not counted. Throws std::runtime_error when every cluster is
+// flat.
+Decomposition pieces_of_partition(const TriangleMesh& mesh, const Partition& partition);
+
+// Decomposes `mesh` (at least one face): pieces_of_partition(mesh, hacd_partition(mesh,
+// options)). Throws std::runtime_error when HACD fails or every cluster is flat. The pieces'
+// count is HACD's (see HacdOptions).
 Decomposition hacd_decompose(const TriangleMesh& mesh, const HacdOptions& options);
 
 }  // namespace graspcd::decompose

@@ -4,47 +4,20 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/distance.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
-#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Surface_mesh.h>
 
-#include <array>
-#include <cstddef>
 #include <stdexcept>
+#include <vector>
+
+#include "graspcd/exact/cgal_surface.h"
 
 namespace graspcd::exact {
 
 namespace {
-
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Mesh = CGAL::Surface_mesh<Point>;
+using detail::Mesh;
+using detail::surface_of;
 namespace PMP = CGAL::Polygon_mesh_processing;
-
-// The meshes as one CGAL surface: the soup repaired (equal points merged, faces with a repeated
-// vertex dropped), oriented (vertices duplicated where the surface is not a manifold) and
-// converted.
-Mesh surface_of(const std::vector<const TriangleMesh*>& meshes) {
-  std::vector<Point> points;
-  std::vector<std::array<std::size_t, 3>> faces;
-  for (const TriangleMesh* m : meshes) {
-    const std::size_t first = points.size();
-    for (const Vec3& v : m->vertices) points.emplace_back(v.x(), v.y(), v.z());
-    for (const auto& f : m->faces) {
-      faces.push_back({first + static_cast<std::size_t>(f[0]),
-                       first + static_cast<std::size_t>(f[1]),
-                       first + static_cast<std::size_t>(f[2])});
-    }
-  }
-  PMP::repair_polygon_soup(points, faces);
-  PMP::orient_polygon_soup(points, faces);
-  Mesh mesh;
-  PMP::polygon_soup_to_polygon_mesh(points, faces, mesh);
-  return mesh;
-}
-
 }  // namespace
 
 BoundedHausdorff one_sided_hausdorff(const std::vector<TriangleMesh>& from, const TriangleMesh& to,

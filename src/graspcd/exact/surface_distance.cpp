@@ -24,6 +24,7 @@ Kernel::Point_3 point(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 struct SurfaceDistance::Impl {
   std::vector<CgalTriangle> triangles;
+  std::vector<std::size_t> face_of_triangle;  // the mesh's face index of triangles[k]
   Tree tree;
 };
 
@@ -32,7 +33,9 @@ SurfaceDistance::SurfaceDistance(const TriangleMesh& mesh) : impl_(std::make_uni
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const Triangle t = mesh.triangle(f);
     const CgalTriangle c(point(t.v[0]), point(t.v[1]), point(t.v[2]));
-    if (!c.is_degenerate()) impl_->triangles.push_back(c);
+    if (c.is_degenerate()) continue;
+    impl_->triangles.push_back(c);
+    impl_->face_of_triangle.push_back(f);
   }
   if (impl_->triangles.empty()) throw std::invalid_argument("SurfaceDistance: no area");
   impl_->tree.insert(impl_->triangles.cbegin(), impl_->triangles.cend());
@@ -45,6 +48,11 @@ SurfaceDistance& SurfaceDistance::operator=(SurfaceDistance&&) noexcept = defaul
 
 double SurfaceDistance::distance(const Vec3& p) const {
   return std::sqrt(CGAL::to_double(impl_->tree.squared_distance(point(p))));
+}
+
+std::size_t SurfaceDistance::nearest_face(const Vec3& p) const {
+  const Iterator nearest = impl_->tree.closest_point_and_primitive(point(p)).second;
+  return impl_->face_of_triangle[static_cast<std::size_t>(nearest - impl_->triangles.cbegin())];
 }
 
 }  // namespace graspcd::exact

@@ -1,7 +1,9 @@
 // The distance from points to a triangle surface, by CGAL's AABB tree (the judge of where a
-// contact point lies, issue 20's race). This header does not include CGAL.
+// contact point lies, issue 20's race), and the face nearest a point (decompose --simplify). This
+// header does not include CGAL.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 
 #include "graspcd/core/geometry.h"
@@ -22,6 +24,11 @@ class SurfaceDistance {
   // The Euclidean distance (m) from `point` to the nearest point of the surface, in the mesh's
   // frame: CGAL's closest point (squared_distance, rounded once by the square root).
   double distance(const Vec3& point) const;
+
+  // The index in the mesh's `faces` of a face nearest `point` (CGAL's closest_point_and_primitive;
+  // zero-area faces are not in the tree, so never this face; a tie goes to the face CGAL meets
+  // first).
+  std::size_t nearest_face(const Vec3& point) const;
 
  private:
   struct Impl;

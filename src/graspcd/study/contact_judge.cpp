@@ -132,7 +132,10 @@ void ContactJudge::judge_step(const mjModel* /*m*/, const mjData* d, int step) {
     for (const JudgedGeom& t : s.truth) {
       to_object = std::min(to_object, t.surface->distance(in_geom_frame(d, t.id, con.pos)));
     }
-    if (to_hand > kPhantomDistance || to_object > kPhantomDistance) ++s.summary.phantom;
+    if (to_hand > kPhantomDistance || to_object > kPhantomDistance) {
+      ++s.summary.phantom;
+      ++s.summary.phantom_by_geom[s.hand[static_cast<std::size_t>(h)].name];
+    }
   }
   // Every hand geom against the true object: CGAL's verdict, and the contacts the
   // configuration missed.
@@ -148,7 +151,10 @@ void ContactJudge::judge_step(const mjModel* /*m*/, const mjData* d, int step) {
     ++s.summary.truth_hits;
     s.summary.cgal_first_contact.emplace(s.hand[h].name, step);
     s.summary.cgal_first_contact_body.emplace(s.hand[h].body, step);
-    if (!touched[h]) ++s.summary.missed;
+    if (!touched[h]) {
+      ++s.summary.missed;
+      ++s.summary.missed_by_geom[s.hand[h].name];
+    }
   }
 }
 

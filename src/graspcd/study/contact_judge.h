@@ -20,6 +20,9 @@ struct ContactJudgeSummary {
   std::uint64_t missed = 0;      // (hand geom, step) where CGAL says the true meshes intersect and
                                  // the configuration gave that geom no contact with the object
   std::uint64_t truth_hits = 0;  // (hand geom, step) where CGAL says they intersect
+  // phantom and missed per hand geom (by name; absent: none), e.g. a support the object stands
+  // on, which is a "hand" geom here (any collidable geom outside the object and the world body).
+  std::map<std::string, std::uint64_t> phantom_by_geom, missed_by_geom;
   // Per hand geom (by name), the first closing grasp step at which CGAL says its true mesh meets
   // the object's (absent: never).
   std::map<std::string, int> cgal_first_contact;
