@@ -357,10 +357,10 @@ TEST_F(DecomposeCommand, DecomposedGraspRunsOnThePieces) {
 
 // The race's judge is on the grasp's contacts: the table the object stands on (the pair config's
 // "support", a driven body of the Robotiq scenes) is neither judged nor CGAL's, while the pads
-// are. On the Robotiq bowl on its hull (the scene's own config), and cube_cup in the robotiq
-// template (grasp --object: the written scene's config) on 4 pieces (--decomposed: the written
-// scene's config). Before the support was left out, the table gave the bowl 9 phantom contacts
-// and the cup 91, and CGAL's first contacts named it.
+// are. On the Robotiq bowl on its hull (the scene's own config), and on 4 pieces of cube_cup in
+// the robotiq template (the scene grasp --object wrote, run --decomposed: its config). Before the
+// support was left out, the table gave the bowl 9 phantom contacts and the cup 91, and CGAL's
+// first contacts named it.
 TEST_F(DecomposeCommand, JudgeLeavesOutTheTableTheObjectStandsOn) {
   const fs::path cup = kModels / "objects/mujoco/cube_cup.obj";
   if (!fs::exists(cup) || !fs::exists(kModels / "hands/robotiq_2f85/2f85.xml")) {
