@@ -24,6 +24,7 @@
 #include "graspcd/core/geometry.h"
 #include "graspcd/core/warnings.h"
 #include "graspcd/grasp/decomposed_scene.h"
+#include "graspcd/grasp/drive_config.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/grasp/object_scene.h"
 #include "graspcd/io/mesh_io.h"
@@ -91,6 +92,18 @@ nlohmann::json judge_json(const study::ContactJudgeSummary& j) {
           {"cgal_first_contact", j.cgal_first_contact},
           {"cgal_first_contact_body", j.cgal_first_contact_body},
           {"phantom_distance", study::kPhantomDistance}};
+}
+
+// The race's judge on model m: the object and the support of the "grasp" section of the pair
+// config at config_path (drive_config.h), the body "object" and no support (the world body only,
+// which the judge always leaves out) when there is no such file or section (examples 1-3).
+std::unique_ptr<study::ContactJudge> make_judge(const mjModel* m, const std::string& config_path) {
+  std::optional<bridge::DriveConfig> drive;
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(config_path, ec))
+    drive = bridge::load_drive_config(config_path);
+  if (!drive) return std::make_unique<study::ContactJudge>(m);
+  return std::make_unique<study::ContactJudge>(m, drive->object, drive->support);
 }
 
 // "# object FILE at scale S (given|fitted) ... in the HAND template": the first line of the text.
@@ -293,10 +306,15 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   const auto named = [&](const std::string& file) {
     return object && file == object->scene.scene ? options.object : file;
   };
+  // --judge: built on the first closing step's model, with the object and support bodies of the
+  // drive config the grasp reads (--config, else SCENE.pairs.json: for --decomposed the original
+  // scene's, for --object the written template's); the grasp has already checked that config.
   std::unique_ptr<study::ContactJudge> judge;
   if (options.judge) {
-    grasp.on_grasp_step = [&judge](const mjModel* m, const mjData* d, int step) {
-      if (!judge) judge = std::make_unique<study::ContactJudge>(m);
+    const std::string config_path =
+        options.config.empty() ? bridge::pair_config_path(scene) : options.config;
+    grasp.on_grasp_step = [&judge, config_path](const mjModel* m, const mjData* d, int step) {
+      if (!judge) judge = make_judge(m, config_path);
       judge->judge_step(m, d, step);
     };
   }
@@ -450,17 +468,19 @@ Command add_grasp_command(CLI::App& parent) {
       "'decomposed': dir, source, pieces, geoms). A DIR without decomposition.json, or a SCENE "
       "without a mesh of MESH, is one line naming it, exit code 2.\n"
       "--judge: the race's contact fidelity (issue 20). After each closing grasp step, every "
-      "contact between the object (body 'object') and a hand geom is judged against the "
-      "true meshes by CGAL: a phantom when its point lies more than 1 mm from the hand geom's "
-      "surface or the object's true surface; and every hand geom whose true surface meets the "
-      "object's (CGAL) without any contact with the object at that step is a missed contact. "
-      "Primitive hand geoms are judged on graspcd's tessellation (a box exactly). The judging time "
-      "is outside the physics steps' wall time. A last line '# judged by CGAL "
-      "over S closing steps: C hand-object contacts, P phantom, M missed' (JSON: 'judge': "
-      "steps, contacts, phantom, missed, phantom_by_geom and missed_by_geom (hand geom -> "
-      "count; every collidable geom outside the object and the world body is a hand geom "
-      "here, a table the object stands on too), truth_hits, contact_error_per_step, "
-      "cgal_first_contact (hand geom -> step), cgal_first_contact_body (hand body -> step), "
+      "contact between the object and a hand geom is judged against the true meshes by CGAL "
+      "(the object and a support it stands on are the pair config's 'grasp' section's "
+      "'object' and 'support', else the body 'object' and none; a hand geom is every "
+      "collidable geom outside the object, the support body and the world body, so the grasp's "
+      "contacts are judged and the object's on a table are not): a phantom when its point lies "
+      "more than 1 mm from the hand geom's surface or the object's true surface; and every hand "
+      "geom whose true surface meets the object's (CGAL) without any contact with the object at "
+      "that step is a missed contact. Primitive hand geoms are judged on graspcd's tessellation "
+      "(a box exactly). The judging time is outside the physics steps' wall time. A last line "
+      "'# judged by CGAL over S closing steps: C hand-object contacts, P phantom, M missed' "
+      "(JSON: 'judge': steps, contacts, phantom, missed, phantom_by_geom and missed_by_geom "
+      "(hand geom -> count), truth_hits, contact_error_per_step, cgal_first_contact (hand geom -> "
+      "step), cgal_first_contact_body (hand body -> step), "
       "phantom_distance).\n"
       "Examples:\n"
       "  graspcd grasp mjcf/example1.xml --method perceptron\n"

@@ -609,10 +609,11 @@ def race_section(race, fig_dir, fig_rel):
       " grasp step, judged by CGAL on the true meshes (`grasp --judge`: a phantom's point lies"
       " more than 1 mm from a true surface; a missed contact is a finger segment whose true mesh"
       " meets the object's with no contact; the judge's hand geoms are every collidable geom"
-      " outside the object and the world body, so a table the object stands on (a driven body in"
-      " the Robotiq scenes) is one: the phantom and missed columns name the geoms they came"
-      " from). \"First contact\" counts the segments whose"
-      " first-contact step is CGAL's on the true meshes at the same poses (never, for both,"
+      " outside the object, the world body and the body the object stands on, the pair config's"
+      " \"support\" (the driven table of the Robotiq scenes, whose contact with the object"
+      " MuJoCo computes natively in every configuration and is not the grasp's): the phantom and"
+      " missed columns name the hand geoms they came from). \"First contact\" counts the"
+      " segments whose first-contact step is CGAL's on the true meshes at the same poses (never, for both,"
       " counts as the same). The one-sided Hausdorff distance is from the pieces' surfaces to"
       " the object's (CGAL's bounded_error_Hausdorff_distance, with its bound); HACD clusters"
       " the surface, and a cluster that rings a cavity (a cup's rim) has a hull that closes it,"
@@ -750,7 +751,7 @@ def race_section(race, fig_dir, fig_rel):
 
 
 def by_geom(total, counts):
-    """A phantom or missed count with the hand geoms it came from: "40 (table 40)"."""
+    """A phantom or missed count with the hand geoms it came from: "1 (finger2_C 1)"."""
     if not total or not counts:
         return str(total)
     return f"{total} ({', '.join(f'{g} {n}' for g, n in sorted(counts.items()))})"

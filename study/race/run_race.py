@@ -28,7 +28,8 @@ the pieces are hulls of the original vertices), cached apart (WORK/STEM_N_simpli
 it per scene ("simplify": the threshold, F and the mesh's triangles; null when the mesh was
 decomposed as it is) and per decomposition (faces after decimation, its time, and the commit of
 the graspcd that made it). The file keeps the command, its wall time and the load at its end;
-each row the phantom and missed contacts per hand geom (a table the object stands on is one).
+each row the phantom and missed contacts per hand geom (the judge leaves out the body the object
+stands on, the pair config's "support": the Robotiq scenes' table).
 --merge OLD.json keeps OLD's scenes that this run does not race, each with its own provenance.
 """
 import argparse

@@ -18,6 +18,7 @@
 #include "graspcd/mujoco/mujoco_ptr.h"
 #include "support/command_test.h"
 #include "support/envelope_check.h"
+#include "support/test_scale.h"
 
 namespace graspcd::testing {
 namespace {
@@ -352,6 +353,46 @@ TEST_F(DecomposeCommand, DecomposedGraspRunsOnThePieces) {
     EXPECT_GE(step.get<int>(), 1);
   }
   expect_no_written_scene_left();
+}
+
+// The race's judge is on the grasp's contacts: the table the object stands on (the pair config's
+// "support", a driven body of the Robotiq scenes) is neither judged nor CGAL's, while the pads
+// are. On the Robotiq bowl on its hull (the scene's own config), and on 4 pieces of cube_cup in
+// the robotiq template (the scene grasp --object wrote, run --decomposed: its config). Before the
+// support was left out, the table gave the bowl 9 phantom contacts and the cup 91, and CGAL's
+// first contacts named it.
+TEST_F(DecomposeCommand, JudgeLeavesOutTheTableTheObjectStandsOn) {
+  const fs::path cup = kModels / "objects/mujoco/cube_cup.obj";
+  if (!fs::exists(cup) || !fs::exists(kModels / "hands/robotiq_2f85/2f85.xml")) {
+    GTEST_SKIP() << "real models not found at " << kModels;
+  }
+  if (test_scale() < 1) {
+    GTEST_SKIP() << "real-hand grasps skipped at GRASPCD_TEST_SCALE < 1 (sanitizer pass)";
+  }
+  const Outcome w = graspcd("grasp --object '" + cup.string() + "' --hand robotiq --fit " +
+                            "--write-scene '" + (dir_ / "scene").string() + "' --max-steps 1");
+  ASSERT_EQ(w.exit_code, 0) << w.err;
+  decompose(cup, 4, "cup4");
+  const std::string bowl = (kMjcf / "real_robotiq_bowl.xml").string();
+  const std::string scene = (dir_ / "scene/cube_cup.xml").string();
+  for (const std::string& args :
+       {"grasp '" + bowl + "' --native",
+        "grasp '" + scene + "' --decomposed '" + (dir_ / "cup4").string() + "'"}) {
+    const fs::path json = dir_ / "judged.json";
+    const Outcome r = run(std::string("{ '") + GRASPCD_EXE + "' " + args + " --judge --json > '" +
+                          json.string() + "'; }");
+    ASSERT_EQ(r.exit_code, 0) << args << ": " << r.err;
+    const nlohmann::json j = load(json).at("judge");
+    for (const char* map : {"phantom_by_geom", "missed_by_geom", "cgal_first_contact"}) {
+      EXPECT_FALSE(j.at(map).contains("table")) << args << ": " << map << " " << j.at(map);
+    }
+    EXPECT_FALSE(j.at("cgal_first_contact_body").contains("table")) << args;
+    // The pads are still judged: their contacts with the object, and CGAL's verdict on them.
+    EXPECT_GT(j.at("contacts").get<int>(), 0) << args;
+    EXPECT_TRUE(j.at("cgal_first_contact_body").contains("left_pad") ||
+                j.at("cgal_first_contact_body").contains("right_pad"))
+        << args << ": " << j.at("cgal_first_contact_body");
+  }
 }
 
 // The decomposed scene as MuJoCo compiles it: the original geom stays with its mass but without

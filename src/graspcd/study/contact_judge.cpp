@@ -83,11 +83,24 @@ struct ContactJudge::Impl {
   ContactJudgeSummary summary;
 };
 
-ContactJudge::ContactJudge(const mjModel* m, const std::string& object_body)
+ContactJudge::ContactJudge(const mjModel* m, const std::string& object_body,
+                           const std::string& support_body)
     : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.object = mj_name2id(m, mjOBJ_BODY, object_body.c_str());
   if (s.object < 0) throw std::invalid_argument("ContactJudge: no body " + object_body);
+  // The support's own geoms are neither hand nor object (contact_judge.h).
+  int support = -1;
+  if (!support_body.empty()) {
+    support = mj_name2id(m, mjOBJ_BODY, support_body.c_str());
+    if (support < 0) throw std::invalid_argument("ContactJudge: no body " + support_body);
+    for (int b = support; b > 0; b = m->body_parentid[b]) {
+      if (b == s.object) {
+        throw std::invalid_argument("ContactJudge: the support " + support_body +
+                                    " is the object or inside it");
+      }
+    }
+  }
   s.in_object.assign(static_cast<std::size_t>(m->ngeom), 0);
   s.hand_index.assign(static_cast<std::size_t>(m->ngeom), -1);
   for (int g = 0; g < m->ngeom; ++g) {
@@ -101,7 +114,8 @@ ContactJudge::ContactJudge(const mjModel* m, const std::string& object_body)
       }
     } else if (m->geom_type[g] != mjGEOM_MESH && !bridge::is_primitive(m->geom_type[g])) {
       continue;  // a plane or a height field
-    } else if (body != 0 && (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0)) {
+    } else if (body != 0 && body != support &&
+               (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0)) {
       s.hand_index[static_cast<std::size_t>(g)] = static_cast<int>(s.hand.size());
       s.hand.push_back(judged(m, g));
     }

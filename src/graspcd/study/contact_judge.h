@@ -20,8 +20,7 @@ struct ContactJudgeSummary {
   std::uint64_t missed = 0;      // (hand geom, step) where CGAL says the true meshes intersect and
                                  // the configuration gave that geom no contact with the object
   std::uint64_t truth_hits = 0;  // (hand geom, step) where CGAL says they intersect
-  // phantom and missed per hand geom (by name; absent: none), e.g. a support the object stands
-  // on, which is a "hand" geom here (any collidable geom outside the object and the world body).
+  // phantom and missed per hand geom (by name; absent: none).
   std::map<std::string, std::uint64_t> phantom_by_geom, missed_by_geom;
   // Per hand geom (by name), the first closing grasp step at which CGAL says its true mesh meets
   // the object's (absent: never).
@@ -38,9 +37,16 @@ constexpr double kPhantomDistance = 1e-3;
 //    geoms but the pieces of a decomposition (bridge::is_piece: grasp --decomposed keeps the
 //    original geom, without collision, beside its pieces, named or not).
 //  - The hand: every mesh or primitive geom that can collide (contype or conaffinity non-zero)
-//    outside the object's subtree and the world body; a primitive's true surface is
-//    bridge::tessellate_primitive's (a box exactly, curved ones circumscribed within
-//    bridge::tessellation_tolerance, far below the 1 mm of a phantom).
+//    outside the object's subtree, the world body and the body named `support_body` ("": none);
+//    a primitive's true surface is bridge::tessellate_primitive's (a box exactly, curved ones
+//    circumscribed within bridge::tessellation_tolerance, far below the 1 mm of a phantom).
+//  - The support: the body the object stands on (the drive config's "support", drive_config.h;
+//    the table of mjcf/real_robotiq_*.xml, a driven body whose box MuJoCo collides with the
+//    object natively in every configuration). The race is on the grasp's contacts, hand against
+//    object, so the support's own geoms are neither judged nor counted as missed. Its own geoms
+//    only, not its subtree: a scene may carry the hand on the body the object stands on (a
+//    gripper on a driven base), and the hand must never leave the judge; in the shipped scenes
+//    the support has no child body, so its geoms are its subtree's.
 //  - At each step: every contact between an object geom and a hand geom is judged by the
 //    distance of its point (MuJoCo's contact pos) to the hand geom's true surface and to the
 //    nearest true object surface (exact::SurfaceDistance, CGAL's AABB tree, in each geom's frame
@@ -52,7 +58,10 @@ constexpr double kPhantomDistance = 1e-3;
 // 1 mm of both surfaces (the meshes are then within 2 mm).
 class ContactJudge {
  public:
-  ContactJudge(const mjModel* m, const std::string& object_body = "object");
+  // Throws std::invalid_argument for an object or support body the model does not have, a
+  // support that is the object or inside it, or an object without a mesh geom.
+  ContactJudge(const mjModel* m, const std::string& object_body = "object",
+               const std::string& support_body = "");
   ~ContactJudge();
   ContactJudge(const ContactJudge&) = delete;
   ContactJudge& operator=(const ContactJudge&) = delete;
