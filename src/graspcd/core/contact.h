@@ -119,8 +119,8 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
 // coordinates are equal (-0.0 and 0.0 alike), the relation the manifold grows patches by.
 using FaceVertexIds = std::array<std::uint32_t, 3>;
 
-// Welds `faces` by exact coordinates: one FaceVertexIds per face, ids 0, 1, ... in the order of
-// the coordinates. Throws std::length_error beyond 2^31 distinct vertices.
+// Welds `faces` by exact coordinates: one FaceVertexIds per face, ids 0, 1, ... numbered in the
+// order of the coordinates' bit patterns. Throws std::length_error beyond 2^31 distinct vertices.
 std::vector<FaceVertexIds> weld_vertex_ids(const std::vector<Triangle>& faces);
 
 // The same manifold from the candidates' triangles given as welded vertex ids (ids of one geom
