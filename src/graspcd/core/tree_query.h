@@ -1,7 +1,9 @@
 // Tree-against-tree collision query: a separator at the node pairs, a triangle test at the leaves.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -24,9 +26,9 @@ struct QueryCounters {
   std::uint64_t perceptron_passes = 0;  // passes over the 16 corners (perceptron separators)
   std::uint64_t sat_fallbacks = 0;      // perceptron tests that fell back to SAT (Neuro-SAT)
   std::uint64_t cache_hits = 0;         // node pairs answered from a temporal-coherence cache
-  std::uint64_t front_skips = 0;  // disjoint front pairs kept without a test (collide_coherent)
-  std::uint64_t tri_tests = 0;    // triangle pairs tested
-  std::uint64_t tri_pairs = 0;    // triangle pairs found intersecting
+  std::uint64_t front_skips = 0;        // front pairs still apart by their gap (collide_coherent)
+  std::uint64_t tri_tests = 0;          // triangle pairs tested
+  std::uint64_t tri_pairs = 0;          // triangle pairs found intersecting
 
   QueryCounters& operator+=(const QueryCounters& o);
 };
@@ -50,8 +52,10 @@ struct QueryResult {
 
 // A node pair of the two trees: indices into A's and B's nodes(). On a front, `disjoint` says
 // whether the descent stopped there on a box test (true) or tested its two leaves (false), and
-// `gap` (metres) is, for a disjoint pair, a lower bound on the distance between its two boxes at
-// the front's pose (SAT's gap on the separating axis, sat_axis_gap), 0 when none is known.
+// `gap` (metres) is a lower bound, at the front's pose, on the distance between what the pair
+// holds, 0 when none is known: for a disjoint pair between its two boxes (SAT's gap on the
+// separating axis, sat_axis_gap); for two leaves whose triangle pairs were all rejected by a plane
+// (Moller's eq. 6-7) between their triangles (the least of tri_tri_intersect's gaps).
 struct NodePair {
   std::int32_t a = 0;
   std::int32_t b = 0;
@@ -93,8 +97,13 @@ struct SatSeparator {
 
 // The triangle test policy: the project's Moller test by default (tri_tri_intersect: floating point
 // with a proven error bound, decided exactly by tri_tri_intersect_predicates inside the bound).
+// With a gap (tritri.h), the tree query can keep a leaf pair whose triangles were far apart on a
+// front (collide_coherent).
 struct FilteredTriTest {
   bool operator()(const Triangle& a, const Triangle& b) const { return tri_tri_intersect(a, b); }
+  bool operator()(const Triangle& a, const Triangle& b, double& gap) const {
+    return tri_tri_intersect(a, b, gap);
+  }
 };
 
 namespace detail {
@@ -138,17 +147,44 @@ inline double node_slack(const Obb& x, const Obb& y, const Vec3& T, double carri
   return tol::kSatRelativeSlack * (x.half.sum() + y.half.sum() + 2 * T.lpNorm<1>()) + carried;
 }
 
+// Triangle tests that also give a gap when they reject (FilteredTriTest).
+template <class T, class = void>
+struct HasGapTest : std::false_type {};
+template <class T>
+struct HasGapTest<T, std::void_t<decltype(std::declval<T&>()(
+                         std::declval<const Triangle&>(), std::declval<const Triangle&>(),
+                         std::declval<double&>()))>> : std::true_type {};
+
 // The leaves of a node pair: every triangle pair, B's through apply_pose (the doubles the exact
-// ground truth sees too). True when the query is over (first contact found).
+// ground truth sees too). True when the query is over (first contact found). `gap`, when given,
+// receives the least of the pairs' gaps (tritri.h) when the test gives gaps and no pair
+// intersects, else 0.
 template <class TriTest>
 bool test_leaves(const ObbTree& a, const ObbTree& b, const ObbNode& x, const ObbNode& y,
                  const Pose& b_in_a, QueryMode mode, QueryCounters& counters,
-                 std::vector<TrianglePair>* pairs, TriTest& tri_test, QueryResult& result) {
+                 std::vector<TrianglePair>* pairs, TriTest& tri_test, QueryResult& result,
+                 double* gap = nullptr) {
+  constexpr bool kGaps = HasGapTest<TriTest>::value;
+  double least = std::numeric_limits<double>::infinity();
+  if (gap) *gap = 0;
   for (std::int32_t j = y.first; j < y.first + y.count; ++j) {
     const Triangle tb = apply_pose(b_in_a, b.triangles()[j]);
     for (std::int32_t i = x.first; i < x.first + x.count; ++i) {
       ++counters.tri_tests;
-      if (!tri_test(a.triangles()[i], tb)) continue;
+      bool hit;
+      if constexpr (kGaps) {
+        if (gap) {
+          double g = 0;
+          hit = tri_test(a.triangles()[i], tb, g);
+          least = std::min(least, g);
+        } else {
+          hit = tri_test(a.triangles()[i], tb);
+        }
+      } else {
+        hit = tri_test(a.triangles()[i], tb);
+      }
+      if (!hit) continue;
+      least = 0;
       ++counters.tri_pairs;
       ++result.pair_count;
       result.intersect = true;
@@ -156,6 +192,7 @@ bool test_leaves(const ObbTree& a, const ObbTree& b, const ObbNode& x, const Obb
       if (mode == QueryMode::kFirstContact) return true;
     }
   }
+  if (kGaps && gap && least > 0 && least < std::numeric_limits<double>::infinity()) *gap = least;
   return false;
 }
 
@@ -177,7 +214,9 @@ bool test_leaves(const ObbTree& a, const ObbTree& b, const ObbNode& x, const Obb
 // exceeds it is still disjoint, since the distance between two boxes shrinks by at most what
 // either moved: it goes to `stops` untested with its gap less `moved` (motion-bounded front
 // tracking: Ehmann and Lin 2001 keep a front of the bounding volume test tree, and conservative
-// advancement, Mirtich 1996, bounds the approach of two bodies by their motion).
+// advancement, Mirtich 1996, bounds the approach of two bodies by their motion). So does a start of
+// two leaves whose gap (their triangles' distance, test_leaves) exceeds it: no triangle pair of
+// theirs can meet yet.
 template <class Separator, class TriTest>
 QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, QueryMode mode,
                             Separator& separator, QueryCounters& counters,
@@ -217,10 +256,13 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
         }
         continue;
       }
-      // Two leaves: test their triangles.
+      // Two leaves: test their triangles (keeping their gap on the front).
       if (x.is_leaf() && y.is_leaf()) {
-        if (stops) stops->push_back({p.ia, p.ib, false, 0.0});
-        if (test_leaves(a, b, x, y, b_in_a, mode, counters, pairs, tri_test, result)) return true;
+        double gap = 0;
+        const bool over = test_leaves(a, b, x, y, b_in_a, mode, counters, pairs, tri_test, result,
+                                      stops ? &gap : nullptr);
+        if (stops) stops->push_back({p.ia, p.ib, false, gap});
+        if (over) return true;
         continue;
       }
       // Otherwise split the larger node (a leaf is never split), carrying the frame down.
@@ -248,9 +290,9 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
   // them all at once.
   const bool skip = stops && moved >= 0;
   for (const NodePair& s : *starts) {
-    if (skip && s.disjoint && s.gap > moved) {
+    if (skip && s.gap > moved) {
       ++counters.front_skips;
-      stops->push_back({s.a, s.b, true, s.gap - moved});
+      stops->push_back({s.a, s.b, s.disjoint, s.gap - moved});
       continue;
     }
     push_direct(s.a, s.b);
@@ -367,13 +409,13 @@ void pull_up_front(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, Query
 // test tree (Eurographics 2001): when front_applies, the descent restarts from the node pairs where
 // the last one stopped (pairs above the front, nearly always "may overlap" again at a small
 // motion, are not tested again), otherwise from the roots; either way `front` then holds where
-// this descent stopped. A restarted descent does not test a disjoint front pair whose gap exceeds
-// how far B moved since (front_motion): it is still disjoint. Every tol::kFrontPullUpPeriod
-// restarts the front is pulled up where the pairs moved apart (pull_up_front); when a restarted
-// descent still costs more box tests than the last descent from the roots did, the front is dropped
-// and the next query starts from the roots. The intersecting triangle pairs are exactly those of
-// collide(..., kAllContacts, ...) at the same pose, as a set (the order may differ; sort them to
-// compare). Returns collide's result.
+// this descent stopped. A restarted descent does not test a front pair whose gap exceeds how far B
+// moved since (front_motion): a disjoint pair's boxes, or a leaf pair's triangles, are still apart.
+// Every tol::kFrontPullUpPeriod restarts the front is pulled up where the pairs moved apart
+// (pull_up_front); when a restarted descent still costs more box tests than the last descent from
+// the roots did, the front is dropped and the next query starts from the roots. The intersecting
+// triangle pairs are exactly those of collide(..., kAllContacts, ...) at the same pose, as a set
+// (the order may differ; sort them to compare). Returns collide's result.
 template <class Separator, class TriTest = FilteredTriTest>
 QueryResult collide_coherent(const ObbTree& a, const ObbTree& b, const Pose& b_in_a,
                              Separator& separator, QueryCounters& counters,

@@ -367,22 +367,45 @@ bool tri_tri_intersect_predicates(const Triangle& t1, const Triangle& t2) {
   return edges_meet(t1, t2, o1, o2);
 }
 
-// Moller 1997, eq. (6)-(9), with every floating-point decision certified by an error bound.
-bool tri_tri_intersect(const Triangle& t1, const Triangle& t2) {
+namespace {
+
+// A lower bound on the distance (metres) between the plane of p and a triangle whose vertices'
+// distances d (times |N|, with their error bounds) all have one strict sign: each exact |D_i| >=
+// |d_i| - err_i, and the exact normal's length |N| <= |n| + 4u |P| (plane_of: each component within
+// 4u P_k). The factors 1 +- 1e-12 absorb the rounding of these few operations (a few u) many times
+// over. 0 when a vertex's distance is not above its error bound (its sign came from orient3d).
+double plane_gap(const Plane& p, const Distance d[3]) {
+  double nearest = std::fabs(d[0].d) - d[0].err;
+  for (int i = 1; i < 3; ++i) nearest = std::min(nearest, std::fabs(d[i].d) - d[i].err);
+  if (!(nearest > 0)) return 0;
+  const double length = p.n.norm() * (1 + 1e-12) + 8 * kU * p.perm.norm();
+  return nearest * (1 - 1e-12) / length;
+}
+
+// Moller 1997, eq. (6)-(9), with every floating-point decision certified by an error bound. With
+// `gap`, a rejection by a plane also gives plane_gap (tritri.h).
+template <bool kGap>
+bool moller_certified(const Triangle& t1, const Triangle& t2, double* gap) {
   if (!finite(t1) || !finite(t2)) return false;  // no set of points (tritri.h)
   // Eq. (6)-(7): T1's vertices against T2's plane; reject if all strictly on one side.
   const Plane p2 = plane_of(t2);
   if (!non_degenerate(t2, p2)) return tri_tri_intersect_predicates(t1, t2);
   Distance d1[3];
   for (int i = 0; i < 3; ++i) d1[i] = plane_distance(t2, p2, t1.v[i]);
-  if (d1[0].sign == d1[1].sign && d1[1].sign == d1[2].sign && d1[0].sign != 0) return false;
+  if (d1[0].sign == d1[1].sign && d1[1].sign == d1[2].sign && d1[0].sign != 0) {
+    if constexpr (kGap) *gap = plane_gap(p2, d1);
+    return false;
+  }
   // The same for T2's vertices against T1's plane; coplanar pairs are decided exactly in 2D.
   const Plane p1 = plane_of(t1);
   if (!non_degenerate(t1, p1)) return tri_tri_intersect_predicates(t1, t2);
   if (d1[0].sign == 0 && d1[1].sign == 0 && d1[2].sign == 0) return coplanar_triangles(t1, t2);
   Distance d2[3];
   for (int i = 0; i < 3; ++i) d2[i] = plane_distance(t1, p1, t2.v[i]);
-  if (d2[0].sign == d2[1].sign && d2[1].sign == d2[2].sign && d2[0].sign != 0) return false;
+  if (d2[0].sign == d2[1].sign && d2[1].sign == d2[2].sign && d2[0].sign != 0) {
+    if constexpr (kGap) *gap = plane_gap(p1, d2);
+    return false;
+  }
   // Eq. (8): project on the coordinate axis most aligned with L = N1 x N2. Any axis gives a valid
   // answer when the decision clears its error bound (the coordinate is affine along L); a
   // near-degenerate axis only makes the bound fail and the exact test decide.
@@ -402,6 +425,17 @@ bool tri_tri_intersect(const Triangle& t1, const Triangle& t2) {
   if (overlap > err) return true;
   if (-overlap > err) return false;
   return edges_meet(t1, t2, o1, o2);
+}
+
+}  // namespace
+
+bool tri_tri_intersect(const Triangle& t1, const Triangle& t2) {
+  return moller_certified<false>(t1, t2, nullptr);
+}
+
+bool tri_tri_intersect(const Triangle& t1, const Triangle& t2, double& gap) {
+  gap = 0;
+  return moller_certified<true>(t1, t2, &gap);
 }
 
 bool tri_tri_moller_naive(const Triangle& t1, const Triangle& t2) {

@@ -16,6 +16,13 @@ namespace graspcd {
 // tri_tri_intersect_predicates.
 bool tri_tri_intersect(const Triangle& t1, const Triangle& t2);
 
+// The same answer; when it is "no" because one triangle lies strictly on one side of the other's
+// plane (eq. 6-7), `gap` (metres) receives a lower bound on the distance between the two triangles:
+// the nearest of that triangle's vertices' distances to the plane, each less its error bound and
+// divided by an upper bound on the normal's length; otherwise (they intersect, or another test
+// decided) 0. The tree query keeps it with a front's leaf pair (tree_query.h).
+bool tri_tri_intersect(const Triangle& t1, const Triangle& t2, double& gap);
+
 // An exact test built from orientation predicates only (predicates.h): each triangle is classified
 // exactly as point, segment or triangle; non-coplanar triangles intersect iff an edge of one meets
 // the other; coplanar ones are decided in a projection that preserves incidence. Slower; the

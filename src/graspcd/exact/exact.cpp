@@ -251,6 +251,25 @@ double box_box_gap(const Obb& a, const Obb& b) {
   return best;
 }
 
+bool plane_keeps_apart(const Triangle& t, const Triangle& u, double gap) {
+  const NVec<Rational> u0 = convert<Rational>(u.v[0]);
+  const NVec<Rational> e1 = convert<Rational>(u.v[1]), e2 = convert<Rational>(u.v[2]);
+  const NVec<Rational> n = cross(NVec<Rational>{e1[0] - u0[0], e1[1] - u0[1], e1[2] - u0[2]},
+                                 NVec<Rational>{e2[0] - u0[0], e2[1] - u0[1], e2[2] - u0[2]});
+  if (is_zero(n)) return false;
+  const Rational g(gap), nn = dot(n, n);
+  int side = 0;
+  for (const Vec3& v : t.v) {
+    const NVec<Rational> x = convert<Rational>(v);
+    const Rational d = dot(n, NVec<Rational>{x[0] - u0[0], x[1] - u0[1], x[2] - u0[2]});
+    const int s = CGAL::sign(d);
+    if (s == 0 || (side != 0 && s != side)) return false;
+    side = s;
+    if (g * g * nn > d * d) return false;
+  }
+  return true;
+}
+
 // Candidate pairs from CGAL::box_intersection_d (Zomorodian and Edelsbrunner 2000: streamed
 // segment tree over the triangles' axis-aligned boxes, closed topology so touching boxes are
 // reported), each decided by tri_tri_intersect. Bounding boxes of doubles are exact, so no

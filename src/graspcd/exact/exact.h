@@ -36,6 +36,11 @@ double sat_axis_gap(const Obb& a, const Obb& b, int sat_axis);
 // disjoint (exact sign), and never more than their Euclidean distance (metres).
 double box_box_gap(const Obb& a, const Obb& b);
 
+// True when every vertex of t lies strictly on one side of the plane of u (a proper triangle) and
+// at a distance of at least `gap` (metres) from it: then the triangles lie at least `gap` apart.
+// Decided exactly (gap^2 |N|^2 <= (N . (x - u0))^2 in rationals, N = (u1 - u0) x (u2 - u0)).
+bool plane_keeps_apart(const Triangle& t, const Triangle& u, double gap);
+
 // Every intersecting pair (index in a, index in b) of two triangle soups, sorted ascending; with
 // first_contact, at most one pair (any). Brute force over the candidate pairs whose bounding boxes
 // meet, each decided by tri_tri_intersect above: the ground truth for the tree queries.

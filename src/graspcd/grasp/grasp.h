@@ -123,7 +123,7 @@ struct GraspStepRecord {
   std::vector<bool> touching;      // by GraspResult::segments: those with such a contact then
   std::uint64_t detection_ns = 0;  // tree query time over the step's physics steps (bridge)
   std::uint64_t box_tests = 0;
-  std::uint64_t front_skips = 0;  // front node pairs kept as disjoint without a box test
+  std::uint64_t front_skips = 0;  // front pairs kept apart by their gap, untested
   std::uint64_t triangle_tests = 0;
   std::uint64_t served_calls = 0;
   std::uint64_t contained = 0;        // served calls that found a segment wholly inside the object
