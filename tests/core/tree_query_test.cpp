@@ -241,12 +241,11 @@ TEST(TreeQuery, AStaleFrontStillGivesTheSameAnswer) {
   }
 }
 
-// The gaps a front keeps are lower bounds on the distance between their boxes at the front's pose,
-// measured or carried over untested from an earlier pose less B's motion (front_motion): B's box
-// grown by gap / sqrt(3) on every half-extent lies within the gap's distance of the box, so grown
-// by 0.9 of that it must still be disjoint from A's box. Along the path of the test above, small
-// steps and jumps.
-TEST(TreeQuery, FrontGapsAreLowerBoundsOnTheBoxDistance) {
+// The path of the two gap tests below: a SAT detector's coherent queries of a sphere along the
+// torus's outer rim, turning slowly, with a small jump every 50 steps; visit(i, pose, trees, front,
+// front pairs kept untested by this query) after each.
+template <class Visit>
+void follow_gap_path(Visit visit) {
   const TriangleMesh torus = testing::make_torus(0.04, 0.012, 30, 16);
   const TriangleMesh sphere = testing::make_uv_sphere(0.015, 12, 16);
   const ObbTree ta = ObbTree::build(torus), tb = ObbTree::build(sphere);
@@ -254,7 +253,6 @@ TEST(TreeQuery, FrontGapsAreLowerBoundsOnTheBoxDistance) {
   Detector sat(Method::kSat);
   QueryFront front;
   QueryCounters c;
-  std::uint64_t carried = 0, checked = 0;
   for (int i = 0; i < 200; ++i) {
     Pose pose;
     pose.R = testing::rotation_about(Vec3(0.3, 0.5, 0.8).normalized(), 0.004 * i);
@@ -264,7 +262,20 @@ TEST(TreeQuery, FrontGapsAreLowerBoundsOnTheBoxDistance) {
     const std::uint64_t skips_before = c.front_skips;
     std::vector<TrianglePair> pairs;
     sat.collide_coherent(ta, tb, pose, c, &pairs, front);
-    carried += c.front_skips - skips_before;
+    visit(i, pose, ta, tb, front, c.front_skips - skips_before);
+  }
+}
+
+// The gaps a front keeps are lower bounds on the distance between their boxes at the front's pose,
+// measured or carried over untested from an earlier pose less B's motion (front_motion): B's box
+// grown by gap / sqrt(3) on every half-extent lies within the gap's distance of the box, so grown
+// by 0.9 of that it must still be disjoint from A's box. Along the path of the test above, small
+// steps and jumps.
+TEST(TreeQuery, FrontGapsAreLowerBoundsOnTheBoxDistance) {
+  std::uint64_t carried = 0, checked = 0;
+  follow_gap_path([&](int i, const Pose& pose, const ObbTree& ta, const ObbTree& tb,
+                      const QueryFront& front, std::uint64_t skips) {
+    carried += skips;
     for (const NodePair& p : front.pairs) {
       if (!p.disjoint) continue;
       ASSERT_GE(p.gap, 0.0) << "pose " << i;
@@ -277,7 +288,7 @@ TEST(TreeQuery, FrontGapsAreLowerBoundsOnTheBoxDistance) {
           << "pose " << i << " pair " << p.a << ", " << p.b << " gap " << p.gap;
       ++checked;
     }
-  }
+  });
   // Pairs were carried over untested, and many gaps were checked.
   EXPECT_GT(carried, 1000u);
   EXPECT_GT(checked, 10000u);
@@ -292,23 +303,10 @@ TEST(TreeQuery, FrontGapsAreLowerBoundsOnTheBoxDistance) {
 // carried over untested from an earlier pose less B's motion. Along the path of the gap test
 // above.
 TEST(TreeQuery, LeafGapsAreLowerBoundsOnTheTriangleDistance) {
-  const TriangleMesh torus = testing::make_torus(0.04, 0.012, 30, 16);
-  const TriangleMesh sphere = testing::make_uv_sphere(0.015, 12, 16);
-  const ObbTree ta = ObbTree::build(torus), tb = ObbTree::build(sphere);
-  testing::Rng rng(34);
-  Detector sat(Method::kSat);
-  QueryFront front;
-  QueryCounters c;
   std::uint64_t checked = 0, exact_checks = 0;
   long double tightest = 0;  // the largest gap / distance ratio seen
-  for (int i = 0; i < 200; ++i) {
-    Pose pose;
-    pose.R = testing::rotation_about(Vec3(0.3, 0.5, 0.8).normalized(), 0.004 * i);
-    const double r = 0.066 + 0.004 * std::sin(0.05 * i), angle = 0.004 * i;
-    pose.t = Vec3(r * std::cos(angle), r * std::sin(angle), 0.002);
-    if (i % 50 == 30) pose.t += testing::uniform_vec3(rng, -0.003, 0.003);
-    std::vector<TrianglePair> pairs;
-    sat.collide_coherent(ta, tb, pose, c, &pairs, front);
+  follow_gap_path([&](int i, const Pose& pose, const ObbTree& ta, const ObbTree& tb,
+                      const QueryFront& front, std::uint64_t /*skips*/) {
     for (const NodePair& p : front.pairs) {
       if (p.disjoint || p.gap <= 0) continue;
       const ObbNode& x = ta.nodes()[static_cast<std::size_t>(p.a)];
@@ -333,7 +331,7 @@ TEST(TreeQuery, LeafGapsAreLowerBoundsOnTheTriangleDistance) {
         }
       }
     }
-  }
+  });
   EXPECT_GT(checked, 1000u);
   EXPECT_GT(exact_checks, checked / 2);
   EXPECT_GT(tightest, 0.5L) << "some gaps are close to the distance they bound";

@@ -229,13 +229,12 @@ std::vector<std::size_t> select_contacts(const std::vector<TriContact>& contacts
   return chosen;
 }
 
-// Feature edges by dihedral angle: weld vertices by exact coordinates, gather the faces of each
-// undirected edge, and compare the unit normals of edges with exactly two faces.
+// Feature edges by dihedral angle: weld vertices by exact coordinates (weld_vertex_ids), gather the
+// faces of each undirected edge, and compare the unit normals of edges with exactly two faces.
 std::vector<std::uint8_t> sharp_edge_masks(const std::vector<Triangle>& faces) {
-  using Point = std::array<double, 3>;
-  using EdgeKey = std::pair<Point, Point>;
-  const auto point = [](const Vec3& v) { return Point{v[0], v[1], v[2]}; };
-  std::map<EdgeKey, std::vector<std::pair<std::size_t, unsigned>>> edges;
+  const std::vector<FaceVertexIds> ids = weld_vertex_ids(faces);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::pair<std::size_t, unsigned>>>
+      edges;
   std::vector<Vec3> normals(faces.size());
   std::vector<std::uint8_t> masks(faces.size(), 0);
   const double cos_sharp = std::cos(tol::kSharpEdgeAngle);
@@ -245,7 +244,7 @@ std::vector<std::uint8_t> sharp_edge_masks(const std::vector<Triangle>& faces) {
     const double len = n.norm();
     normals[f] = len > 0 && std::isfinite(len) ? Vec3(n / len) : Vec3::Zero();
     for (unsigned k = 0; k < 3; ++k) {
-      Point p = point(t.v[k]), q = point(t.v[(k + 1) % 3]);
+      std::uint32_t p = ids[f][k], q = ids[f][(k + 1) % 3];
       if (q < p) std::swap(p, q);
       edges[{p, q}].emplace_back(f, k);
     }

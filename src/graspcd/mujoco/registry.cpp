@@ -64,9 +64,7 @@ MeshTree make_tree(const std::vector<Triangle>& tris) {
     mt.slot_of_face[static_cast<std::size_t>(ids[i])] = static_cast<std::int32_t>(i);
   }
   mt.sharp_masks = sharp_edge_masks(tris);
-  std::vector<Triangle> faces(tris.size());
-  for (std::size_t f = 0; f < faces.size(); ++f) faces[f] = mt.face(static_cast<std::int32_t>(f));
-  mt.vertex_ids = weld_vertex_ids(faces);
+  mt.vertex_ids = weld_vertex_ids(tris);  // tris[f] is face(f): the tree copies the triangles
   mt.closedness = closedness(mt.tree);
   return mt;
 }
