@@ -321,41 +321,32 @@ double hull_gain(const std::vector<Point2>& h, const Point2& x) {
   return 0.5 * twice;
 }
 
-// The key of a candidate's vertex on one geom (side 0: geom1, 1: geom2): side << 63 | id << 32 |
-// candidate. Sorted, the candidates that share a vertex are one run of equal upper 32 bits, in
-// candidate order, which is all the manifold reads of the order.
-std::uint64_t vertex_key(std::uint64_t side, std::uint32_t id, std::size_t candidate) {
-  if (id >> 31) throw std::length_error("build_contact_manifold_by_ids: a vertex id beyond 2^31");
-  return side << 63 | std::uint64_t{id} << 32 | static_cast<std::uint64_t>(candidate);
-}
-
-bool same_vertex(std::uint64_t x, std::uint64_t y) { return (x >> 32) == (y >> 32); }
-
-// Chooses at most `k` of the patch's members (deepest first in `members`; q their positions in
-// the patch plane) by the rule of build_contact_manifold, step 2. Returns positions in `members`.
-std::vector<std::size_t> choose_patch_points(const std::vector<std::size_t>& members,
-                                             const std::vector<Point2>& q, std::size_t k) {
-  std::vector<std::size_t> chosen;  // positions in `members`
-  if (members.empty() || k == 0) return chosen;
+// Chooses at most `k` of a patch's `count` members (deepest first; q their positions in the patch
+// plane) by the rule of build_contact_manifold, step 2: their positions in the members into
+// `chosen`, in choice order, and the convex hull of the chosen points (convex_hull's) into `hull`.
+void choose_patch_points(std::size_t count, const std::vector<Point2>& q, std::size_t k,
+                         std::vector<std::size_t>& chosen, std::vector<Point2>& hull) {
+  chosen.clear();
+  hull.clear();
+  if (count == 0 || k == 0) return;
   chosen.push_back(0);
   thread_local std::vector<char> taken;
-  taken.assign(members.size(), 0);
+  taken.assign(count, 0);
   taken[0] = 1;
   const auto dist2 = [&](std::size_t a, std::size_t b) {
     const double dx = q[a][0] - q[b][0], dy = q[a][1] - q[b][1];
     return dx * dx + dy * dy;
   };
   double extent2 = 0;  // squared largest distance from the deepest point: the patch's scale
-  for (std::size_t i = 1; i < members.size(); ++i) extent2 = std::max(extent2, dist2(i, 0));
-  thread_local std::vector<Point2> chosen_pts, hull, sorted;
-  chosen_pts.assign(1, q[0]);
-  hull.assign(1, q[0]);
+  for (std::size_t i = 1; i < count; ++i) extent2 = std::max(extent2, dist2(i, 0));
+  thread_local std::vector<Point2> sorted;
+  hull.push_back(q[0]);
   while (chosen.size() < k) {
     // The largest hull-area gain; members are deepest first, so the strict > keeps ties deepest.
-    std::size_t best = members.size();
+    std::size_t best = count;
     double best_gain = 0;
     if (chosen.size() >= 2) {
-      for (std::size_t i = 0; i < members.size(); ++i) {
+      for (std::size_t i = 0; i < count; ++i) {
         if (taken[i]) continue;
         const double gain = hull_gain(hull, q[i]);
         if (gain > best_gain) {
@@ -363,12 +354,12 @@ std::vector<std::size_t> choose_patch_points(const std::vector<std::size_t>& mem
           best = i;
         }
       }
-      if (best_gain <= tol::kManifoldFlatArea * extent2) best = members.size();
+      if (best_gain <= tol::kManifoldFlatArea * extent2) best = count;
     }
-    if (best == members.size()) {
+    if (best == count) {
       // The second point, or collinear points: the member farthest from the chosen ones.
       double best_d2 = 0;
-      for (std::size_t i = 0; i < members.size(); ++i) {
+      for (std::size_t i = 0; i < count; ++i) {
         if (taken[i]) continue;
         double d2 = std::numeric_limits<double>::infinity();
         for (std::size_t c : chosen) d2 = std::min(d2, dist2(i, c));
@@ -378,14 +369,26 @@ std::vector<std::size_t> choose_patch_points(const std::vector<std::size_t>& mem
         }
       }
     }
-    if (best == members.size()) break;  // every other member sits on a chosen point
+    if (best == count) break;  // every other member sits on a chosen point
     taken[best] = 1;
     chosen.push_back(best);
-    chosen_pts.push_back(q[best]);
-    sorted.assign(chosen_pts.begin(), chosen_pts.end());
+    sorted.clear();
+    for (std::size_t c : chosen) sorted.push_back(q[c]);
     convex_hull(sorted, hull);
   }
-  return chosen;
+}
+
+// Sorts [first, last) by `before` keeping ties in order, as std::stable_sort does, without its
+// buffer for the few elements it mostly gets (insertion sort; std::stable_sort beyond 16).
+template <typename It, typename Before>
+void small_stable_sort(It first, It last, Before before) {
+  if (last - first > 16) {
+    std::stable_sort(first, last, before);
+    return;
+  }
+  for (It i = first; i != last; ++i) {
+    for (It j = i; j != first && before(*j, *(j - 1)); --j) std::iter_swap(j, j - 1);
+  }
 }
 
 }  // namespace
@@ -438,42 +441,64 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
   const auto per_patch = static_cast<std::size_t>(std::max(options.max_per_patch, 1));
   const auto per_pair = static_cast<std::size_t>(std::max(options.max_per_pair, 1));
 
-  // Deepest first, ties in the given order. (Scratch vectors are thread_local: the seam calls this
-  // for every touching pair of every physics step, and allocating them each time cost a tenth.)
-  thread_local std::vector<std::size_t> order;
+  // Deepest first, ties in the given order: sorted by depth, then index, the order a stable sort
+  // by depth gives. (Scratch vectors are thread_local: the seam calls this for every touching pair
+  // of every physics step, and allocating them each time cost a tenth.)
+  thread_local std::vector<std::uint32_t> order;
   order.resize(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return candidates[a].depth > candidates[b].depth;
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return candidates[a].depth > candidates[b].depth ||
+           (candidates[a].depth == candidates[b].depth && a < b);
   });
 
-  // Which candidates share each triangle vertex, on geom1 (side 0) and on geom2 (side 1): the
-  // keys sorted, and each candidate's six vertices as the start of their run of equal keys.
-  thread_local std::vector<std::uint64_t> keys;
-  thread_local std::vector<std::uint32_t> run_of;  // 6 * candidate + k -> start of its run
-  thread_local std::vector<std::uint32_t> filled;  // per candidate: entries of run_of set
-  keys.resize(6 * n);
+  // Which candidates share each triangle vertex, on geom1 (side 0) and on geom2 (side 1): each
+  // vertex side << 31 | id has a slot of an open-addressing hash table (linear probing), which
+  // heads the list of the candidates' vertex entries 6 * candidate + k on it. (The patches below
+  // depend on which candidates share a vertex, not on the order they are found in: a patch is the
+  // seed's connected component, and its members are then sorted.)
+  const std::size_t entries = 6 * n;
+  std::size_t table_size = 16;
+  int table_bits = 4;
+  while (table_size < entries) {
+    table_size <<= 1;
+    ++table_bits;
+  }
+  constexpr std::uint32_t kNone = ~std::uint32_t{0};
+  thread_local std::vector<std::uint32_t> table_key;
+  thread_local std::vector<std::uint32_t> table_head;  // the slot's last entry, kNone: empty slot
+  thread_local std::vector<std::uint32_t> slot_of;     // entry -> its vertex's slot
+  thread_local std::vector<std::uint32_t> next_entry;  // entry -> the previous one on its vertex
+  table_key.resize(table_size);
+  table_head.assign(table_size, kNone);
+  slot_of.resize(entries);
+  next_entry.resize(entries);
+  const std::size_t mask = table_size - 1;
+  const auto add = [&](std::uint32_t key, std::size_t e) {
+    std::size_t h = (std::uint64_t{key} * 0x9E3779B97F4A7C15ull) >> (64 - table_bits);
+    while (table_head[h] != kNone && table_key[h] != key) h = (h + 1) & mask;
+    table_key[h] = key;
+    next_entry[e] = table_head[h];
+    table_head[h] = static_cast<std::uint32_t>(e);
+    slot_of[e] = static_cast<std::uint32_t>(h);
+  };
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t k = 0; k < 3; ++k) {
-      keys[6 * i + k] = vertex_key(0, vertices_a[i][k], i);
-      keys[6 * i + 3 + k] = vertex_key(1, vertices_b[i][k], i);
+      const std::uint32_t ia = vertices_a[i][k], ib = vertices_b[i][k];
+      if ((ia | ib) >> 31) {
+        throw std::length_error("build_contact_manifold_by_ids: a vertex id beyond 2^31");
+      }
+      add(ia, 6 * i + k);
+      add(std::uint32_t{1} << 31 | ib, 6 * i + 3 + k);
     }
-  }
-  std::sort(keys.begin(), keys.end());
-  run_of.assign(6 * n, 0);
-  filled.assign(n, 0);
-  for (std::size_t r = 0, begin = 0; r < keys.size(); ++r) {
-    if (r > 0 && !same_vertex(keys[r], keys[r - 1])) begin = r;
-    const auto c = static_cast<std::uint32_t>(keys[r]);
-    run_of[6 * c + filled[c]++] = static_cast<std::uint32_t>(begin);
   }
 
   // 1. Patches, grown breadth-first from the deepest unassigned candidate.
   thread_local std::vector<int> patch_of;
   patch_of.assign(n, -1);
   thread_local std::vector<std::size_t> queue;
-  thread_local std::vector<int> run_scanned;  // by run start: the last patch that scanned it
-  run_scanned.assign(keys.size(), -1);
+  thread_local std::vector<int> slot_scanned;  // the last patch that scanned the vertex's list
+  slot_scanned.assign(table_size, -1);
   for (std::size_t seed : order) {
     if (patch_of[seed] >= 0) continue;
     const int id = static_cast<int>(out.patches.size());
@@ -484,13 +509,13 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
     for (std::size_t head = 0; head < queue.size(); ++head) {
       const std::size_t i = queue[head];
       for (std::size_t k = 0; k < 6; ++k) {
-        // A run scanned once for this patch needs no second scan: whom it admits depends only on
-        // the seed's normal.
-        const std::size_t begin = run_of[6 * i + k];
-        if (run_scanned[begin] == id) continue;
-        run_scanned[begin] = id;
-        for (std::size_t r = begin; r < keys.size() && same_vertex(keys[r], keys[begin]); ++r) {
-          const std::size_t j = static_cast<std::uint32_t>(keys[r]);
+        // A vertex scanned once for this patch needs no second scan: whom it admits depends only
+        // on the seed's normal.
+        const std::uint32_t h = slot_of[6 * i + k];
+        if (slot_scanned[h] == id) continue;
+        slot_scanned[h] = id;
+        for (std::uint32_t e = table_head[h]; e != kNone; e = next_entry[e]) {
+          const std::size_t j = e / 6;
           if (patch_of[j] >= 0 || candidates[j].normal.dot(seed_normal) < options.patch_cosine) {
             continue;
           }
@@ -510,12 +535,13 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
   // 2. The points of each patch, in the plane across its normal.
   thread_local std::vector<double> along;  // each candidate's depth along its patch's normal
   along.assign(n, 0);
-  thread_local std::vector<Point2> q, kept, hull;
+  thread_local std::vector<Point2> q, hull;
+  thread_local std::vector<std::size_t> chosen;
   for (ContactPatch& patch : out.patches) {
     for (std::size_t i : patch.members) {
       along[i] = candidates[i].depth * std::clamp(candidates[i].normal.dot(patch.normal), 0.0, 1.0);
     }
-    std::stable_sort(patch.members.begin(), patch.members.end(), [&](std::size_t a, std::size_t b) {
+    std::sort(patch.members.begin(), patch.members.end(), [&](std::size_t a, std::size_t b) {
       return along[a] > along[b] || (along[a] == along[b] && a < b);
     });
     patch.depth = along[patch.members.front()];
@@ -529,29 +555,28 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
     for (std::size_t i : patch.members) {
       q.push_back({candidates[i].pos.dot(u), candidates[i].pos.dot(w)});
     }
-    kept.clear();
-    for (std::size_t pos : choose_patch_points(patch.members, q, per_patch)) {
-      patch.selected.push_back(patch.members[pos]);
-      kept.push_back(q[pos]);
-    }
-    convex_hull(kept, hull);
+    choose_patch_points(patch.members.size(), q, per_patch, chosen, hull);
+    patch.selected.reserve(chosen.size());
+    for (std::size_t pos : chosen) patch.selected.push_back(patch.members[pos]);
     patch.area = polygon_area(hull);
   }
-  std::stable_sort(out.patches.begin(), out.patches.end(),
-                   [](const ContactPatch& a, const ContactPatch& b) { return a.depth > b.depth; });
+  small_stable_sort(out.patches.begin(), out.patches.end(),
+                    [](const ContactPatch& a, const ContactPatch& b) { return a.depth > b.depth; });
 
   // 3. The pair's budget: every patch's deepest point, then the further points by patch area.
   const auto emit = [&](const ContactPatch& patch, std::size_t i) {
     out.contacts.push_back(TriContact{candidates[i].pos, patch.normal, along[i]});
   };
+  out.contacts.reserve(std::min(per_pair, n));
   for (const ContactPatch& patch : out.patches) {
     if (out.contacts.size() == per_pair) break;
     emit(patch, patch.selected.front());
   }
-  std::vector<const ContactPatch*> by_area;
+  thread_local std::vector<const ContactPatch*> by_area;
+  by_area.clear();
   for (const ContactPatch& patch : out.patches) by_area.push_back(&patch);
-  std::stable_sort(by_area.begin(), by_area.end(),
-                   [](const ContactPatch* a, const ContactPatch* b) { return a->area > b->area; });
+  small_stable_sort(by_area.begin(), by_area.end(),
+                    [](const ContactPatch* a, const ContactPatch* b) { return a->area > b->area; });
   for (const ContactPatch* patch : by_area) {
     for (std::size_t k = 1; k < patch->selected.size() && out.contacts.size() < per_pair; ++k) {
       emit(*patch, patch->selected[k]);
