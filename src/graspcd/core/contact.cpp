@@ -22,28 +22,31 @@ struct Polygon {
 };
 
 // One side of a plane through `o` with normal `m`: keeps m.(p - o) >= 0 (Sutherland-Hodgman),
-// from `in` into `out` (two buffers in turn: no polygon is copied). Each vertex's signed distance
-// is computed once, by the same expression for both edges it ends. Returns false, leaving `out`
-// untouched, when every vertex is kept: the clipped polygon is `in` itself.
-bool clip(const Polygon& in, const Vec3& o, const Vec3& m, Polygon& out) {
-  std::array<double, 24> s;
+// from the polygon `in` (n vertices) into `out` (two buffers in turn: no polygon is copied). Each
+// vertex's signed distance is computed once, by the same expression for both edges it ends.
+// Returns false, leaving `out` untouched, when every vertex is kept: the clipped polygon is `in`
+// itself.
+bool clip(const Vec3* in, int n, const Vec3& o, const Vec3& m, Polygon& out) {
+  std::array<double, 25> s;  // and s[n] = s[0]
   bool all_kept = true;
-  for (int i = 0; i < in.n; ++i) {
-    s[static_cast<std::size_t>(i)] = m.dot(in.v[static_cast<std::size_t>(i)] - o);
-    all_kept = all_kept && s[static_cast<std::size_t>(i)] >= 0;
+  for (int i = 0; i < n; ++i) {
+    const double si = m.dot(in[i] - o);
+    s[static_cast<std::size_t>(i)] = si;
+    all_kept &= si >= 0;
   }
   if (all_kept) return false;
-  out.n = 0;
-  for (int i = 0; i < in.n; ++i) {
-    const int j = i + 1 == in.n ? 0 : i + 1;
-    const Vec3& p = in.v[static_cast<std::size_t>(i)];
-    const double sp = s[static_cast<std::size_t>(i)], sq = s[static_cast<std::size_t>(j)];
-    if (sp >= 0) out.v[static_cast<std::size_t>(out.n++)] = p;
+  s[static_cast<std::size_t>(n)] = s[0];
+  int count = 0;
+  for (int i = 0; i < n; ++i) {
+    const Vec3& p = in[i];
+    const double sp = s[static_cast<std::size_t>(i)], sq = s[static_cast<std::size_t>(i + 1)];
+    if (sp >= 0) out.v[static_cast<std::size_t>(count++)] = p;
     if ((sp >= 0) != (sq >= 0)) {
-      const Vec3& q = in.v[static_cast<std::size_t>(j)];
-      out.v[static_cast<std::size_t>(out.n++)] = p + (sp / (sp - sq)) * (q - p);
+      const Vec3& q = in[i + 1 == n ? 0 : i + 1];
+      out.v[static_cast<std::size_t>(count++)] = p + (sp / (sp - sq)) * (q - p);
     }
   }
+  out.n = count;
   return true;
 }
 
@@ -57,42 +60,50 @@ struct Direction {
 };
 
 // `moving` clipped to the prism over `ref` and measured below `ref`'s plane (unit normal n).
-Direction measure(const Triangle& ref, const Vec3& n, const Triangle& moving) {
+// Without `position`, only `valid` and `depth` are set (deepest, crossing_sum and crossings stay
+// zero).
+Direction measure(const Triangle& ref, const Vec3& n, const Triangle& moving, bool position) {
   Direction d;
   Polygon buffers[2];
-  int cur = 0;
-  buffers[0].n = 3;
-  for (std::size_t k = 0; k < 3; ++k) buffers[0].v[k] = moving.v[k];
+  const Vec3* poly = moving.v.data();
+  int count = 3;
+  int next = 0;  // the buffer the next clip writes
   // The three edge planes of `ref`, inward normals n x (edge).
-  for (std::size_t k = 0; k < 3 && buffers[cur].n > 0; ++k) {
+  for (std::size_t k = 0; k < 3 && count > 0; ++k) {
     const Vec3& o = ref.v[k];
     const Vec3 edge = ref.v[(k + 1) % 3] - o;
-    if (clip(buffers[cur], o, n.cross(edge), buffers[1 - cur])) cur = 1 - cur;
-  }
-  const Polygon& poly = buffers[cur];
-  if (poly.n == 0) return d;
-  d.valid = true;
-  d.deepest = poly.v[0];
-  std::array<double, 24> s;
-  for (int i = 0; i < poly.n; ++i) {
-    s[static_cast<std::size_t>(i)] = n.dot(poly.v[static_cast<std::size_t>(i)] - ref.v[0]);
-  }
-  double best = -std::numeric_limits<double>::infinity();
-  for (int i = 0; i < poly.n; ++i) {
-    const int j = i + 1 == poly.n ? 0 : i + 1;
-    const Vec3& p = poly.v[static_cast<std::size_t>(i)];
-    const Vec3& q = poly.v[static_cast<std::size_t>(j)];
-    const double sp = s[static_cast<std::size_t>(i)], sq = s[static_cast<std::size_t>(j)];
-    if (-sp > best) {
-      best = -sp;
-      d.deepest = p;
+    if (clip(poly, count, o, n.cross(edge), buffers[next])) {
+      poly = buffers[next].v.data();
+      count = buffers[next].n;
+      next = 1 - next;
     }
+  }
+  if (count == 0) return d;
+  d.valid = true;
+  std::array<double, 25> s;  // and s[count] = s[0]
+  double best = -std::numeric_limits<double>::infinity();
+  int deepest = 0;
+  for (int i = 0; i < count; ++i) {
+    const double si = n.dot(poly[i] - ref.v[0]);
+    s[static_cast<std::size_t>(i)] = si;
+    if (-si > best) {
+      best = -si;
+      deepest = i;
+    }
+  }
+  d.depth = std::max(best, 0.0);
+  if (!position) return d;
+  d.deepest = poly[deepest];
+  s[static_cast<std::size_t>(count)] = s[0];
+  for (int i = 0; i < count; ++i) {
+    const double sp = s[static_cast<std::size_t>(i)], sq = s[static_cast<std::size_t>(i + 1)];
     if ((sp <= 0) != (sq <= 0)) {
+      const Vec3& p = poly[i];
+      const Vec3& q = poly[i + 1 == count ? 0 : i + 1];
       d.crossing_sum += p + (sp / (sp - sq)) * (q - p);
       ++d.crossings;
     }
   }
-  d.depth = std::max(best, 0.0);
   return d;
 }
 
@@ -151,8 +162,9 @@ TriContact triangle_pair_contact(const Triangle& a, const Triangle& b, double ma
   // A zero or non-finite normal gives no direction (the triangle is a segment or a point).
   const bool a_flat = la > 0 && std::isfinite(la), b_flat = lb > 0 && std::isfinite(lb);
   const Vec3 ua = a_flat ? Vec3(na / la) : Vec3::Zero(), ub = b_flat ? Vec3(nb / lb) : Vec3::Zero();
-  if (a_flat) da = measure(a, ua, b);
-  if (b_flat) db = measure(b, ub, a);
+  if (a_flat) da = measure(a, ua, b, true);
+  // b's crossings and deepest point place the contact only when a's clipped b has no crossing.
+  if (b_flat) db = measure(b, ub, a, da.crossings == 0);
   TriContact c;
   // The smallest push among the face directions (one-sided, measured inside the prism)...
   double depth = std::numeric_limits<double>::infinity();
@@ -168,7 +180,8 @@ TriContact triangle_pair_contact(const Triangle& a, const Triangle& b, double ma
   // edges of the solids and neither face normal is the direction of penetration.
   Vec3 edge_normal;
   double edge_depth = 0;
-  if (min_edge_axis(a, b, ua, ub, sharp_a, sharp_b, edge_normal, edge_depth) &&
+  if (sharp_a != 0 && sharp_b != 0 &&
+      min_edge_axis(a, b, ua, ub, sharp_a, sharp_b, edge_normal, edge_depth) &&
       edge_depth < depth) {
     depth = edge_depth;
     c.normal = edge_normal;
