@@ -323,12 +323,27 @@ double polygon_area(const std::vector<Point2>& h) {
 }
 
 // How much adding x enlarges the convex polygon h (counter-clockwise, or a segment taken as its
-// two directed edges): the triangles from x to the edges it sees, which lie outside h.
-double hull_gain(const std::vector<Point2>& h, const Point2& x) {
-  if (h.size() < 2) return 0;
-  double twice = 0;
+// two directed edges): the triangles from x to the edges it sees, which lie outside h. The edges
+// come as HullEdge (hull_edges), each the start o and the difference to the next corner, so that
+// the cross product (a - o) x (x - o) of cross2 reuses a - o.
+struct HullEdge {
+  Point2 o, d;
+};
+
+void hull_edges(const std::vector<Point2>& h, std::vector<HullEdge>& edges) {
+  edges.clear();
+  if (h.size() < 2) return;
   for (std::size_t i = 0; i < h.size(); ++i) {
-    const double c = cross2(h[i], h[(i + 1) % h.size()], x);
+    const Point2& o = h[i];
+    const Point2& a = h[i + 1 == h.size() ? 0 : i + 1];
+    edges.push_back({o, {a[0] - o[0], a[1] - o[1]}});
+  }
+}
+
+double hull_gain(const std::vector<HullEdge>& edges, const Point2& x) {
+  double twice = 0;
+  for (const HullEdge& e : edges) {
+    const double c = e.d[0] * (x[1] - e.o[1]) - e.d[1] * (x[0] - e.o[0]);
     if (c < 0) twice -= c;
   }
   return 0.5 * twice;
@@ -353,15 +368,17 @@ void choose_patch_points(std::size_t count, const std::vector<Point2>& q, std::s
   double extent2 = 0;  // squared largest distance from the deepest point: the patch's scale
   for (std::size_t i = 1; i < count; ++i) extent2 = std::max(extent2, dist2(i, 0));
   thread_local std::vector<Point2> sorted;
+  thread_local std::vector<HullEdge> edges;
   hull.push_back(q[0]);
   while (chosen.size() < k) {
     // The largest hull-area gain; members are deepest first, so the strict > keeps ties deepest.
     std::size_t best = count;
     double best_gain = 0;
     if (chosen.size() >= 2) {
+      hull_edges(hull, edges);
       for (std::size_t i = 0; i < count; ++i) {
         if (taken[i]) continue;
-        const double gain = hull_gain(hull, q[i]);
+        const double gain = hull_gain(edges, q[i]);
         if (gain > best_gain) {
           best_gain = gain;
           best = i;
@@ -457,12 +474,16 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
   // Deepest first, ties in the given order: sorted by depth, then index, the order a stable sort
   // by depth gives. (Scratch vectors are thread_local: the seam calls this for every touching pair
   // of every physics step, and allocating them each time cost a tenth.)
-  thread_local std::vector<std::uint32_t> order;
+  struct ByDepth {
+    double depth;
+    std::uint32_t index;
+  };
+  thread_local std::vector<ByDepth> order;
   order.resize(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return candidates[a].depth > candidates[b].depth ||
-           (candidates[a].depth == candidates[b].depth && a < b);
+  for (std::size_t i = 0; i < n; ++i)
+    order[i] = {candidates[i].depth, static_cast<std::uint32_t>(i)};
+  std::sort(order.begin(), order.end(), [](const ByDepth& a, const ByDepth& b) {
+    return a.depth > b.depth || (a.depth == b.depth && a.index < b.index);
   });
 
   // Which candidates share each triangle vertex, on geom1 (side 0) and on geom2 (side 1): each
@@ -512,7 +533,8 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
   thread_local std::vector<std::size_t> queue;
   thread_local std::vector<int> slot_scanned;  // the last patch that scanned the vertex's list
   slot_scanned.assign(table_size, -1);
-  for (std::size_t seed : order) {
+  for (const ByDepth& by_depth : order) {
+    const std::size_t seed = by_depth.index;
     if (patch_of[seed] >= 0) continue;
     const int id = static_cast<int>(out.patches.size());
     ContactPatch patch;
