@@ -25,8 +25,10 @@ struct Polygon {
 // from the polygon `in` (n vertices) into `out` (two buffers in turn: no polygon is copied). Each
 // vertex's signed distance is computed once, by the same expression for both edges it ends.
 // Returns false, leaving `out` untouched, when every vertex is kept: the clipped polygon is `in`
-// itself.
-bool clip(const Vec3* in, int n, const Vec3& o, const Vec3& m, Polygon& out) {
+// itself. kFixedN > 0 is n known when compiling (a triangle: the loops unroll), 0 any n.
+template <int kFixedN>
+bool clip_polygon(const Vec3* in, int n_any, const Vec3& o, const Vec3& m, Polygon& out) {
+  const int n = kFixedN > 0 ? kFixedN : n_any;
   std::array<double, 25> s;  // and s[n] = s[0]
   bool all_kept = true;
   for (int i = 0; i < n; ++i) {
@@ -50,6 +52,19 @@ bool clip(const Vec3* in, int n, const Vec3& o, const Vec3& m, Polygon& out) {
   return true;
 }
 
+bool clip(const Vec3* in, int n, const Vec3& o, const Vec3& m, Polygon& out) {
+  switch (n) {
+    case 3:
+      return clip_polygon<3>(in, n, o, m, out);
+    case 4:
+      return clip_polygon<4>(in, n, o, m, out);
+    case 5:
+      return clip_polygon<5>(in, n, o, m, out);
+    default:
+      return clip_polygon<0>(in, n, o, m, out);
+  }
+}
+
 struct Direction {
   bool valid = false;
   double depth = 0;  // deepest point below the reference plane, >= 0
@@ -58,6 +73,39 @@ struct Direction {
       Vec3::Zero();  // sum of the points where the clipped polygon crosses the plane
   int crossings = 0;
 };
+
+// measure's second half: the clipped polygon (count vertices; kFixedN as in clip_polygon)
+// measured below ref's plane.
+template <int kFixedN>
+void measure_polygon(const Triangle& ref, const Vec3& n, const Vec3* poly, int count_any,
+                     bool position, Direction& d) {
+  const int count = kFixedN > 0 ? kFixedN : count_any;
+  d.valid = true;
+  std::array<double, 25> s;  // and s[count] = s[0]
+  double best = -std::numeric_limits<double>::infinity();
+  int deepest = 0;
+  for (int i = 0; i < count; ++i) {
+    const double si = n.dot(poly[i] - ref.v[0]);
+    s[static_cast<std::size_t>(i)] = si;
+    if (-si > best) {
+      best = -si;
+      deepest = i;
+    }
+  }
+  d.depth = std::max(best, 0.0);
+  if (!position) return;
+  d.deepest = poly[deepest];
+  s[static_cast<std::size_t>(count)] = s[0];
+  for (int i = 0; i < count; ++i) {
+    const double sp = s[static_cast<std::size_t>(i)], sq = s[static_cast<std::size_t>(i + 1)];
+    if ((sp <= 0) != (sq <= 0)) {
+      const Vec3& p = poly[i];
+      const Vec3& q = poly[i + 1 == count ? 0 : i + 1];
+      d.crossing_sum += p + (sp / (sp - sq)) * (q - p);
+      ++d.crossings;
+    }
+  }
+}
 
 // `moving` clipped to the prism over `ref` and measured below `ref`'s plane (unit normal n).
 // Without `position`, only `valid` and `depth` are set (deepest, crossing_sum and crossings stay
@@ -78,31 +126,20 @@ Direction measure(const Triangle& ref, const Vec3& n, const Triangle& moving, bo
       next = 1 - next;
     }
   }
-  if (count == 0) return d;
-  d.valid = true;
-  std::array<double, 25> s;  // and s[count] = s[0]
-  double best = -std::numeric_limits<double>::infinity();
-  int deepest = 0;
-  for (int i = 0; i < count; ++i) {
-    const double si = n.dot(poly[i] - ref.v[0]);
-    s[static_cast<std::size_t>(i)] = si;
-    if (-si > best) {
-      best = -si;
-      deepest = i;
-    }
-  }
-  d.depth = std::max(best, 0.0);
-  if (!position) return d;
-  d.deepest = poly[deepest];
-  s[static_cast<std::size_t>(count)] = s[0];
-  for (int i = 0; i < count; ++i) {
-    const double sp = s[static_cast<std::size_t>(i)], sq = s[static_cast<std::size_t>(i + 1)];
-    if ((sp <= 0) != (sq <= 0)) {
-      const Vec3& p = poly[i];
-      const Vec3& q = poly[i + 1 == count ? 0 : i + 1];
-      d.crossing_sum += p + (sp / (sp - sq)) * (q - p);
-      ++d.crossings;
-    }
+  switch (count) {
+    case 0:
+      return d;
+    case 3:
+      measure_polygon<3>(ref, n, poly, count, position, d);
+      break;
+    case 4:
+      measure_polygon<4>(ref, n, poly, count, position, d);
+      break;
+    case 5:
+      measure_polygon<5>(ref, n, poly, count, position, d);
+      break;
+    default:
+      measure_polygon<0>(ref, n, poly, count, position, d);
   }
   return d;
 }
