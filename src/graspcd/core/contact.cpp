@@ -195,13 +195,12 @@ TriContact triangle_pair_contact(const Triangle& a, const Triangle& b, double ma
   const Vec3 na = (a.v[1] - a.v[0]).cross(a.v[2] - a.v[0]);
   const Vec3 nb = (b.v[1] - b.v[0]).cross(b.v[2] - b.v[0]);
   const double la = na.norm(), lb = nb.norm();
-  Direction da, db;
   // A zero or non-finite normal gives no direction (the triangle is a segment or a point).
   const bool a_flat = la > 0 && std::isfinite(la), b_flat = lb > 0 && std::isfinite(lb);
   const Vec3 ua = a_flat ? Vec3(na / la) : Vec3::Zero(), ub = b_flat ? Vec3(nb / lb) : Vec3::Zero();
-  if (a_flat) da = measure(a, ua, b, true);
+  const Direction da = a_flat ? measure(a, ua, b, true) : Direction{};
   // b's crossings and deepest point place the contact only when a's clipped b has no crossing.
-  if (b_flat) db = measure(b, ub, a, da.crossings == 0);
+  const Direction db = b_flat ? measure(b, ub, a, da.crossings == 0) : Direction{};
   TriContact c;
   // The smallest push among the face directions (one-sided, measured inside the prism)...
   double depth = std::numeric_limits<double>::infinity();
