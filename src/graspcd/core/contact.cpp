@@ -74,6 +74,30 @@ struct Direction {
   int crossings = 0;
 };
 
+// A triangle's unit normal and the inward normals n x (edge) of its edge planes, kept for the
+// calls that follow with the same triangle (the seam passes candidates sorted by triangle pair,
+// so geom1's triangle repeats): set(t) computes them unless t has the bits of the last triangle.
+struct Face {
+  Triangle t{{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}};  // what set(t) gives for it follows
+  bool flat = false;
+  Vec3 unit = Vec3::Zero();
+  std::array<Vec3, 3> inward{{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}};
+
+  void set(const Triangle& tri) {
+    if (std::memcmp(&tri, &t, sizeof(Triangle)) == 0) return;
+    t = tri;
+    const Vec3 nrm = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
+    const double len = nrm.norm();
+    // A zero or non-finite normal gives no direction (the triangle is a segment or a point).
+    flat = len > 0 && std::isfinite(len);
+    unit = flat ? Vec3(nrm / len) : Vec3::Zero();
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3 edge = t.v[(k + 1) % 3] - t.v[k];
+      inward[k] = unit.cross(edge);
+    }
+  }
+};
+
 // measure's second half: the clipped polygon (count vertices; kFixedN as in clip_polygon)
 // measured below ref's plane.
 template <int kFixedN>
@@ -110,17 +134,17 @@ void measure_polygon(const Triangle& ref, const Vec3& n, const Vec3* poly, int c
 // `moving` clipped to the prism over `ref` and measured below `ref`'s plane (unit normal n).
 // Without `position`, only `valid` and `depth` are set (deepest, crossing_sum and crossings stay
 // zero).
-Direction measure(const Triangle& ref, const Vec3& n, const Triangle& moving, bool position) {
+Direction measure(const Face& face, const Triangle& moving, bool position) {
+  const Triangle& ref = face.t;
+  const Vec3& n = face.unit;
   Direction d;
   Polygon buffers[2];
   const Vec3* poly = moving.v.data();
   int count = 3;
   int next = 0;  // the buffer the next clip writes
-  // The three edge planes of `ref`, inward normals n x (edge).
+  // The three edge planes of `ref`.
   for (std::size_t k = 0; k < 3 && count > 0; ++k) {
-    const Vec3& o = ref.v[k];
-    const Vec3 edge = ref.v[(k + 1) % 3] - o;
-    if (clip(poly, count, o, n.cross(edge), buffers[next])) {
+    if (clip(poly, count, ref.v[k], face.inward[k], buffers[next])) {
       poly = buffers[next].v.data();
       count = buffers[next].n;
       next = 1 - next;
@@ -192,15 +216,13 @@ bool min_edge_axis(const Triangle& a, const Triangle& b, const Vec3& na, const V
 TriContact triangle_pair_contact(const Triangle& a, const Triangle& b, double max_depth,
                                  const Vec3& fallback_normal, std::uint8_t sharp_a,
                                  std::uint8_t sharp_b) {
-  const Vec3 na = (a.v[1] - a.v[0]).cross(a.v[2] - a.v[0]);
-  const Vec3 nb = (b.v[1] - b.v[0]).cross(b.v[2] - b.v[0]);
-  const double la = na.norm(), lb = nb.norm();
-  // A zero or non-finite normal gives no direction (the triangle is a segment or a point).
-  const bool a_flat = la > 0 && std::isfinite(la), b_flat = lb > 0 && std::isfinite(lb);
-  const Vec3 ua = a_flat ? Vec3(na / la) : Vec3::Zero(), ub = b_flat ? Vec3(nb / lb) : Vec3::Zero();
-  const Direction da = a_flat ? measure(a, ua, b, true) : Direction{};
+  thread_local Face face_a, face_b;
+  face_a.set(a);
+  face_b.set(b);
+  const Vec3 &ua = face_a.unit, &ub = face_b.unit;
+  const Direction da = face_a.flat ? measure(face_a, b, true) : Direction{};
   // b's crossings and deepest point place the contact only when a's clipped b has no crossing.
-  const Direction db = b_flat ? measure(b, ub, a, da.crossings == 0) : Direction{};
+  const Direction db = face_b.flat ? measure(face_b, a, da.crossings == 0) : Direction{};
   TriContact c;
   // The smallest push among the face directions (one-sided, measured inside the prism)...
   double depth = std::numeric_limits<double>::infinity();
