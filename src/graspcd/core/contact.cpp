@@ -78,7 +78,7 @@ struct Direction {
 // calls that follow with the same triangle (the seam passes candidates sorted by triangle pair,
 // so geom1's triangle repeats): set(t) computes them unless t has the bits of the last triangle.
 struct Face {
-  Triangle t{{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}};  // what set(t) gives for it follows
+  Triangle t{{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}};  // with what set() gives for it
   bool flat = false;
   Vec3 unit = Vec3::Zero();
   std::array<Vec3, 3> inward{{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}};
@@ -466,6 +466,25 @@ void choose_patch_points(std::size_t count, const std::vector<Point2>& q, std::s
   }
 }
 
+// A key that orders doubles as < does (-0.0 and 0.0 alike), NaNs included (beyond the
+// infinities), so that a sort by it is well defined whatever the values.
+std::uint64_t order_key(double x) {
+  x += 0.0;  // -0.0 -> 0.0
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  return bits >> 63 ? ~bits : bits | std::uint64_t{1} << 63;
+}
+
+struct KeyIndex {
+  std::uint64_t key;
+  std::uint32_t index;
+};
+
+// The larger key first, ties by index: the order a stable sort by the value, descending, gives.
+bool larger_key_first(const KeyIndex& a, const KeyIndex& b) {
+  return a.key > b.key || (a.key == b.key && a.index < b.index);
+}
+
 // Sorts [first, last) by `before` keeping ties in order, as std::stable_sort does, without its
 // buffer for the few elements it mostly gets (insertion sort; std::stable_sort beyond 16).
 template <typename It, typename Before>
@@ -532,17 +551,12 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
   // Deepest first, ties in the given order: sorted by depth, then index, the order a stable sort
   // by depth gives. (Scratch vectors are thread_local: the seam calls this for every touching pair
   // of every physics step, and allocating them each time cost a tenth.)
-  struct ByDepth {
-    double depth;
-    std::uint32_t index;
-  };
-  thread_local std::vector<ByDepth> order;
+  thread_local std::vector<KeyIndex> order;
   order.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    order[i] = {candidates[i].depth, static_cast<std::uint32_t>(i)};
-  std::sort(order.begin(), order.end(), [](const ByDepth& a, const ByDepth& b) {
-    return a.depth > b.depth || (a.depth == b.depth && a.index < b.index);
-  });
+  for (std::size_t i = 0; i < n; ++i) {
+    order[i] = {order_key(candidates[i].depth), static_cast<std::uint32_t>(i)};
+  }
+  std::sort(order.begin(), order.end(), larger_key_first);
 
   // Which candidates share each triangle vertex, on geom1 (side 0) and on geom2 (side 1): each
   // vertex side << 31 | id has a slot of an open-addressing hash table (linear probing), which
@@ -591,7 +605,7 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
   thread_local std::vector<std::size_t> queue;
   thread_local std::vector<int> slot_scanned;  // the last patch that scanned the vertex's list
   slot_scanned.assign(table_size, -1);
-  for (const ByDepth& by_depth : order) {
+  for (const KeyIndex& by_depth : order) {
     const std::size_t seed = by_depth.index;
     if (patch_of[seed] >= 0) continue;
     const int id = static_cast<int>(out.patches.size());
@@ -630,12 +644,15 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
   along.assign(n, 0);
   thread_local std::vector<Point2> q, hull;
   thread_local std::vector<std::size_t> chosen;
+  thread_local std::vector<std::uint64_t> along_key;  // order_key(along)
+  along_key.resize(n);
   for (ContactPatch& patch : out.patches) {
     for (std::size_t i : patch.members) {
       along[i] = candidates[i].depth * std::clamp(candidates[i].normal.dot(patch.normal), 0.0, 1.0);
     }
+    for (std::size_t i : patch.members) along_key[i] = order_key(along[i]);
     std::sort(patch.members.begin(), patch.members.end(), [&](std::size_t a, std::size_t b) {
-      return along[a] > along[b] || (along[a] == along[b] && a < b);
+      return along_key[a] > along_key[b] || (along_key[a] == along_key[b] && a < b);
     });
     patch.depth = along[patch.members.front()];
     const Vec3& nrm = patch.normal;
