@@ -74,6 +74,19 @@ struct Direction {
   int crossings = 0;
 };
 
+// Whether two triangles have the same coordinates bit for bit.
+bool same_bits(const Triangle& x, const Triangle& y) {
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (Eigen::Index c = 0; c < 3; ++c) {
+      std::uint64_t bx, by;
+      std::memcpy(&bx, &x.v[k][c], sizeof bx);
+      std::memcpy(&by, &y.v[k][c], sizeof by);
+      if (bx != by) return false;
+    }
+  }
+  return true;
+}
+
 // A triangle's unit normal and the inward normals n x (edge) of its edge planes, kept for the
 // calls that follow with the same triangle (the seam passes candidates sorted by triangle pair,
 // so geom1's triangle repeats): set(t) computes them unless t has the bits of the last triangle.
@@ -84,7 +97,7 @@ struct Face {
   std::array<Vec3, 3> inward{{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}};
 
   void set(const Triangle& tri) {
-    if (std::memcmp(&tri, &t, sizeof(Triangle)) == 0) return;
+    if (same_bits(tri, t)) return;
     t = tri;
     const Vec3 nrm = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
     const double len = nrm.norm();
