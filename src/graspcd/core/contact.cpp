@@ -22,29 +22,47 @@ struct Polygon {
 };
 
 // One side of a plane through `o` with normal `m`: keeps m.(p - o) >= 0 (Sutherland-Hodgman),
-// from `in` into `out` (two buffers in turn: no polygon is copied). Each vertex's signed distance
-// is computed once, by the same expression for both edges it ends. Returns false, leaving `out`
-// untouched, when every vertex is kept: the clipped polygon is `in` itself.
-bool clip(const Polygon& in, const Vec3& o, const Vec3& m, Polygon& out) {
-  std::array<double, 24> s;
+// from the polygon `in` (n vertices) into `out` (two buffers in turn: no polygon is copied). Each
+// vertex's signed distance is computed once, by the same expression for both edges it ends.
+// Returns false, leaving `out` untouched, when every vertex is kept: the clipped polygon is `in`
+// itself. kFixedN > 0 is n known when compiling (a triangle: the loops unroll), 0 any n.
+template <int kFixedN>
+bool clip_polygon(const Vec3* in, int n_any, const Vec3& o, const Vec3& m, Polygon& out) {
+  const int n = kFixedN > 0 ? kFixedN : n_any;
+  std::array<double, 25> s;  // and s[n] = s[0]
   bool all_kept = true;
-  for (int i = 0; i < in.n; ++i) {
-    s[static_cast<std::size_t>(i)] = m.dot(in.v[static_cast<std::size_t>(i)] - o);
-    all_kept = all_kept && s[static_cast<std::size_t>(i)] >= 0;
+  for (int i = 0; i < n; ++i) {
+    const double si = m.dot(in[i] - o);
+    s[static_cast<std::size_t>(i)] = si;
+    all_kept &= si >= 0;
   }
   if (all_kept) return false;
-  out.n = 0;
-  for (int i = 0; i < in.n; ++i) {
-    const int j = i + 1 == in.n ? 0 : i + 1;
-    const Vec3& p = in.v[static_cast<std::size_t>(i)];
-    const double sp = s[static_cast<std::size_t>(i)], sq = s[static_cast<std::size_t>(j)];
-    if (sp >= 0) out.v[static_cast<std::size_t>(out.n++)] = p;
+  s[static_cast<std::size_t>(n)] = s[0];
+  int count = 0;
+  for (int i = 0; i < n; ++i) {
+    const Vec3& p = in[i];
+    const double sp = s[static_cast<std::size_t>(i)], sq = s[static_cast<std::size_t>(i + 1)];
+    if (sp >= 0) out.v[static_cast<std::size_t>(count++)] = p;
     if ((sp >= 0) != (sq >= 0)) {
-      const Vec3& q = in.v[static_cast<std::size_t>(j)];
-      out.v[static_cast<std::size_t>(out.n++)] = p + (sp / (sp - sq)) * (q - p);
+      const Vec3& q = in[i + 1 == n ? 0 : i + 1];
+      out.v[static_cast<std::size_t>(count++)] = p + (sp / (sp - sq)) * (q - p);
     }
   }
+  out.n = count;
   return true;
+}
+
+bool clip(const Vec3* in, int n, const Vec3& o, const Vec3& m, Polygon& out) {
+  switch (n) {
+    case 3:
+      return clip_polygon<3>(in, n, o, m, out);
+    case 4:
+      return clip_polygon<4>(in, n, o, m, out);
+    case 5:
+      return clip_polygon<5>(in, n, o, m, out);
+    default:
+      return clip_polygon<0>(in, n, o, m, out);
+  }
 }
 
 struct Direction {
@@ -56,43 +74,110 @@ struct Direction {
   int crossings = 0;
 };
 
-// `moving` clipped to the prism over `ref` and measured below `ref`'s plane (unit normal n).
-Direction measure(const Triangle& ref, const Vec3& n, const Triangle& moving) {
-  Direction d;
-  Polygon buffers[2];
-  int cur = 0;
-  buffers[0].n = 3;
-  for (std::size_t k = 0; k < 3; ++k) buffers[0].v[k] = moving.v[k];
-  // The three edge planes of `ref`, inward normals n x (edge).
-  for (std::size_t k = 0; k < 3 && buffers[cur].n > 0; ++k) {
-    const Vec3& o = ref.v[k];
-    const Vec3 edge = ref.v[(k + 1) % 3] - o;
-    if (clip(buffers[cur], o, n.cross(edge), buffers[1 - cur])) cur = 1 - cur;
-  }
-  const Polygon& poly = buffers[cur];
-  if (poly.n == 0) return d;
-  d.valid = true;
-  d.deepest = poly.v[0];
-  std::array<double, 24> s;
-  for (int i = 0; i < poly.n; ++i) {
-    s[static_cast<std::size_t>(i)] = n.dot(poly.v[static_cast<std::size_t>(i)] - ref.v[0]);
-  }
-  double best = -std::numeric_limits<double>::infinity();
-  for (int i = 0; i < poly.n; ++i) {
-    const int j = i + 1 == poly.n ? 0 : i + 1;
-    const Vec3& p = poly.v[static_cast<std::size_t>(i)];
-    const Vec3& q = poly.v[static_cast<std::size_t>(j)];
-    const double sp = s[static_cast<std::size_t>(i)], sq = s[static_cast<std::size_t>(j)];
-    if (-sp > best) {
-      best = -sp;
-      d.deepest = p;
+// Whether two triangles have the same coordinates bit for bit.
+bool same_bits(const Triangle& x, const Triangle& y) {
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (Eigen::Index c = 0; c < 3; ++c) {
+      std::uint64_t bx, by;
+      std::memcpy(&bx, &x.v[k][c], sizeof bx);
+      std::memcpy(&by, &y.v[k][c], sizeof by);
+      if (bx != by) return false;
     }
+  }
+  return true;
+}
+
+// A triangle's unit normal and the inward normals n x (edge) of its edge planes, kept for the
+// calls that follow with the same triangle (the seam passes candidates sorted by triangle pair,
+// so geom1's triangle repeats): set(t) computes them unless t has the bits of the last triangle.
+struct Face {
+  Triangle t{{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}};  // with what set() gives for it
+  bool flat = false;
+  Vec3 unit = Vec3::Zero();
+  std::array<Vec3, 3> inward{{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}};
+
+  void set(const Triangle& tri) {
+    if (same_bits(tri, t)) return;
+    t = tri;
+    const Vec3 nrm = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
+    const double len = nrm.norm();
+    // A zero or non-finite normal gives no direction (the triangle is a segment or a point).
+    flat = len > 0 && std::isfinite(len);
+    unit = flat ? Vec3(nrm / len) : Vec3::Zero();
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3 edge = t.v[(k + 1) % 3] - t.v[k];
+      inward[k] = unit.cross(edge);
+    }
+  }
+};
+
+// measure's second half: the clipped polygon (count vertices; kFixedN as in clip_polygon)
+// measured below ref's plane.
+template <int kFixedN>
+void measure_polygon(const Triangle& ref, const Vec3& n, const Vec3* poly, int count_any,
+                     bool position, Direction& d) {
+  const int count = kFixedN > 0 ? kFixedN : count_any;
+  d.valid = true;
+  std::array<double, 25> s;  // and s[count] = s[0]
+  double best = -std::numeric_limits<double>::infinity();
+  int deepest = 0;
+  for (int i = 0; i < count; ++i) {
+    const double si = n.dot(poly[i] - ref.v[0]);
+    s[static_cast<std::size_t>(i)] = si;
+    if (-si > best) {
+      best = -si;
+      deepest = i;
+    }
+  }
+  d.depth = std::max(best, 0.0);
+  if (!position) return;
+  d.deepest = poly[deepest];
+  s[static_cast<std::size_t>(count)] = s[0];
+  for (int i = 0; i < count; ++i) {
+    const double sp = s[static_cast<std::size_t>(i)], sq = s[static_cast<std::size_t>(i + 1)];
     if ((sp <= 0) != (sq <= 0)) {
+      const Vec3& p = poly[i];
+      const Vec3& q = poly[i + 1 == count ? 0 : i + 1];
       d.crossing_sum += p + (sp / (sp - sq)) * (q - p);
       ++d.crossings;
     }
   }
-  d.depth = std::max(best, 0.0);
+}
+
+// `moving` clipped to the prism over `ref` and measured below `ref`'s plane (unit normal n).
+// Without `position`, only `valid` and `depth` are set (deepest, crossing_sum and crossings stay
+// zero).
+Direction measure(const Face& face, const Triangle& moving, bool position) {
+  const Triangle& ref = face.t;
+  const Vec3& n = face.unit;
+  Direction d;
+  Polygon buffers[2];
+  const Vec3* poly = moving.v.data();
+  int count = 3;
+  int next = 0;  // the buffer the next clip writes
+  // The three edge planes of `ref`.
+  for (std::size_t k = 0; k < 3 && count > 0; ++k) {
+    if (clip(poly, count, ref.v[k], face.inward[k], buffers[next])) {
+      poly = buffers[next].v.data();
+      count = buffers[next].n;
+      next = 1 - next;
+    }
+  }
+  switch (count) {
+    case 0:
+      return d;
+    case 3:
+      measure_polygon<3>(ref, n, poly, count, position, d);
+      break;
+    case 4:
+      measure_polygon<4>(ref, n, poly, count, position, d);
+      break;
+    case 5:
+      measure_polygon<5>(ref, n, poly, count, position, d);
+      break;
+    default:
+      measure_polygon<0>(ref, n, poly, count, position, d);
+  }
   return d;
 }
 
@@ -144,15 +229,13 @@ bool min_edge_axis(const Triangle& a, const Triangle& b, const Vec3& na, const V
 TriContact triangle_pair_contact(const Triangle& a, const Triangle& b, double max_depth,
                                  const Vec3& fallback_normal, std::uint8_t sharp_a,
                                  std::uint8_t sharp_b) {
-  const Vec3 na = (a.v[1] - a.v[0]).cross(a.v[2] - a.v[0]);
-  const Vec3 nb = (b.v[1] - b.v[0]).cross(b.v[2] - b.v[0]);
-  const double la = na.norm(), lb = nb.norm();
-  Direction da, db;
-  // A zero or non-finite normal gives no direction (the triangle is a segment or a point).
-  const bool a_flat = la > 0 && std::isfinite(la), b_flat = lb > 0 && std::isfinite(lb);
-  const Vec3 ua = a_flat ? Vec3(na / la) : Vec3::Zero(), ub = b_flat ? Vec3(nb / lb) : Vec3::Zero();
-  if (a_flat) da = measure(a, ua, b);
-  if (b_flat) db = measure(b, ub, a);
+  thread_local Face face_a, face_b;
+  face_a.set(a);
+  face_b.set(b);
+  const Vec3 &ua = face_a.unit, &ub = face_b.unit;
+  const Direction da = face_a.flat ? measure(face_a, b, true) : Direction{};
+  // b's crossings and deepest point place the contact only when a's clipped b has no crossing.
+  const Direction db = face_b.flat ? measure(face_b, a, da.crossings == 0) : Direction{};
   TriContact c;
   // The smallest push among the face directions (one-sided, measured inside the prism)...
   double depth = std::numeric_limits<double>::infinity();
@@ -168,7 +251,8 @@ TriContact triangle_pair_contact(const Triangle& a, const Triangle& b, double ma
   // edges of the solids and neither face normal is the direction of penetration.
   Vec3 edge_normal;
   double edge_depth = 0;
-  if (min_edge_axis(a, b, ua, ub, sharp_a, sharp_b, edge_normal, edge_depth) &&
+  if (sharp_a != 0 && sharp_b != 0 &&
+      min_edge_axis(a, b, ua, ub, sharp_a, sharp_b, edge_normal, edge_depth) &&
       edge_depth < depth) {
     depth = edge_depth;
     c.normal = edge_normal;
@@ -310,65 +394,73 @@ double polygon_area(const std::vector<Point2>& h) {
 }
 
 // How much adding x enlarges the convex polygon h (counter-clockwise, or a segment taken as its
-// two directed edges): the triangles from x to the edges it sees, which lie outside h.
-double hull_gain(const std::vector<Point2>& h, const Point2& x) {
-  if (h.size() < 2) return 0;
-  double twice = 0;
+// two directed edges): the triangles from x to the edges it sees, which lie outside h. The edges
+// come as HullEdge (hull_edges), each the start o and the difference to the next corner, so that
+// the cross product (a - o) x (x - o) of cross2 reuses a - o.
+struct HullEdge {
+  Point2 o, d;
+};
+
+void hull_edges(const std::vector<Point2>& h, std::vector<HullEdge>& edges) {
+  edges.clear();
+  if (h.size() < 2) return;
   for (std::size_t i = 0; i < h.size(); ++i) {
-    const double c = cross2(h[i], h[(i + 1) % h.size()], x);
+    const Point2& o = h[i];
+    const Point2& a = h[i + 1 == h.size() ? 0 : i + 1];
+    edges.push_back({o, {a[0] - o[0], a[1] - o[1]}});
+  }
+}
+
+double hull_gain(const std::vector<HullEdge>& edges, const Point2& x) {
+  double twice = 0;
+  for (const HullEdge& e : edges) {
+    const double c = e.d[0] * (x[1] - e.o[1]) - e.d[1] * (x[0] - e.o[0]);
     if (c < 0) twice -= c;
   }
   return 0.5 * twice;
 }
 
-// The key of a candidate's vertex on one geom (side 0: geom1, 1: geom2): side << 63 | id << 32 |
-// candidate. Sorted, the candidates that share a vertex are one run of equal upper 32 bits, in
-// candidate order, which is all the manifold reads of the order.
-std::uint64_t vertex_key(std::uint64_t side, std::uint32_t id, std::size_t candidate) {
-  if (id >> 31) throw std::length_error("build_contact_manifold_by_ids: a vertex id beyond 2^31");
-  return side << 63 | std::uint64_t{id} << 32 | static_cast<std::uint64_t>(candidate);
-}
-
-bool same_vertex(std::uint64_t x, std::uint64_t y) { return (x >> 32) == (y >> 32); }
-
-// Chooses at most `k` of the patch's members (deepest first in `members`; q their positions in
-// the patch plane) by the rule of build_contact_manifold, step 2. Returns positions in `members`.
-std::vector<std::size_t> choose_patch_points(const std::vector<std::size_t>& members,
-                                             const std::vector<Point2>& q, std::size_t k) {
-  std::vector<std::size_t> chosen;  // positions in `members`
-  if (members.empty() || k == 0) return chosen;
+// Chooses at most `k` of a patch's `count` members (deepest first; q their positions in the patch
+// plane) by the rule of build_contact_manifold, step 2: their positions in the members into
+// `chosen`, in choice order, and the convex hull of the chosen points (convex_hull's) into `hull`.
+void choose_patch_points(std::size_t count, const std::vector<Point2>& q, std::size_t k,
+                         std::vector<std::size_t>& chosen, std::vector<Point2>& hull) {
+  chosen.clear();
+  hull.clear();
+  if (count == 0 || k == 0) return;
   chosen.push_back(0);
   thread_local std::vector<char> taken;
-  taken.assign(members.size(), 0);
+  taken.assign(count, 0);
   taken[0] = 1;
   const auto dist2 = [&](std::size_t a, std::size_t b) {
     const double dx = q[a][0] - q[b][0], dy = q[a][1] - q[b][1];
     return dx * dx + dy * dy;
   };
   double extent2 = 0;  // squared largest distance from the deepest point: the patch's scale
-  for (std::size_t i = 1; i < members.size(); ++i) extent2 = std::max(extent2, dist2(i, 0));
-  thread_local std::vector<Point2> chosen_pts, hull, sorted;
-  chosen_pts.assign(1, q[0]);
-  hull.assign(1, q[0]);
+  for (std::size_t i = 1; i < count; ++i) extent2 = std::max(extent2, dist2(i, 0));
+  thread_local std::vector<Point2> sorted;
+  thread_local std::vector<HullEdge> edges;
+  hull.push_back(q[0]);
   while (chosen.size() < k) {
     // The largest hull-area gain; members are deepest first, so the strict > keeps ties deepest.
-    std::size_t best = members.size();
+    std::size_t best = count;
     double best_gain = 0;
     if (chosen.size() >= 2) {
-      for (std::size_t i = 0; i < members.size(); ++i) {
+      hull_edges(hull, edges);
+      for (std::size_t i = 0; i < count; ++i) {
         if (taken[i]) continue;
-        const double gain = hull_gain(hull, q[i]);
+        const double gain = hull_gain(edges, q[i]);
         if (gain > best_gain) {
           best_gain = gain;
           best = i;
         }
       }
-      if (best_gain <= tol::kManifoldFlatArea * extent2) best = members.size();
+      if (best_gain <= tol::kManifoldFlatArea * extent2) best = count;
     }
-    if (best == members.size()) {
+    if (best == count) {
       // The second point, or collinear points: the member farthest from the chosen ones.
       double best_d2 = 0;
-      for (std::size_t i = 0; i < members.size(); ++i) {
+      for (std::size_t i = 0; i < count; ++i) {
         if (taken[i]) continue;
         double d2 = std::numeric_limits<double>::infinity();
         for (std::size_t c : chosen) d2 = std::min(d2, dist2(i, c));
@@ -378,14 +470,45 @@ std::vector<std::size_t> choose_patch_points(const std::vector<std::size_t>& mem
         }
       }
     }
-    if (best == members.size()) break;  // every other member sits on a chosen point
+    if (best == count) break;  // every other member sits on a chosen point
     taken[best] = 1;
     chosen.push_back(best);
-    chosen_pts.push_back(q[best]);
-    sorted.assign(chosen_pts.begin(), chosen_pts.end());
+    sorted.clear();
+    for (std::size_t c : chosen) sorted.push_back(q[c]);
     convex_hull(sorted, hull);
   }
-  return chosen;
+}
+
+// A key that orders doubles as < does (-0.0 and 0.0 alike), NaNs included (beyond the
+// infinities), so that a sort by it is well defined whatever the values.
+std::uint64_t order_key(double x) {
+  x += 0.0;  // -0.0 -> 0.0
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  return bits >> 63 ? ~bits : bits | std::uint64_t{1} << 63;
+}
+
+struct KeyIndex {
+  std::uint64_t key;
+  std::uint32_t index;
+};
+
+// The larger key first, ties by index: the order a stable sort by the value, descending, gives.
+bool larger_key_first(const KeyIndex& a, const KeyIndex& b) {
+  return a.key > b.key || (a.key == b.key && a.index < b.index);
+}
+
+// Sorts [first, last) by `before` keeping ties in order, as std::stable_sort does, without its
+// buffer for the few elements it mostly gets (insertion sort; std::stable_sort beyond 16).
+template <typename It, typename Before>
+void small_stable_sort(It first, It last, Before before) {
+  if (last - first > 16) {
+    std::stable_sort(first, last, before);
+    return;
+  }
+  for (It i = first; i != last; ++i) {
+    for (It j = i; j != first && before(*j, *(j - 1)); --j) std::iter_swap(j, j - 1);
+  }
 }
 
 }  // namespace
@@ -438,43 +561,65 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
   const auto per_patch = static_cast<std::size_t>(std::max(options.max_per_patch, 1));
   const auto per_pair = static_cast<std::size_t>(std::max(options.max_per_pair, 1));
 
-  // Deepest first, ties in the given order. (Scratch vectors are thread_local: the seam calls this
-  // for every touching pair of every physics step, and allocating them each time cost a tenth.)
-  thread_local std::vector<std::size_t> order;
+  // Deepest first, ties in the given order: sorted by depth, then index, the order a stable sort
+  // by depth gives. (Scratch vectors are thread_local: the seam calls this for every touching pair
+  // of every physics step, and allocating them each time cost a tenth.)
+  thread_local std::vector<KeyIndex> order;
   order.resize(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return candidates[a].depth > candidates[b].depth;
-  });
+  for (std::size_t i = 0; i < n; ++i) {
+    order[i] = {order_key(candidates[i].depth), static_cast<std::uint32_t>(i)};
+  }
+  std::sort(order.begin(), order.end(), larger_key_first);
 
-  // Which candidates share each triangle vertex, on geom1 (side 0) and on geom2 (side 1): the
-  // keys sorted, and each candidate's six vertices as the start of their run of equal keys.
-  thread_local std::vector<std::uint64_t> keys;
-  thread_local std::vector<std::uint32_t> run_of;  // 6 * candidate + k -> start of its run
-  thread_local std::vector<std::uint32_t> filled;  // per candidate: entries of run_of set
-  keys.resize(6 * n);
+  // Which candidates share each triangle vertex, on geom1 (side 0) and on geom2 (side 1): each
+  // vertex side << 31 | id has a slot of an open-addressing hash table (linear probing), which
+  // heads the list of the candidates' vertex entries 6 * candidate + k on it. (The patches below
+  // depend on which candidates share a vertex, not on the order they are found in: a patch is the
+  // seed's connected component, and its members are then sorted.)
+  const std::size_t entries = 6 * n;
+  std::size_t table_size = 16;
+  int table_bits = 4;
+  while (table_size < entries) {
+    table_size <<= 1;
+    ++table_bits;
+  }
+  constexpr std::uint32_t kNone = ~std::uint32_t{0};
+  thread_local std::vector<std::uint32_t> table_key;
+  thread_local std::vector<std::uint32_t> table_head;  // the slot's last entry, kNone: empty slot
+  thread_local std::vector<std::uint32_t> slot_of;     // entry -> its vertex's slot
+  thread_local std::vector<std::uint32_t> next_entry;  // entry -> the previous one on its vertex
+  table_key.resize(table_size);
+  table_head.assign(table_size, kNone);
+  slot_of.resize(entries);
+  next_entry.resize(entries);
+  const std::size_t mask = table_size - 1;
+  const auto add = [&](std::uint32_t key, std::size_t e) {
+    std::size_t h = (std::uint64_t{key} * 0x9E3779B97F4A7C15ull) >> (64 - table_bits);
+    while (table_head[h] != kNone && table_key[h] != key) h = (h + 1) & mask;
+    table_key[h] = key;
+    next_entry[e] = table_head[h];
+    table_head[h] = static_cast<std::uint32_t>(e);
+    slot_of[e] = static_cast<std::uint32_t>(h);
+  };
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t k = 0; k < 3; ++k) {
-      keys[6 * i + k] = vertex_key(0, vertices_a[i][k], i);
-      keys[6 * i + 3 + k] = vertex_key(1, vertices_b[i][k], i);
+      const std::uint32_t ia = vertices_a[i][k], ib = vertices_b[i][k];
+      if ((ia | ib) >> 31) {
+        throw std::length_error("build_contact_manifold_by_ids: a vertex id beyond 2^31");
+      }
+      add(ia, 6 * i + k);
+      add(std::uint32_t{1} << 31 | ib, 6 * i + 3 + k);
     }
-  }
-  std::sort(keys.begin(), keys.end());
-  run_of.assign(6 * n, 0);
-  filled.assign(n, 0);
-  for (std::size_t r = 0, begin = 0; r < keys.size(); ++r) {
-    if (r > 0 && !same_vertex(keys[r], keys[r - 1])) begin = r;
-    const auto c = static_cast<std::uint32_t>(keys[r]);
-    run_of[6 * c + filled[c]++] = static_cast<std::uint32_t>(begin);
   }
 
   // 1. Patches, grown breadth-first from the deepest unassigned candidate.
   thread_local std::vector<int> patch_of;
   patch_of.assign(n, -1);
   thread_local std::vector<std::size_t> queue;
-  thread_local std::vector<int> run_scanned;  // by run start: the last patch that scanned it
-  run_scanned.assign(keys.size(), -1);
-  for (std::size_t seed : order) {
+  thread_local std::vector<int> slot_scanned;  // the last patch that scanned the vertex's list
+  slot_scanned.assign(table_size, -1);
+  for (const KeyIndex& by_depth : order) {
+    const std::size_t seed = by_depth.index;
     if (patch_of[seed] >= 0) continue;
     const int id = static_cast<int>(out.patches.size());
     ContactPatch patch;
@@ -484,13 +629,13 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
     for (std::size_t head = 0; head < queue.size(); ++head) {
       const std::size_t i = queue[head];
       for (std::size_t k = 0; k < 6; ++k) {
-        // A run scanned once for this patch needs no second scan: whom it admits depends only on
-        // the seed's normal.
-        const std::size_t begin = run_of[6 * i + k];
-        if (run_scanned[begin] == id) continue;
-        run_scanned[begin] = id;
-        for (std::size_t r = begin; r < keys.size() && same_vertex(keys[r], keys[begin]); ++r) {
-          const std::size_t j = static_cast<std::uint32_t>(keys[r]);
+        // A vertex scanned once for this patch needs no second scan: whom it admits depends only
+        // on the seed's normal.
+        const std::uint32_t h = slot_of[6 * i + k];
+        if (slot_scanned[h] == id) continue;
+        slot_scanned[h] = id;
+        for (std::uint32_t e = table_head[h]; e != kNone; e = next_entry[e]) {
+          const std::size_t j = e / 6;
           if (patch_of[j] >= 0 || candidates[j].normal.dot(seed_normal) < options.patch_cosine) {
             continue;
           }
@@ -510,13 +655,17 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
   // 2. The points of each patch, in the plane across its normal.
   thread_local std::vector<double> along;  // each candidate's depth along its patch's normal
   along.assign(n, 0);
-  thread_local std::vector<Point2> q, kept, hull;
+  thread_local std::vector<Point2> q, hull;
+  thread_local std::vector<std::size_t> chosen;
+  thread_local std::vector<std::uint64_t> along_key;  // order_key(along)
+  along_key.resize(n);
   for (ContactPatch& patch : out.patches) {
     for (std::size_t i : patch.members) {
       along[i] = candidates[i].depth * std::clamp(candidates[i].normal.dot(patch.normal), 0.0, 1.0);
     }
-    std::stable_sort(patch.members.begin(), patch.members.end(), [&](std::size_t a, std::size_t b) {
-      return along[a] > along[b] || (along[a] == along[b] && a < b);
+    for (std::size_t i : patch.members) along_key[i] = order_key(along[i]);
+    std::sort(patch.members.begin(), patch.members.end(), [&](std::size_t a, std::size_t b) {
+      return along_key[a] > along_key[b] || (along_key[a] == along_key[b] && a < b);
     });
     patch.depth = along[patch.members.front()];
     const Vec3& nrm = patch.normal;
@@ -529,29 +678,28 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
     for (std::size_t i : patch.members) {
       q.push_back({candidates[i].pos.dot(u), candidates[i].pos.dot(w)});
     }
-    kept.clear();
-    for (std::size_t pos : choose_patch_points(patch.members, q, per_patch)) {
-      patch.selected.push_back(patch.members[pos]);
-      kept.push_back(q[pos]);
-    }
-    convex_hull(kept, hull);
+    choose_patch_points(patch.members.size(), q, per_patch, chosen, hull);
+    patch.selected.reserve(chosen.size());
+    for (std::size_t pos : chosen) patch.selected.push_back(patch.members[pos]);
     patch.area = polygon_area(hull);
   }
-  std::stable_sort(out.patches.begin(), out.patches.end(),
-                   [](const ContactPatch& a, const ContactPatch& b) { return a.depth > b.depth; });
+  small_stable_sort(out.patches.begin(), out.patches.end(),
+                    [](const ContactPatch& a, const ContactPatch& b) { return a.depth > b.depth; });
 
   // 3. The pair's budget: every patch's deepest point, then the further points by patch area.
   const auto emit = [&](const ContactPatch& patch, std::size_t i) {
     out.contacts.push_back(TriContact{candidates[i].pos, patch.normal, along[i]});
   };
+  out.contacts.reserve(std::min(per_pair, n));
   for (const ContactPatch& patch : out.patches) {
     if (out.contacts.size() == per_pair) break;
     emit(patch, patch.selected.front());
   }
-  std::vector<const ContactPatch*> by_area;
+  thread_local std::vector<const ContactPatch*> by_area;
+  by_area.clear();
   for (const ContactPatch& patch : out.patches) by_area.push_back(&patch);
-  std::stable_sort(by_area.begin(), by_area.end(),
-                   [](const ContactPatch* a, const ContactPatch* b) { return a->area > b->area; });
+  small_stable_sort(by_area.begin(), by_area.end(),
+                    [](const ContactPatch* a, const ContactPatch* b) { return a->area > b->area; });
   for (const ContactPatch* patch : by_area) {
     for (std::size_t k = 1; k < patch->selected.size() && out.contacts.size() < per_pair; ++k) {
       emit(*patch, patch->selected[k]);
