@@ -295,6 +295,20 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
       stops->push_back({s.a, s.b, s.disjoint, s.gap - moved});
       continue;
     }
+    const ObbNode& x = na[static_cast<std::size_t>(s.a)];
+    const ObbNode& y = nb[static_cast<std::size_t>(s.b)];
+    if (!s.disjoint && s.gap == 0 && x.is_leaf() && y.is_leaf()) {
+      // Two leaves whose triangles met when tested last: at a small motion their boxes overlap
+      // again, so the box test is skipped and the triangles are tested at once. Only speed: the
+      // triangle test is exact, and the box test only ever spares it for triangles that cannot
+      // meet.
+      double gap = 0;
+      const bool over = test_leaves(a, b, x, y, b_in_a, mode, counters, pairs, tri_test, result,
+                                    stops ? &gap : nullptr);
+      if (stops) stops->push_back({s.a, s.b, false, gap});
+      if (over) return result;
+      continue;
+    }
     push_direct(s.a, s.b);
     if (descend_stack()) return result;
   }
