@@ -216,7 +216,8 @@ bool test_leaves(const ObbTree& a, const ObbTree& b, const ObbNode& x, const Obb
 // tracking: Ehmann and Lin 2001 keep a front of the bounding volume test tree, and conservative
 // advancement, Mirtich 1996, bounds the approach of two bodies by their motion). So does a start of
 // two leaves whose gap (their triangles' distance, test_leaves) exceeds it: no triangle pair of
-// theirs can meet yet.
+// theirs can meet yet. A start of two leaves with no gap at all goes to the triangle test without
+// the box test.
 template <class Separator, class TriTest>
 QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in_a, QueryMode mode,
                             Separator& separator, QueryCounters& counters,
@@ -298,10 +299,10 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
     const ObbNode& x = na[static_cast<std::size_t>(s.a)];
     const ObbNode& y = nb[static_cast<std::size_t>(s.b)];
     if (!s.disjoint && s.gap == 0 && x.is_leaf() && y.is_leaf()) {
-      // Two leaves whose triangles met when tested last: at a small motion their boxes overlap
-      // again, so the box test is skipped and the triangles are tested at once. Only speed: the
-      // triangle test is exact, and the box test only ever spares it for triangles that cannot
-      // meet.
+      // Two leaves whose last triangle test found no positive plane gap (they met, or no plane
+      // kept them apart): at a small motion their boxes mostly overlap again, so the box test is
+      // skipped and the triangles are tested at once. Only speed: the triangle test is exact,
+      // and the box test only ever spares it for triangles that cannot meet.
       double gap = 0;
       const bool over = test_leaves(a, b, x, y, b_in_a, mode, counters, pairs, tri_test, result,
                                     stops ? &gap : nullptr);
