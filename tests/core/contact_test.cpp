@@ -168,6 +168,12 @@ TEST(SharpEdges, BoxEdgesAreSharpDiagonalsAndSmoothSurfacesAreNot) {
   faces.clear();
   for (std::size_t f = 0; f < sphere.faces.size(); ++f) faces.push_back(sphere.triangle(f));
   for (std::uint8_t m : sharp_edge_masks(faces)) EXPECT_EQ(m, 0);
+  // With the welded ids given (as the registry calls it): the same masks; ids of another length
+  // are refused.
+  faces.clear();
+  for (std::size_t f = 0; f < box.faces.size(); ++f) faces.push_back(box.triangle(f));
+  EXPECT_EQ(sharp_edge_masks(faces, weld_vertex_ids(faces)), masks);
+  EXPECT_THROW(sharp_edge_masks(faces, {}), std::invalid_argument);
   // An open triangle: every edge is a boundary.
   EXPECT_EQ(sharp_edge_masks({tri({0, 0, 0}, {1, 0, 0}, {0, 1, 0})})[0], 7);
 }

@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "graspcd/core/tolerances.h"
@@ -316,7 +317,15 @@ std::vector<std::size_t> select_contacts(const std::vector<TriContact>& contacts
 // Feature edges by dihedral angle: weld vertices by exact coordinates (weld_vertex_ids), gather the
 // faces of each undirected edge, and compare the unit normals of edges with exactly two faces.
 std::vector<std::uint8_t> sharp_edge_masks(const std::vector<Triangle>& faces) {
-  const std::vector<FaceVertexIds> ids = weld_vertex_ids(faces);
+  return sharp_edge_masks(faces, weld_vertex_ids(faces));
+}
+
+std::vector<std::uint8_t> sharp_edge_masks(const std::vector<Triangle>& faces,
+                                           const std::vector<FaceVertexIds>& ids) {
+  if (ids.size() != faces.size()) {
+    throw std::invalid_argument("sharp_edge_masks: " + std::to_string(ids.size()) + " ids for " +
+                                std::to_string(faces.size()) + " faces");
+  }
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::pair<std::size_t, unsigned>>>
       edges;
   std::vector<Vec3> normals(faces.size());

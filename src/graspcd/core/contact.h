@@ -123,6 +123,12 @@ using FaceVertexIds = std::array<std::uint32_t, 3>;
 // order of the coordinates' bit patterns. Throws std::length_error beyond 2^31 distinct vertices.
 std::vector<FaceVertexIds> weld_vertex_ids(const std::vector<Triangle>& faces);
 
+// sharp_edge_masks(faces) with the faces' welded ids already at hand (`ids` from
+// weld_vertex_ids(faces)), so that a mesh is welded once. Throws std::invalid_argument when `ids`
+// and `faces` differ in length.
+std::vector<std::uint8_t> sharp_edge_masks(const std::vector<Triangle>& faces,
+                                           const std::vector<FaceVertexIds>& ids);
+
 // The same manifold from the candidates' triangles given as welded vertex ids (ids of one geom
 // from one weld_vertex_ids call, e.g. kept with the geom's tree): what the MuJoCo seam calls, with
 // no coordinates to compare per candidate. Ids must be below 2^31. (A name of its own: an

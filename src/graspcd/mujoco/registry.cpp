@@ -63,8 +63,8 @@ MeshTree make_tree(const std::vector<Triangle>& tris) {
   for (std::size_t i = 0; i < ids.size(); ++i) {
     mt.slot_of_face[static_cast<std::size_t>(ids[i])] = static_cast<std::int32_t>(i);
   }
-  mt.sharp_masks = sharp_edge_masks(tris);
   mt.vertex_ids = weld_vertex_ids(tris);  // tris[f] is face(f): the tree copies the triangles
+  mt.sharp_masks = sharp_edge_masks(tris, mt.vertex_ids);
   mt.closedness = closedness(mt.tree);
   return mt;
 }
