@@ -342,6 +342,102 @@ TEST(TreeQuery, LeafGapsAreLowerBoundsOnTheTriangleDistance) {
       tightest);
 }
 
+// pull_up_front on its own (the coherent query calls it only every tol::kFrontPullUpPeriod
+// restarts): a front recorded in contact and followed while B backs away goes deeper than it needs;
+// pulled up at the pose it was followed to, it has fewer pairs, still covers every leaf pair of
+// the two trees exactly once, each pulled-up pair is disjoint with a gap no larger than its boxes'
+// SAT gap allows (B's box grown by 0.9 gap / sqrt(3) stays disjoint), and a restart from it finds
+// the descent from the roots' triangle pairs, as B comes back into contact.
+TEST(TreeQuery, APulledUpFrontCoversEveryLeafPairOnceAndGivesTheSameAnswer) {
+  const TriangleMesh torus = testing::make_torus(0.04, 0.012, 30, 16);
+  const TriangleMesh sphere = testing::make_uv_sphere(0.015, 12, 16);
+  const ObbTree ta = ObbTree::build(torus), tb = ObbTree::build(sphere);
+  // The leaves below each node, by the layout's left child (i + 1) and `right`.
+  const auto leaves_below = [](const ObbTree& t) {
+    const auto& nodes = t.nodes();
+    std::vector<std::vector<std::int32_t>> below(nodes.size());
+    for (std::size_t i = nodes.size(); i-- > 0;) {
+      const ObbNode& n = nodes[i];
+      if (n.is_leaf()) {
+        below[i] = {static_cast<std::int32_t>(i)};
+        continue;
+      }
+      below[i] = below[i + 1];
+      const auto& r = below[static_cast<std::size_t>(n.right)];
+      below[i].insert(below[i].end(), r.begin(), r.end());
+    }
+    return below;
+  };
+  const auto below_a = leaves_below(ta), below_b = leaves_below(tb);
+  const std::size_t nb = tb.nodes().size();
+  const auto pose_at = [](double r) {
+    Pose pose;
+    pose.R = testing::rotation_about(Vec3(0.3, 0.5, 0.8).normalized(), 0.1);
+    pose.t = Vec3(r, 0.001, 0.002);
+    return pose;
+  };
+  Detector sat(Method::kSat);
+  QueryFront front;
+  QueryCounters c;
+  std::vector<TrianglePair> pairs;
+  // In contact (the sphere's centre 0.064 from the torus's axis: 3 mm deep), then backing away
+  // 0.5 mm a step while the front is followed (no pull-up yet at these few restarts).
+  sat.collide_coherent(ta, tb, pose_at(0.064), c, &pairs, front);
+  ASSERT_FALSE(pairs.empty());
+  for (int i = 1; i <= 10; ++i) {
+    pairs.clear();
+    sat.collide_coherent(ta, tb, pose_at(0.064 + 0.0005 * i), c, &pairs, front);
+    ASSERT_TRUE(front.restarted) << "step " << i;
+  }
+  ASSERT_TRUE(pairs.empty());  // 2 mm apart
+  const Pose apart = pose_at(0.069);
+  const std::size_t before = front.pairs.size();
+  const std::uint64_t box_tests = c.box_tests;
+  pull_up_front(ta, tb, apart, front, c);
+  const std::size_t after = front.pairs.size();
+  EXPECT_LT(after, before / 2) << "the front apart is pulled well up";
+  EXPECT_GT(c.box_tests, box_tests);
+  std::vector<int> cover(ta.nodes().size() * nb, 0);
+  int pulled = 0;
+  for (const NodePair& p : front.pairs) {
+    for (std::int32_t la : below_a[static_cast<std::size_t>(p.a)]) {
+      for (std::int32_t lb : below_b[static_cast<std::size_t>(p.b)]) {
+        ++cover[static_cast<std::size_t>(la) * nb + static_cast<std::size_t>(lb)];
+      }
+    }
+    const ObbNode& x = ta.nodes()[static_cast<std::size_t>(p.a)];
+    const ObbNode& y = tb.nodes()[static_cast<std::size_t>(p.b)];
+    if (x.is_leaf() && y.is_leaf()) continue;
+    ++pulled;
+    ASSERT_TRUE(p.disjoint) << "an inner pair on the front is a disjoint one";
+    ASSERT_GE(p.gap, 0);
+    Obb grown = y.box;
+    grown.half.array() += 0.9 * p.gap / std::sqrt(3.0);
+    EXPECT_NE(sat_separating_axis(x.box, transform(apart, grown)), kSatNoAxis)
+        << "pair " << p.a << ", " << p.b << " gap " << p.gap;
+  }
+  EXPECT_GT(pulled, 0);
+  for (std::size_t la = 0; la < ta.nodes().size(); ++la) {
+    if (!ta.nodes()[la].is_leaf()) continue;
+    for (std::size_t lb = 0; lb < nb; ++lb) {
+      if (!tb.nodes()[lb].is_leaf()) continue;
+      ASSERT_EQ(cover[la * nb + lb], 1) << "leaf pair " << la << ", " << lb;
+    }
+  }
+  // Back into contact from the pulled-up front: the pairs of a descent from the roots.
+  for (int i = 9; i >= 0; --i) {
+    const Pose pose = pose_at(0.064 + 0.0005 * i);
+    std::vector<TrianglePair> pf, pc;
+    sat.collide(ta, tb, pose, QueryMode::kAllContacts, c, &pf);
+    sat.collide_coherent(ta, tb, pose, c, &pc, front);
+    ASSERT_TRUE(front.restarted) << "step " << i;
+    std::sort(pf.begin(), pf.end());
+    std::sort(pc.begin(), pc.end());
+    ASSERT_EQ(pf, pc) << "step " << i;
+  }
+  std::printf("front pulled up from %zu to %zu pairs (%d inner)\n", before, after, pulled);
+}
+
 // A non-finite pose intersects nothing and costs no descent, and a front the coherent query kept
 // is not left empty by it: the next finite query still finds the descent from the roots' pairs.
 TEST(TreeQuery, ANonFinitePoseIntersectsNothingAndLeavesNoFrontBehind) {
