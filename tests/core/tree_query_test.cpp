@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <random>
@@ -340,6 +341,55 @@ TEST(TreeQuery, LeafGapsAreLowerBoundsOnTheTriangleDistance) {
       "distance\n",
       static_cast<unsigned long long>(checked), static_cast<unsigned long long>(exact_checks),
       tightest);
+}
+
+// The descent's stack comes from a per-thread pool (tree_query.h, DescentStack): a query run from
+// inside another one, here by a triangle test that queries two other trees at every triangle
+// pair, takes its own stack and leaves the outer descent's untouched, so both answers are those
+// of queries run one after the other.
+struct NestingTriTest {
+  const ObbTree* ta;
+  const ObbTree* tb;
+  Pose pose;
+  std::vector<TrianglePair> expected;  // the inner query's pairs, run on its own
+  int nested = 0, wrong = 0;
+  bool operator()(const Triangle& a, const Triangle& b) {
+    SatSeparator sat;
+    QueryCounters c;
+    std::vector<TrianglePair> found;
+    collide(*ta, *tb, pose, QueryMode::kAllContacts, sat, c, &found);
+    std::sort(found.begin(), found.end());
+    ++nested;
+    wrong += found != expected;
+    return tri_tri_intersect(a, b);
+  }
+};
+
+TEST(TreeQuery, AQueryInsideAnotherKeepsItsOwnStack) {
+  const TriangleMesh torus = testing::make_torus(0.04, 0.012, 30, 16);
+  const TriangleMesh sphere = testing::make_uv_sphere(0.015, 12, 16);
+  const ObbTree ta = ObbTree::build(torus), tb = ObbTree::build(sphere);
+  Pose outer, inner;
+  outer.t = Vec3(0.064, 0.001, 0.002);  // the sphere 3 mm into the torus's rim
+  inner.R = testing::rotation_about(Vec3(0, 0, 1), 0.7);
+  inner.t = Vec3(-0.03, 0.05, 0.005);  // elsewhere on the rim, 2 mm deep
+  SatSeparator sat;
+  QueryCounters c;
+  std::vector<TrianglePair> plain_outer;
+  NestingTriTest nesting{&ta, &tb, inner, {}};
+  collide(ta, tb, inner, QueryMode::kAllContacts, sat, c, &nesting.expected);
+  std::sort(nesting.expected.begin(), nesting.expected.end());
+  collide(ta, tb, outer, QueryMode::kAllContacts, sat, c, &plain_outer);
+  std::sort(plain_outer.begin(), plain_outer.end());
+  ASSERT_FALSE(nesting.expected.empty());
+  ASSERT_FALSE(plain_outer.empty());
+  ASSERT_NE(nesting.expected, plain_outer);
+  std::vector<TrianglePair> nested_outer;
+  collide(ta, tb, outer, QueryMode::kAllContacts, sat, c, &nested_outer, std::ref(nesting));
+  std::sort(nested_outer.begin(), nested_outer.end());
+  EXPECT_EQ(nested_outer, plain_outer);
+  EXPECT_GT(nesting.nested, 10);
+  EXPECT_EQ(nesting.wrong, 0);
 }
 
 // pull_up_front on its own (the coherent query calls it only every tol::kFrontPullUpPeriod

@@ -2,7 +2,9 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <limits>
 #include <type_traits>
 #include <utility>
@@ -123,6 +125,38 @@ struct FramedPair {
   Vec3 T;
 };
 
+// The descent's stack of node pairs, taken from a per-thread pool and returned when the lease
+// ends: a query allocates nothing once its thread has run one as deep, which matters for the
+// many small queries of a simulation (a near miss costs a dozen box tests). Each lease takes its
+// own stack, so a query run from inside another (a TriTest that queries) keeps them apart; the
+// pool is a deque, whose elements stay where they are as it grows.
+class DescentStack {
+ public:
+  DescentStack() : level_(depth()) {
+    std::deque<std::vector<FramedPair>>& p = pool();
+    if (p.size() <= level_) p.emplace_back().reserve(64);
+    stack_ = &p[level_];
+    stack_->clear();
+    ++depth();  // last: a constructor that throws takes no level
+  }
+  ~DescentStack() { --depth(); }
+  DescentStack(const DescentStack&) = delete;
+  DescentStack& operator=(const DescentStack&) = delete;
+  std::vector<FramedPair>& operator*() { return *stack_; }
+
+ private:
+  static std::size_t& depth() {
+    thread_local std::size_t d = 0;
+    return d;
+  }
+  static std::deque<std::vector<FramedPair>>& pool() {
+    thread_local std::deque<std::vector<FramedPair>> p;
+    return p;
+  }
+  std::size_t level_;
+  std::vector<FramedPair>* stack_;
+};
+
 // The absolute part of the descent's SAT slack (tolerances.h, kSatCarriedRoundoffFactor): the
 // rounding carried down both trees, relative to the root pair's size S at `b_in_a`.
 inline double carried_slack(const ObbTree& a, const ObbTree& b, const Pose& b_in_a) {
@@ -231,8 +265,8 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
   const auto& fb = b.in_parent();
   // The absolute part of the slack.
   const double carried = carried_slack(a, b, b_in_a);
-  std::vector<FramedPair> stack;
-  stack.reserve(64);
+  DescentStack lease;
+  std::vector<FramedPair>& stack = *lease;
   const auto push_direct = [&](std::int32_t ia, std::int32_t ib) {
     stack.push_back(direct_frame(a, b, b_in_a, ia, ib));
   };
