@@ -344,9 +344,9 @@ TEST(TreeQuery, LeafGapsAreLowerBoundsOnTheTriangleDistance) {
 }
 
 // The descent's stack comes from a per-thread pool (tree_query.h, DescentStack): a query run from
-// inside another one, here by a triangle test that queries two other trees at every triangle
-// pair, takes its own stack and leaves the outer descent's untouched, so both answers are those
-// of queries run one after the other.
+// inside another one, here by a triangle test that queries the same trees at another pose at
+// every triangle pair, takes its own stack and leaves the outer descent's untouched, so both
+// answers are those of queries run one after the other.
 struct NestingTriTest {
   const ObbTree* ta;
   const ObbTree* tb;
@@ -372,7 +372,7 @@ TEST(TreeQuery, AQueryInsideAnotherKeepsItsOwnStack) {
   Pose outer, inner;
   outer.t = Vec3(0.064, 0.001, 0.002);  // the sphere 3 mm into the torus's rim
   inner.R = testing::rotation_about(Vec3(0, 0, 1), 0.7);
-  inner.t = Vec3(-0.03, 0.05, 0.005);  // elsewhere on the rim, 2 mm deep
+  inner.t = Vec3(-0.03, 0.05, 0.005);  // elsewhere on the rim, deep in the tube
   SatSeparator sat;
   QueryCounters c;
   std::vector<TrianglePair> plain_outer;

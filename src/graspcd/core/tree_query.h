@@ -270,6 +270,15 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
   const auto push_direct = [&](std::int32_t ia, std::int32_t ib) {
     stack.push_back(direct_frame(a, b, b_in_a, ia, ib));
   };
+  // Two leaves' triangles tested, their gap kept on the front; true when the query is over
+  // (first contact found).
+  const auto leaf_pair = [&](std::int32_t ia, std::int32_t ib, const ObbNode& x, const ObbNode& y) {
+    double gap = 0;
+    const bool over = test_leaves(a, b, x, y, b_in_a, mode, counters, pairs, tri_test, result,
+                                  stops ? &gap : nullptr);
+    if (stops) stops->push_back({ia, ib, false, gap});
+    return over;
+  };
   // The descent below what is on the stack; true when the query is over (first contact found).
   const auto descend_stack = [&]() {
     while (!stack.empty()) {
@@ -293,11 +302,7 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
       }
       // Two leaves: test their triangles (keeping their gap on the front).
       if (x.is_leaf() && y.is_leaf()) {
-        double gap = 0;
-        const bool over = test_leaves(a, b, x, y, b_in_a, mode, counters, pairs, tri_test, result,
-                                      stops ? &gap : nullptr);
-        if (stops) stops->push_back({p.ia, p.ib, false, gap});
-        if (over) return true;
+        if (leaf_pair(p.ia, p.ib, x, y)) return true;
         continue;
       }
       // Otherwise split the larger node (a leaf is never split), carrying the frame down.
@@ -337,11 +342,7 @@ QueryResult collide_carried(const ObbTree& a, const ObbTree& b, const Pose& b_in
       // kept them apart): at a small motion their boxes mostly overlap again, so the box test is
       // skipped and the triangles are tested at once. Only speed: the triangle test is exact,
       // and the box test only ever spares it for triangles that cannot meet.
-      double gap = 0;
-      const bool over = test_leaves(a, b, x, y, b_in_a, mode, counters, pairs, tri_test, result,
-                                    stops ? &gap : nullptr);
-      if (stops) stops->push_back({s.a, s.b, false, gap});
-      if (over) return result;
+      if (leaf_pair(s.a, s.b, x, y)) return result;
       continue;
     }
     push_direct(s.a, s.b);
