@@ -59,10 +59,8 @@ inline constexpr double kFrontMaxRotation = 0.1;
 inline constexpr double kFrontMaxShift = 0.1;
 // Every kFrontPullUpPeriod-th restarted query pulls its front up where node pairs moved apart
 // (tree_query.h, pull_up_front): each attempt costs a box test whether or not it succeeds, so a
-// front is not pulled up at every step. Speed only. 32 was measured (callgrind, whole grasps of
-// example 1 and the Robotiq cup, docs/performance.md): periods 4, 16, 32, 64 and never gave
-// 3.42G, 3.27G, 3.25G, 3.23G, 3.29G instructions on example 1 and 3.39G, 3.30G, 3.28G, 3.28G,
-// 3.36G on the cup.
+// front is not pulled up at every step. Speed only: 32 was measured against 4, 16, 64 and never
+// over whole grasps (docs/performance.md, "Leaf pairs straight to the triangle test").
 inline constexpr unsigned kFrontPullUpPeriod = 32;
 // front_motion (tree_query.h) bounds how far B's boxes moved between two poses; the bound is
 // computed in doubles from a few products and sums (rounding well below 1e-15 relative), so it is
