@@ -717,4 +717,48 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
   return out;
 }
 
+// pose_drift: the bound of contact.h. ||R - R0||_2 = ||R0^T R - I||_2 = 2 sin(theta / 2), and
+// ||R0^T R - I||_F = 2 sqrt(2) sin(theta / 2) (two singular values of 2 sin(theta / 2), one 0).
+double pose_drift(const Pose& from, const Pose& to, double radius) {
+  return (to.t - from.t).norm() + (to.R - from.R).norm() / std::sqrt(2.0) * radius;
+}
+
+// After Bullet's btPersistentManifold (refreshContactPoints): points kept on both bodies, the
+// depth refreshed as their penetration along the contact normal.
+void ReusedContacts::store(const Pose& pose, const std::vector<TriContact>& contacts) {
+  valid_ = !contacts.empty();
+  if (!valid_) return;
+  pose_ = pose;
+  contacts_ = contacts;
+  on_b_.clear();
+  const Mat3 Rt = pose.R.transpose();
+  for (const TriContact& c : contacts) {
+    // The contact lies midway: geom2's surface point half the depth back along the normal (the
+    // normal points from geom1 toward geom2, and geom2 reaches depth into geom1).
+    on_b_.push_back(Rt * (c.pos - 0.5 * c.depth * c.normal - pose.t));
+  }
+}
+
+bool ReusedContacts::refresh(const Pose& pose, double radius, double max_drift,
+                             std::vector<TriContact>& out) const {
+  if (!valid_) return false;
+  if (pose.R == pose_.R && pose.t == pose_.t) {
+    out = contacts_;
+    return true;
+  }
+  if (!(pose_drift(pose_, pose, radius) <= max_drift)) return false;  // NaN: not reused
+  out.resize(contacts_.size());
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const TriContact& c = contacts_[i];
+    const Vec3 on_a = c.pos + 0.5 * c.depth * c.normal;
+    const Vec3 on_b = pose.R * on_b_[i] + pose.t;
+    const double depth = (on_a - on_b).dot(c.normal);
+    if (depth < 0) return false;
+    out[i].normal = c.normal;
+    out[i].depth = depth;
+    out[i].pos = 0.5 * (on_a + on_b);
+  }
+  return true;
+}
+
 }  // namespace graspcd

@@ -138,4 +138,46 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
                                               const std::vector<FaceVertexIds>& vertices_b,
                                               const ManifoldOptions& options = {});
 
+// ---- Contacts reused across physics steps (opt-in)
+// ---------------------------------------------------------
+//
+// A pair's contacts from one exact query, kept and refreshed while the pair moves little, after
+// Bullet's persistent manifold (btPersistentManifold::refreshContactPoints, Coumans): each contact
+// is stored as its point on geom1's surface (geom1 frame) and its point on geom2's surface (geom2
+// frame); at a later relative pose the point on geom2 is moved with geom2, and the depth is the
+// penetration of the two points along the stored normal. What is not refreshed: the normal (it
+// stays the patch normal of the exact query, turned by at most the drift over geom2's radius),
+// and the set of points: a region that begins or ends to touch inside the drift is seen only at
+// the next exact query. So every reused depth is within the drift of one the pair really had,
+// and a region missed is at most the drift deep.
+
+// A bound on how far any point of geom2 within `radius` of geom2's origin moved relative to geom1
+// between the relative poses `from` and `to`: |t - t0| + ||R - R0||_2 radius, with the spectral
+// norm of R - R0 = R0 (R0^T R - I) taken as its Frobenius norm over sqrt(2) (a rotation's
+// difference from the identity has singular values 2 sin(theta / 2) twice and 0).
+double pose_drift(const Pose& from, const Pose& to, double radius);
+
+class ReusedContacts {
+ public:
+  // Keeps `contacts` (geom1 frame, as the manifold gave them) computed at the relative pose
+  // `pose` (geom2 in geom1). No contacts: nothing is kept (a pair apart is always queried).
+  void store(const Pose& pose, const std::vector<TriContact>& contacts);
+  void clear() { valid_ = false; }
+  bool valid() const { return valid_; }
+
+  // The kept contacts at `pose`, into `out`, when some are kept and every point of geom2 within
+  // `radius` of its origin moved at most `max_drift` (metres, > 0) since they were computed
+  // (pose_drift) and none of them separated (refreshed depth < 0): then true. At the very pose
+  // they were computed at, exactly the stored contacts. Otherwise false and `out` unspecified:
+  // the caller queries exactly (and stores again).
+  bool refresh(const Pose& pose, double radius, double max_drift,
+               std::vector<TriContact>& out) const;
+
+ private:
+  bool valid_ = false;
+  Pose pose_;
+  std::vector<TriContact> contacts_;
+  std::vector<Vec3> on_b_;  // each contact's point on geom2's surface, in geom2's frame
+};
+
 }  // namespace graspcd
