@@ -244,12 +244,17 @@ void BM_NoopDelegated(benchmark::State& state) {
 // it, and any state carried from step to step pays its way. One iteration is one whole grasp;
 // the reported time is per physics step. Counters: physics steps, most finger-object contacts
 // in one step, and whether the object was held. Variants: "native" (MuJoCo's own collision),
-// "served" (graspcd, the config as shipped: each tree query restarted from its front) and
-// "served-roots" (the same with "front_list" off: every query from the roots).
+// "served" (graspcd, the config as shipped: each tree query restarted from its front, exact
+// contacts every step), "served-roots" (the same with "front_list" off: every query from the
+// roots) and "served-reuse" (the config with "contact_reuse" 20 um: a touching pair's contacts
+// refreshed, not queried, while it moves less; registry.h).
+constexpr double kWholeGraspReuse = 2e-5;  // metres
+
 void whole_grasp(benchmark::State& state, const std::string& scene, const std::string& variant) {
   graspcd::bridge::GraspOptions options;
   options.native = variant == "native";
   if (variant == "served-roots") options.front_list = false;
+  if (variant == "served-reuse") options.contact_reuse = kWholeGraspReuse;
   long steps = 0;
   graspcd::bridge::GraspResult r;
   for (auto _ : state) {
@@ -260,6 +265,8 @@ void whole_grasp(benchmark::State& state, const std::string& scene, const std::s
   state.counters["physics_steps"] = static_cast<double>(steps);
   state.counters["max_contacts"] = r.max_contacts;
   state.counters["held"] = r.held ? 1 : 0;
+  state.counters["mean_contacts"] = r.mean_contacts;
+  state.counters["reused_calls"] = static_cast<double>(r.reused_calls);
 }
 
 // The grasps of examples 1-3, the triangle hand and a real Robotiq scene (whose meshes come from
@@ -270,7 +277,7 @@ const char* const kGraspScenes[] = {"example1.xml", "example2.xml", "example3.xm
 void register_whole_grasps() {
   for (const char* scene : kGraspScenes) {
     const std::string name = std::string(scene).substr(0, std::string(scene).size() - 4);
-    for (const char* variant : {"native", "served", "served-roots"}) {
+    for (const char* variant : {"native", "served", "served-roots", "served-reuse"}) {
       benchmark::RegisterBenchmark(
           ("BM_WholeGrasp/" + name + "/" + variant).c_str(),
           [scene, variant](benchmark::State& st) { whole_grasp(st, scene, variant); })

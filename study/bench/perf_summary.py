@@ -173,6 +173,13 @@ def main():
         roots = "/".join(parts[:2] + ["served-roots"] + parts[3:])
         add(compare(runs, "grasp", f"whole grasp {parts[1]}, front list / from the roots",
                     name, roots, None))
+        reuse = "/".join(parts[:2] + ["served-reuse"] + parts[3:])
+        rc = runs.get(reuse, {}).get("counters", {})
+        add(compare(runs, "grasp",
+                    f"whole grasp {parts[1]}, contacts reused (20 um) / native per physics step",
+                    reuse, native, 2.0, max_contacts=rc.get("max_contacts"),
+                    mean_contacts=rc.get("mean_contacts"), reused_calls=rc.get("reused_calls"),
+                    held=rc.get("held") == 1))
     json.dump(out, sys.stdout, indent=1, sort_keys=True)
     sys.stdout.write("\n")
     # A short table on stderr.

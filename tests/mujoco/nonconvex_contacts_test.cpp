@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -183,6 +186,103 @@ TEST(NonconvexContacts, FrontListGivesBitwiseTheSameGraspWithStateRestores) {
                 name.c_str(), a.steps.size(), touching_steps,
                 static_cast<unsigned long long>(box_a), static_cast<unsigned long long>(box_b));
   }
+}
+
+// Contacts reused across steps (registry.h, "contact_reuse"; contact.h, ReusedContacts), against
+// exact contacts: two copies of example 1 at the closed hand of its grasp, one registry reusing
+// (drift 50 um) and one exact, then the object moved in small steps. Within the drift the reusing
+// registry queries nothing, and each touching pair's deepest contact stays within twice the drift
+// of the exact one (its points move at most the drift; the exact deepest moves as little); beyond
+// it, and back at the pose of its last query, it gives bitwise the exact contacts.
+TEST(NonconvexContacts, ReusedContactsStayWithinTheDriftOfTheExactOnes) {
+  const std::string scene = kMjcf + "/example1.xml";
+  std::vector<mjtNum> closed;
+  GraspOptions options;
+  options.settle_time = 0.01;
+  options.lift_time = 0.01;
+  options.hold_time = 0.01;
+  options.on_grasp_step = [&](const mjModel* m, const mjData* d, int) {
+    closed.assign(d->qpos, d->qpos + m->nq);  // the last closing step's: every finger touches
+  };
+  run_grasp(scene, options);
+  ASSERT_FALSE(closed.empty());
+
+  const double drift = 5e-5;
+  Scene reusing("example1"), exact("example1");
+  RegistryConfig config = load_registry_config(reusing.config("example1"));
+  config.contact_reuse = drift;
+  NonconvexContacts ours(reusing.model.get(), config);
+  config.contact_reuse = 0;
+  NonconvexContacts reference(exact.model.get(), config);
+  const mjModel* m = reusing.model.get();
+  const int object = mj_name2id(m, mjOBJ_BODY, "object");
+  ASSERT_EQ(m->jnt_type[m->body_jntadr[object]], mjJNT_FREE);
+  const int x = m->jnt_qposadr[m->body_jntadr[object]];
+
+  // The deepest contact of each touching served geom pair.
+  const auto deepest = [&](const mjData* d) {
+    std::map<std::pair<int, int>, double> out;
+    for (int i = 0; i < d->ncon; ++i) {
+      if (ours.registry().find_pair(d->contact[i].geom1, d->contact[i].geom2) < 0) continue;
+      double& v = out[{d->contact[i].geom1, d->contact[i].geom2}];
+      v = std::max(v, -d->contact[i].dist);
+    }
+    return out;
+  };
+  const auto same = [](const mjData* a, const mjData* b) {
+    if (a->ncon != b->ncon) return false;
+    for (int i = 0; i < a->ncon; ++i) {
+      const mjContact& p = a->contact[i];
+      const mjContact& q = b->contact[i];
+      if (p.geom1 != q.geom1 || p.geom2 != q.geom2 || p.dist != q.dist ||
+          std::memcmp(p.pos, q.pos, sizeof p.pos) != 0 ||
+          std::memcmp(p.frame, q.frame, sizeof p.frame) != 0) {
+        return false;
+      }
+    }
+    return true;
+  };
+  // Both at `closed` with the object moved by `dx` along x; the reusing registry's calls answered
+  // by kept contacts.
+  const auto at = [&](double dx) {
+    for (Scene* s : {&reusing, &exact}) {
+      mjData* d = s->data.get();
+      std::copy(closed.begin(), closed.end(), d->qpos);
+      d->qpos[x] += dx;
+      mj_forward(s->model.get(), d);
+    }
+    reference.take_stats();
+    return ours.take_stats().reused;
+  };
+
+  EXPECT_EQ(at(0), 0u);  // the first query is exact
+  ASSERT_TRUE(same(reusing.data.get(), exact.data.get()));
+  ASSERT_GE(deepest(exact.data.get()).size(), 2u);  // fingers touch the cup
+  int reused_steps = 0;
+  double worst = 0;
+  for (const double dx : {1e-5, 2e-5, 3e-5, 4e-5}) {
+    const std::uint64_t reused = at(dx);
+    EXPECT_EQ(reused, deepest(exact.data.get()).size()) << dx;  // every touching pair
+    reused_steps += reused > 0;
+    const auto a = deepest(reusing.data.get());
+    const auto b = deepest(exact.data.get());
+    ASSERT_EQ(a.size(), b.size()) << dx;
+    for (const auto& [pair, depth] : b) {
+      ASSERT_TRUE(a.count(pair)) << dx;
+      worst = std::max(worst, std::abs(a.at(pair) - depth));
+      EXPECT_LE(std::abs(a.at(pair) - depth), 2 * drift)
+          << dx << " geoms " << pair.first << ", " << pair.second;
+    }
+  }
+  EXPECT_EQ(reused_steps, 4);
+  std::printf("deepest contact of a touching pair, reused against exact: at most %.1f um apart\n",
+              worst * 1e6);
+  // Back at the pose of the last query: exactly its contacts, reused.
+  EXPECT_GT(at(0), 0u);
+  EXPECT_TRUE(same(reusing.data.get(), exact.data.get()));
+  // Beyond the drift: queried again, exact.
+  EXPECT_EQ(at(6e-5), 0u);
+  EXPECT_TRUE(same(reusing.data.get(), exact.data.get()));
 }
 
 }  // namespace

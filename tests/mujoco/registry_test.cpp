@@ -81,7 +81,7 @@ TEST(RegistryConfig, ParsesEveryField) {
   const RegistryConfig c = parse_registry_config(
       R"({"method": "neurosat", "cap": 900, "switch": 40, "cache_slots": 64, "max_depth": 0.002,
           "max_contacts": 12, "max_patch_contacts": 3, "front_list": false,
-          "pairs": [{"a": "finger*", "b": "geom:cup"},
+          "contact_reuse": 5e-5, "pairs": [{"a": "finger*", "b": "geom:cup"},
                     {"a": "palm", "b": "cup", "max_contacts": 2, "max_patch_contacts": 1}]})",
       "x.json");
   EXPECT_EQ(c.method, Method::kNeuroSat);
@@ -92,6 +92,7 @@ TEST(RegistryConfig, ParsesEveryField) {
   EXPECT_EQ(c.manifold.max_per_pair, 12);
   EXPECT_EQ(c.manifold.max_per_patch, 3);
   EXPECT_FALSE(c.front_list);
+  EXPECT_DOUBLE_EQ(c.contact_reuse, 5e-5);
   ASSERT_EQ(c.patterns.size(), 2u);
   EXPECT_EQ(c.patterns[0].a, "finger*");
   EXPECT_EQ(c.patterns[0].b, "geom:cup");
@@ -103,6 +104,7 @@ TEST(RegistryConfig, ParsesEveryField) {
   EXPECT_EQ(d.manifold.max_per_patch, 4);
   EXPECT_EQ(d.manifold.max_per_pair, 8);
   EXPECT_TRUE(d.front_list);
+  EXPECT_EQ(d.contact_reuse, 0.0);  // exact contacts every step unless asked
 }
 
 // Each bad config gives one line that starts with the config's name.
@@ -124,6 +126,9 @@ TEST(RegistryConfig, ErrorsAreOneLineAndNameTheSource) {
            R"({"pairs": [{"a": "x", "b": "y", "max_contacts": -3}]})",  // per pair, below 1
            R"({"pairs": [{"a": "x", "b": "y", "colour": 1}]})",         // unknown pair field
            R"({"front_list": 1, "pairs": []})",                         // not a boolean
+           R"({"contact_reuse": -1e-5, "pairs": []})",                  // negative
+           R"({"contact_reuse": 0.002, "pairs": []})",                  // above 1 mm
+           R"({"contact_reuse": "5e-5", "pairs": []})",                 // not a number
        }) {
     try {
       parse_registry_config(bad, "cfg/hand.json");

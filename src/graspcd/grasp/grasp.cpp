@@ -235,6 +235,7 @@ class GraspRun {
     detection_ns_total_ += s.detection_ns;
     contained_total_ += s.contained;
     nonfinite_total_ += s.nonfinite_skips;
+    reused_total_ += s.reused;
     return s;
   }
 
@@ -273,6 +274,7 @@ class GraspRun {
   std::uint64_t detection_ns_total_ = 0;
   std::uint64_t contained_total_ = 0;
   std::uint64_t nonfinite_total_ = 0;
+  std::uint64_t reused_total_ = 0;
 };
 
 // Appends grasp step k's record (its contacts, segments touching, the bridge's counters over the
@@ -396,6 +398,7 @@ void finish_result(const Run& run, const mjData* d, double final_z, GraspResult&
   result.detection_ns_total = run.detection_ns_total_;
   result.contained_calls = run.contained_total_;
   result.nonfinite_skips = run.nonfinite_total_;
+  result.reused_calls = run.reused_total_;
   result.max_contacts = run.max_contacts_;
   result.mean_contacts = run.physics_steps_ > 0 ? static_cast<double>(run.contacts_sum_) /
                                                       static_cast<double>(run.physics_steps_)
@@ -529,6 +532,7 @@ class DrivenRun {
     detection_ns_total_ += s.detection_ns;
     contained_total_ += s.contained;
     nonfinite_total_ += s.nonfinite_skips;
+    reused_total_ += s.reused;
     return s;
   }
 
@@ -552,6 +556,7 @@ class DrivenRun {
   long physics_steps_ = 0;
   std::int64_t wall_ns_ = 0;
   std::uint64_t detection_ns_total_ = 0, contained_total_ = 0, nonfinite_total_ = 0;
+  std::uint64_t reused_total_ = 0;
 };
 
 void run_driven_grasp(DrivenRun& run, const GraspOptions& options, GraspResult& result) {
@@ -852,6 +857,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
       if (options.cap) config.detector.cap = *options.cap;
       if (options.switch_passes) config.detector.switch_passes = *options.switch_passes;
       if (options.front_list) config.front_list = *options.front_list;
+      if (options.contact_reuse) config.contact_reuse = *options.contact_reuse;
       registry = std::make_unique<Registry>(m, config, config_path);
     } catch (const GraspInputError&) {
       throw;

@@ -96,11 +96,12 @@ class GraspInputError : public std::runtime_error {
 struct GraspOptions {
   std::string config_path;  // pair config; empty: SCENE.pairs.json beside the scene
   std::optional<Method> method;
-  std::optional<int> cap;            // perceptron pass cap override
-  std::optional<int> switch_passes;  // Neuro-SAT switch override
-  bool native = false;               // MuJoCo's own collision, no registry
-  std::optional<bool> front_list;    // overrides the config's "front_list" (registry.h)
-  int max_steps = 400;               // most closing grasp steps
+  std::optional<int> cap;               // perceptron pass cap override
+  std::optional<int> switch_passes;     // Neuro-SAT switch override
+  bool native = false;                  // MuJoCo's own collision, no registry
+  std::optional<bool> front_list;       // overrides the config's "front_list" (registry.h)
+  std::optional<double> contact_reuse;  // overrides the config's "contact_reuse" (registry.h)
+  int max_steps = 400;                  // most closing grasp steps
   // 5 steps of 2 ms per grasp step: a target ramp of 0.3 rad/s, tracked with the velocity
   // feed-forward within a few 1e-4 rad at omega = 40 rad/s.
   int physics_steps_per_grasp_step = 5;
@@ -176,6 +177,7 @@ struct GraspResult {
   int max_pair_contacts = 0;             // most of them one geom pair had in one physics step
   std::uint64_t contained_calls = 0;     // containment findings over all phases (registry.h)
   std::uint64_t nonfinite_skips = 0;  // served calls skipped on a non-finite placement, all phases
+  std::uint64_t reused_calls = 0;     // served calls answered by reused contacts, all phases
   // The registry's warnings (registry.h, Registry::warnings()), one line each.
   std::vector<std::string> warnings;
 };

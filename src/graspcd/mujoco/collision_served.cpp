@@ -35,10 +35,26 @@ void write_contact(const TriContact& c, const Mat3& R1, const Vec3& p1, mjContac
   }
 }
 
+// Writes `contacts` (geom1's frame) into `con` in the world frame, at most mjMAXCONPAIR; returns
+// how many.
+int write_contacts(const std::vector<TriContact>& contacts, const mjData* d, int g1,
+                   mjContact* con) {
+  const Mat3 R1 = from_row_major(d->geom_xmat + 9 * g1);
+  const Vec3 p1 = geom_position(d, g1);
+  int n = 0;
+  for (const TriContact& c : contacts) {
+    if (n == mjMAXCONPAIR) break;
+    write_contact(c, R1, p1, con[n++]);
+  }
+  return n;
+}
+
 // Tree path: tree query (paper sections 2-6 through core's Detector, all contacts), one candidate
 // contact per intersecting triangle pair (contact.h, after Bullet's GImpact clip method), in the
 // sorted order of the pairs, reduced to the pair's manifold (contact.h: patches, at most
-// max_patch_contacts points each and max_contacts in all), written in the world frame.
+// max_patch_contacts points each and max_contacts in all), written in the world frame. With
+// "contact_reuse" (registry.h), the pair's last contacts on this mjData, refreshed, while it moved
+// less than that (contact.h, ReusedContacts).
 int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
                   int g2) {
   ServedPair& served = registry.pair(pair_index);
@@ -52,8 +68,20 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
 
   // The tree query with geom2 placed in geom1's frame.
   const Pose pose = relative_pose(d, g1, g2);
-  tri_pairs.clear();
   const Clock::time_point start = Clock::now();
+  const double reuse = registry.config().contact_reuse;
+  ReusedContacts* kept = reuse > 0 ? &registry.reused(d, pair_index) : nullptr;
+  if (kept && kept->refresh(pose, t2->radius, reuse, candidates)) {
+    const double max_depth = registry.config().max_depth;
+    for (TriContact& c : candidates) c.depth = std::min(c.depth, max_depth);
+    const int n = write_contacts(candidates, d, g1, con);
+    served.contained = false;
+    ++stats.reused;
+    stats.contacts += static_cast<std::uint64_t>(n);
+    stats.contact_ns += elapsed_ns(start, Clock::now());
+    return n;
+  }
+  tri_pairs.clear();
   if (registry.config().front_list) {
     QueryFront& front = registry.front(d, pair_index);
     served.detector->collide_coherent(t1->tree, t2->tree, pose, stats.counters, &tri_pairs, front);
@@ -66,6 +94,7 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
   stats.detection_ns += elapsed_ns(start, queried);
   served.contained = false;
   if (tri_pairs.empty()) {
+    if (kept) kept->clear();
     // The separate containment check: only closed solids contain, and only when the root boxes
     // overlap can one lie inside the other.
     if ((t1->closedness.closed() || t2->closedness.closed()) &&
@@ -107,13 +136,8 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
   }
   stats.candidates += candidates.size();
   stats.patches += manifold.patches.size();
-  const Mat3 R1 = from_row_major(d->geom_xmat + 9 * g1);
-  const Vec3 p1 = geom_position(d, g1);
-  int n = 0;
-  for (const TriContact& c : manifold.contacts) {
-    if (n == mjMAXCONPAIR) break;
-    write_contact(c, R1, p1, con[n++]);
-  }
+  const int n = write_contacts(manifold.contacts, d, g1, con);
+  if (kept) kept->store(pose, manifold.contacts);
   stats.contacts += static_cast<std::uint64_t>(n);
   stats.contact_ns += elapsed_ns(queried, Clock::now());
   return n;

@@ -1,5 +1,6 @@
 #include "graspcd/mujoco/registry.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -66,6 +67,9 @@ MeshTree make_tree(const std::vector<Triangle>& tris) {
   mt.vertex_ids = weld_vertex_ids(tris);  // tris[f] is face(f): the tree copies the triangles
   mt.sharp_masks = sharp_edge_masks(tris, mt.vertex_ids);
   mt.closedness = closedness(mt.tree);
+  for (const Triangle& t : tris) {
+    for (const Vec3& v : t.v) mt.radius = std::max(mt.radius, v.norm());
+  }
   return mt;
 }
 
@@ -168,6 +172,12 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
     } else if (field == "front_list") {
       if (!value.is_boolean()) fail(source, "'front_list' must be true or false");
       c.front_list = value.get<bool>();
+    } else if (field == "contact_reuse") {
+      if (!value.is_number() || !(value.get<double>() >= 0) ||
+          !(value.get<double>() <= RegistryConfig::kMaxContactReuse)) {
+        fail(source, "'contact_reuse' must be a number of metres in [0, 0.001]");
+      }
+      c.contact_reuse = value.get<double>();
     } else if (field == "grasp") {
       // How the grasp experiment drives a hand: read by graspcd_grasp (graspcd/grasp/
       // drive_config.h), not by the seam.
@@ -372,6 +382,7 @@ void Registry::add_pair(int g1, int g2, const ManifoldOptions& manifold) {
 void Registry::reset_detectors() {
   for (ServedPair& p : pairs_) p.detector->reset();
   fronts_.clear();
+  reused_.clear();
 }
 
 QueryFront& Registry::front(const mjData* d, int pair_index) {
@@ -385,7 +396,20 @@ QueryFront& Registry::front(const mjData* d, int pair_index) {
   return it->second[static_cast<std::size_t>(pair_index)];
 }
 
-void Registry::forget_fronts(const mjData* d) { fronts_.erase(d); }
+ReusedContacts& Registry::reused(const mjData* d, int pair_index) {
+  auto it = reused_.find(d);
+  if (it == reused_.end()) {
+    // Bounded as the fronts are; any kept contacts, even a freed mjData's, hold for their pose.
+    if (reused_.size() >= kMaxFrontData) reused_.clear();
+    it = reused_.emplace(d, std::vector<ReusedContacts>(pairs_.size())).first;
+  }
+  return it->second[static_cast<std::size_t>(pair_index)];
+}
+
+void Registry::forget_fronts(const mjData* d) {
+  fronts_.erase(d);
+  reused_.erase(d);
+}
 
 void Registry::warn(const std::string& code, const std::string& message) {
   warnings_.push_back(message);

@@ -12,6 +12,8 @@
 //     "max_contacts": 8,       // contacts handed to MuJoCo per geom pair (1 .. mjMAXCONPAIR = 50)
 //     "max_patch_contacts": 4, // contacts per contact patch (1 .. 50), see contact.h, "manifold"
 //     "front_list": true,      // restart each tree query from the last step's front (speed only)
+//     "contact_reuse": 0,      // metres in [0, 0.001]: reuse a pair's contacts while it moves
+//                              // less (contact.h, ReusedContacts); 0: exact contacts every step
 //     "pairs": [ {"a": "finger*", "b": "body:object"} , ... ]
 //   }
 // A pair entry may carry its own "max_contacts" and "max_patch_contacts", which override the
@@ -93,6 +95,13 @@ struct RegistryConfig {
   // the same mjData stopped last time, when the pair moved little (core/tree_query.h,
   // collide_coherent). The contacts are the same either way; false: every query from the roots.
   bool front_list = true;
+  // Contacts reused across steps (contact.h, ReusedContacts), opt-in: while no point of geom2
+  // moved more than this (metres) relative to geom1 since the pair's last exact query on the same
+  // mjData, its contacts are refreshed instead of queried (their depths along their normals; a
+  // region that begins or ends to touch within this drift is seen at the next exact query). 0
+  // (the default): every step's contacts come from an exact query. At most kMaxContactReuse.
+  double contact_reuse = 0;
+  static constexpr double kMaxContactReuse = 0.001;
   std::vector<PairPattern> patterns;
   // Geom id pairs registered directly (programmatic use), in addition to the patterns.
   std::vector<std::pair<int, int>> geom_pairs;
@@ -140,6 +149,9 @@ struct BridgeStats {
   std::uint64_t nonfinite_skips = 0;
   // Tree queries restarted from the pair's front on its mjData (RegistryConfig::front_list).
   std::uint64_t front_restarts = 0;
+  // Tree-path calls answered by the pair's reused contacts, without a query
+  // (RegistryConfig::contact_reuse).
+  std::uint64_t reused = 0;
 };
 
 // The tree of one mesh (or of one primitive's tessellation) and, for each face id, the face's slot
@@ -154,6 +166,7 @@ struct MeshTree {
   std::vector<std::int32_t> slot_of_face;
   std::vector<std::uint8_t> sharp_masks;
   std::vector<FaceVertexIds> vertex_ids;  // per face: its welded vertices (the manifold's patches)
+  double radius = 0;  // the largest distance of a vertex from the geom frame's origin
   std::uint8_t sharp(std::int32_t f) const { return sharp_masks[static_cast<std::size_t>(f)]; }
   const FaceVertexIds& vertices(std::int32_t f) const {
     return vertex_ids[static_cast<std::size_t>(f)];
@@ -245,14 +258,19 @@ class Registry {
     stats_ = BridgeStats{};
     return s;
   }
-  // Forgets every detector's cached state (warm planes, cached axes, switches) and every front.
+  // Forgets every detector's cached state (warm planes, cached axes, switches), every front and
+  // every pair's reused contacts.
   void reset_detectors();
   // The query front of a tree-path pair on one mjData (RegistryConfig::front_list): the state of
   // the tree query's temporal coherence is kept per (mjData, pair), so that two mjData stepping
   // the same model (the study's threads, a planner's rollouts) never follow each other's fronts.
   // Created empty on first use; at most kMaxFrontData mjData are remembered.
   QueryFront& front(const mjData* d, int pair_index);
-  // Forgets the fronts of `d` (e.g. before mj_deleteData; not needed for correctness).
+  // The contacts a tree-path pair keeps on one mjData (RegistryConfig::contact_reuse), per
+  // (mjData, pair) like the fronts and forgotten with them.
+  ReusedContacts& reused(const mjData* d, int pair_index);
+  // Forgets the fronts and reused contacts of `d` (e.g. before mj_deleteData; not needed for
+  // correctness: both depend on the pose alone).
   void forget_fronts(const mjData* d);
   static constexpr std::size_t kMaxFrontData = 64;
 
@@ -279,6 +297,7 @@ class Registry {
   std::vector<const MeshTree*> geom_trees_;  // by geom id
   BridgeStats stats_;
   std::unordered_map<const mjData*, std::vector<QueryFront>> fronts_;
+  std::unordered_map<const mjData*, std::vector<ReusedContacts>> reused_;
   std::vector<std::string> warnings_;
   // Adds a warning to warnings_ and to the process's sink under `code`.
   void warn(const std::string& code, const std::string& message);
