@@ -175,7 +175,7 @@ def main():
                     name, roots, None))
         reuse = "/".join(parts[:2] + ["served-reuse"] + parts[3:])
         rc = runs.get(reuse, {}).get("counters", {})
-        add(compare(runs, "grasp",
+        add(compare(runs, "grasp_reuse",
                     f"whole grasp {parts[1]}, contacts reused (20 um) / native per physics step",
                     reuse, native, 2.0, max_contacts=rc.get("max_contacts"),
                     mean_contacts=rc.get("mean_contacts"), reused_calls=rc.get("reused_calls"),
