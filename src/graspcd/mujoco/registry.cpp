@@ -381,35 +381,22 @@ void Registry::add_pair(int g1, int g2, const ManifoldOptions& manifold) {
 
 void Registry::reset_detectors() {
   for (ServedPair& p : pairs_) p.detector->reset();
-  fronts_.clear();
-  reused_.clear();
+  states_.clear();
 }
 
-QueryFront& Registry::front(const mjData* d, int pair_index) {
-  auto it = fronts_.find(d);
-  if (it == fronts_.end()) {
+Registry::DataPairState& Registry::state(const mjData* d, int pair_index) {
+  auto it = states_.find(d);
+  if (it == states_.end()) {
     // Bounded: past kMaxFrontData mjData, forget them all (a speed matter only: any front, even
-    // one left by a freed mjData whose address was reused, gives the same answers).
-    if (fronts_.size() >= kMaxFrontData) fronts_.clear();
-    it = fronts_.emplace(d, std::vector<QueryFront>(pairs_.size())).first;
+    // one left by a freed mjData whose address was reused, gives the same answers, and kept
+    // contacts hold for the pose they were kept at).
+    if (states_.size() >= kMaxFrontData) states_.clear();
+    it = states_.emplace(d, std::vector<DataPairState>(pairs_.size())).first;
   }
   return it->second[static_cast<std::size_t>(pair_index)];
 }
 
-ReusedContacts& Registry::reused(const mjData* d, int pair_index) {
-  auto it = reused_.find(d);
-  if (it == reused_.end()) {
-    // Bounded as the fronts are; any kept contacts, even a freed mjData's, hold for their pose.
-    if (reused_.size() >= kMaxFrontData) reused_.clear();
-    it = reused_.emplace(d, std::vector<ReusedContacts>(pairs_.size())).first;
-  }
-  return it->second[static_cast<std::size_t>(pair_index)];
-}
-
-void Registry::forget_fronts(const mjData* d) {
-  fronts_.erase(d);
-  reused_.erase(d);
-}
+void Registry::forget_fronts(const mjData* d) { states_.erase(d); }
 
 void Registry::warn(const std::string& code, const std::string& message) {
   warnings_.push_back(message);
