@@ -43,6 +43,21 @@ CLI::Validator non_negative_number() {
   return finite_number([](double x) { return x >= 0; }, ">= 0", "NONNEGATIVE");
 }
 
+CLI::Validator number_in_range(double lo, double hi) {
+  std::ostringstream range;
+  range << "in [" << lo << ", " << hi << "]";
+  const std::string bound = range.str();
+  return CLI::Validator(
+      [lo, hi, bound](std::string& input) -> std::string {
+        double x = 0;
+        if (!CLI::detail::lexical_cast(input, x) || !std::isfinite(x)) {
+          return "Value " + input + " is not a finite number";
+        }
+        return x >= lo && x <= hi ? "" : "Value " + input + " is not " + bound;
+      },
+      "FLOAT " + bound);
+}
+
 CLI::Validator integer_in_range(long long lo, long long hi) {
   const std::string range = std::to_string(lo) + " .. " + std::to_string(hi);
   return CLI::Validator(

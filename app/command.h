@@ -43,6 +43,10 @@ Command add_decompose_command(CLI::App& parent);
 CLI::Validator positive_number();
 CLI::Validator non_negative_number();
 
+// A CLI11 validator of a finite number in [lo, hi]: "Value 0.01 is not in [0, 0.001]", "Value nan
+// is not a finite number".
+CLI::Validator number_in_range(double lo, double hi);
+
 // A CLI11 validator of an integer option in [lo, hi]: "Value abc is not an integer", "Value 0 is
 // not in 4 .. 100000000" (CLI11's Range says "Value abc not in range" of a non-number).
 CLI::Validator integer_in_range(long long lo, long long hi);

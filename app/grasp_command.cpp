@@ -269,6 +269,9 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   if (app.count("--pose") > 0 && (app.count("--up") > 0 || app.count("--yaw") > 0)) {
     throw UsageError("grasp: --pose and --up/--yaw exclude each other");
   }
+  if (app.count("--contact-reuse") > 0 && (options.native || !options.decomposed.empty())) {
+    throw UsageError("grasp: --contact-reuse goes with graspcd's contacts, not --native");
+  }
   if (!options.decomposed.empty() && !options.object.empty()) {
     throw UsageError(
         "grasp: --decomposed goes with SCENE (write the --object scene with "
@@ -401,8 +404,7 @@ Command add_grasp_command(CLI::App& parent) {
                   "contacts that begin or end within it wait for the next query; the hard scenes "
                   "pass at 2e-5, not at 5e-5); 0: exact contacts every step (default: the "
                   "config's, else 0)")
-      ->check(non_negative_number())
-      ->check(CLI::Range(0.0, 0.001));
+      ->check(number_in_range(0.0, bridge::RegistryConfig::kMaxContactReuse));
   app->footer(wrap_help(
       "The fingers close in grasp steps of 0.003 rad (5 physics steps each, computed-torque "
       "control of every joint); a finger segment stops at its first contact with the object "

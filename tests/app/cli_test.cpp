@@ -532,6 +532,26 @@ TEST_F(CliTest, GraspNativeHasNoDetectionTime) {
   EXPECT_GT(doc.at("physics_steps").get<long>(), 0);
 }
 
+// --contact-reuse (registry.h, "contact_reuse"): touching pairs answered by their kept contacts,
+// counted in reused_calls; 0 is the exact default; out of range, not a number, or with --native,
+// one line and exit code 2.
+TEST_F(CliTest, GraspContactReuseIsCountedAndCheckedOnTheCommandLine) {
+  const std::string scene = shipped_scene("example1");
+  const Result r = run("grasp " + scene + " --max-steps 60 --json --contact-reuse 2e-5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(nlohmann::json::parse(r.out).at("reused_calls").get<long>(), 0);
+  const Result exact = run("grasp " + scene + " --max-steps 60 --json");
+  ASSERT_EQ(exact.exit_code, 0) << exact.err;
+  EXPECT_EQ(nlohmann::json::parse(exact.out).at("reused_calls"), 0);
+  for (const std::string bad : {"--contact-reuse -1e-5", "--contact-reuse 0.01",
+                                "--contact-reuse nan", "--contact-reuse 2e-5 --native"}) {
+    const Result e = run("grasp " + scene + " " + bad);
+    EXPECT_EQ(e.exit_code, 2) << bad;
+    EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << bad << ": " << e.err;
+    EXPECT_NE(e.err.find("--contact-reuse"), std::string::npos) << bad << ": " << e.err;
+  }
+}
+
 // A closed box 50 x 40 x 60 (file units: millimetres), off the origin: x 100..150, z 10..70.
 const char* const kUserBox =
     "v 100 -20 10\nv 150 -20 10\nv 150 20 10\nv 100 20 10\n"
