@@ -19,7 +19,9 @@
 #include <benchmark/benchmark.h>
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <set>
 #include <stdexcept>
@@ -274,21 +276,38 @@ void whole_grasp(benchmark::State& state, const std::string& scene, const std::s
 const char* const kGraspScenes[] = {"example1.xml", "example2.xml", "example3.xml",
                                     "hand_triangles.xml", "real_robotiq_cup.xml"};
 
-void register_whole_grasps() {
-  for (const char* scene : kGraspScenes) {
-    const std::string name = std::string(scene).substr(0, std::string(scene).size() - 4);
-    for (const char* variant : {"native", "served", "served-roots", "served-reuse"}) {
-      benchmark::RegisterBenchmark(
-          ("BM_WholeGrasp/" + name + "/" + variant).c_str(),
-          [scene, variant](benchmark::State& st) { whole_grasp(st, scene, variant); })
-          ->UseManualTime()
-          ->Iterations(1)
-          ->Unit(benchmark::kMicrosecond);
+// One benchmark per repetition ("BM_WholeGrasp/SCENE/VARIANT/rep:K", each run once), registered
+// repetition by repetition and scene by scene, so that a scene's native and served grasps of one
+// repetition run one after the other and a slow moment of the machine falls on both, not on all
+// repetitions of one variant (Google Benchmark runs one benchmark's repetitions back to back).
+// perf_summary.py folds "/rep:K" back into one benchmark's repetitions.
+void register_whole_grasps(int repetitions) {
+  for (int k = 0; k < repetitions; ++k) {
+    for (const char* scene : kGraspScenes) {
+      const std::string name = std::string(scene).substr(0, std::string(scene).size() - 4);
+      for (const char* variant : {"native", "served", "served-roots", "served-reuse"}) {
+        benchmark::RegisterBenchmark(
+            ("BM_WholeGrasp/" + name + "/" + variant + "/rep:" + std::to_string(k)).c_str(),
+            [scene, variant](benchmark::State& st) { whole_grasp(st, scene, variant); })
+            ->UseManualTime()
+            ->Iterations(1)
+            ->Repetitions(1)
+            ->Unit(benchmark::kMicrosecond);
+      }
     }
   }
 }
 
-const bool kRegistered = (register_whole_grasps(), true);
+// --benchmark_repetitions=N of the command line (1 when absent): the whole grasps' repetitions.
+int requested_repetitions(int argc, char** argv) {
+  const std::string key = "--benchmark_repetitions=";
+  int n = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.rfind(key, 0) == 0) n = std::max(1, std::atoi(arg.c_str() + key.size()));
+  }
+  return n;
+}
 
 BENCHMARK(BM_StepPlain)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepInstalledNoRegistry)->Unit(benchmark::kMicrosecond);
@@ -299,4 +318,11 @@ BENCHMARK(BM_NoopDelegated);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  register_whole_grasps(requested_repetitions(argc, argv));
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

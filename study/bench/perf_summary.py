@@ -7,7 +7,10 @@ Usage: /usr/bin/python3 study/bench/perf_summary.py FCL_BENCH.json MUJOCO_BENCH.
 
 A ratio's median is the ratio of the two medians; its min and max are those of the ratios of
 repetition i of ours to repetition i of the peer (Google Benchmark runs the repetitions of one
-benchmark back to back, so pairing them by index is pairing runs minutes apart at most).
+benchmark back to back, so pairing them by index is pairing runs minutes apart at most; the
+whole grasps are registered one benchmark per repetition, "/rep:K", in the order repetition,
+scene, variant, so that repetition K of a scene's native and served grasps run one after the
+other, and "/rep:K" is folded into the benchmark's name here).
 Exits 2 with a one-line message when an input is missing or not Google Benchmark's JSON.
 """
 
@@ -49,9 +52,9 @@ def repetitions(data):
     for b in data["benchmarks"]:
         if b.get("run_type") != "iteration" or b.get("error_occurred"):
             continue
-        # A fixed iteration count shows in the name ("/iterations:1"); the comparisons do not
-        # depend on it.
-        name = re.sub(r"/iterations:\d+|/manual_time", "", b["run_name"])
+        # A fixed iteration count shows in the name ("/iterations:1"), and the whole grasps'
+        # repetition ("/rep:K", each its own benchmark); the comparisons depend on neither.
+        name = re.sub(r"/iterations:\d+|/repeats:\d+|/manual_time|/rep:\d+", "", b["run_name"])
         entry = out.setdefault(name, {"times": [], "unit": b["time_unit"],
                                                "counters": {}})
         # Manual-time benchmarks (the whole grasps) time only what they measure: their real_time.
