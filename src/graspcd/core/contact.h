@@ -146,10 +146,12 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
 // is stored as its point on geom1's surface (geom1 frame) and its point on geom2's surface (geom2
 // frame); at a later relative pose the point on geom2 is moved with geom2, and the depth is the
 // penetration of the two points along the stored normal. What is not refreshed: the normal (it
-// stays the patch normal of the exact query, turned by at most the drift over geom2's radius),
-// and the set of points: a region that begins or ends to touch inside the drift is seen only at
-// the next exact query. So every reused depth is within the drift of one the pair really had,
-// and a region missed is at most the drift deep.
+// stays the patch normal of the exact query, though the pair may have turned by up to about the
+// drift over geom2's radius since), and the set of points: a region that begins or ends to touch
+// within the drift is seen only at the next exact query. A refreshed depth and the exact one at
+// the same pose each moved at most the drift from the query's, so they differ by at most twice
+// the drift (nonconvex_contacts_test checks it against exact queries), and a missed region is at
+// most the drift deep.
 
 // A bound on how far any point of geom2 within `radius` of geom2's origin moved relative to geom1
 // between the relative poses `from` and `to`: |t - t0| + ||R - R0||_2 radius, with the spectral
