@@ -577,19 +577,31 @@ def contacts_section(contacts):
       " filled MuJoCo's contact or constraint buffer. The served step's cost against native is"
       " a benchmark, `BM_WholeGrasp` of `./run perf` (docs/performance.md), not these single"
       " runs.")
+    if "reuse" in contacts:
+        w("")
+        w(f"\"reused\" is the manifold with contacts reused across steps within"
+          f" {contacts['reuse'] * 1e6:g} µm (`grasp --contact-reuse`, opt-in, not exact:"
+          " docs/design.md); the last column counts the served calls it answered without a"
+          " query.")
     w("")
+    reuse = "reuse" in contacts
     w("| scene | variant | contacts per step (mean, max) | most per pair | held, rise (cm) |"
-      " at rest: speed (mm/s), penetration (mm) | buffers full |")
-    w("|---|---|---|---|---|---|---|")
-    names = {"native": "native", "manifold": "manifold (4/8)", "before": f"before ({before})"}
+      " at rest: speed (mm/s), penetration (mm) | buffers full |"
+      + (" reused calls |" if reuse else ""))
+    w("|---|---|---|---|---|---|---|" + ("---|" if reuse else ""))
+    names = {"native": "native", "manifold": "manifold (4/8)", "before": f"before ({before})",
+             "reuse": "manifold, reused"}
     for scene, variants in contacts["scenes"].items():
-        for key in ("native", "manifold", "before"):
+        for key in ("native", "manifold", "before", "reuse"):
+            if key not in variants:
+                continue
             r = variants[key]
             full = r["contact_buffer_full"] + r["constraint_buffer_full"]
             w(f"| {scene} | {names[key]} | {r['mean_contacts']:.1f}, {r['max_contacts']} |"
               f" {r['max_pair_contacts']} | {'yes' if r['held'] else 'no'},"
               f" {100 * r['rise']:.2f} | {1000 * r['rest_max_speed']:.2f},"
-              f" {1000 * r['rest_max_penetration']:.3f} | {full} |")
+              f" {1000 * r['rest_max_penetration']:.3f} | {full} |"
+              + (f" {r.get('reused_calls', 0)} |" if reuse else ""))
     # What the table says about the manifold at rest, read from it.
     worse = [scene for scene, v in contacts["scenes"].items()
              if v["manifold"]["rest_max_speed"] > 1.2 * max(v["before"]["rest_max_speed"],

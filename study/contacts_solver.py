@@ -3,10 +3,11 @@
 
 usage: contacts_solver.py GRASPCD OUT_DIR [--quick]
 
-Runs `graspcd grasp SCENE --json` on each scene three ways: natively (MuJoCo's convex hulls),
+Runs `graspcd grasp SCENE --json` on each scene four ways: natively (MuJoCo's convex hulls),
 served with the pair config as shipped (the contact manifold: at most 4 points per patch and 8 per
-geom pair), and served with the budget raised to mjMAXCONPAIR (50 per pair and per patch: every
-intersecting triangle pair's contact, up to MuJoCo's cap, as before the manifold). Writes
+geom pair), served with the budget raised to mjMAXCONPAIR (50 per pair and per patch: every
+intersecting triangle pair's contact, up to MuJoCo's cap, as before the manifold), and served as
+shipped with contacts reused across steps within REUSE metres (`--contact-reuse`, opt-in). Writes
 OUT_DIR/contacts.json: per scene and variant the finger-object contacts per physics step (mean,
 max), the most one geom pair had, the wall time per physics step, held and the rise, the hold's
 last second at rest (speed, penetration), and MuJoCo's buffer-full counters. The time ratios are
@@ -22,6 +23,7 @@ import tempfile
 SCENES = ["example1", "example2", "example3", "hand_triangles", "real_robotiq_cup"]
 QUICK_SCENES = ["example1", "example3"]
 BEFORE_BUDGET = 50  # mjMAXCONPAIR: what a pair could hand the solver before the manifold
+REUSE = 2e-5  # metres: the drift of the reuse variant, as in BM_WholeGrasp and the hard scenes
 
 
 def fail(message):
@@ -47,6 +49,7 @@ def grasp(graspcd, scene, extra):
         "rest_max_penetration": d["rest"]["max_penetration"],
         "contact_buffer_full": d["contact_buffer_full"],
         "constraint_buffer_full": d["constraint_buffer_full"],
+        "reused_calls": d["reused_calls"],
     }
 
 
@@ -57,7 +60,7 @@ def main():
     graspcd, out_dir = args
     mjcf = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "mjcf")
     scenes = QUICK_SCENES if "--quick" in sys.argv else SCENES
-    out = {"before_budget": BEFORE_BUDGET, "scenes": {}}
+    out = {"before_budget": BEFORE_BUDGET, "reuse": REUSE, "scenes": {}}
     with tempfile.TemporaryDirectory(prefix="graspcd-contacts-") as tmp:
         for name in scenes:
             scene = os.path.normpath(os.path.join(mjcf, name + ".xml"))
@@ -77,6 +80,7 @@ def main():
                 "native": grasp(graspcd, scene, ["--native"]),
                 "manifold": grasp(graspcd, scene, []),
                 "before": grasp(graspcd, scene, ["--config", before]),
+                "reuse": grasp(graspcd, scene, ["--contact-reuse", repr(REUSE)]),
             }
     os.makedirs(out_dir, exist_ok=True)
     with open(os.path.join(out_dir, "contacts.json"), "w") as f:
