@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <sstream>
 
@@ -20,7 +21,7 @@ bool stdin_is_stream() {
 }
 
 // A validator of a finite number for which `ok` holds; `bound` says what ok means ("> 0").
-CLI::Validator finite_number(bool (*ok)(double), const std::string& bound,
+CLI::Validator finite_number(std::function<bool(double)> ok, const std::string& bound,
                              const std::string& name) {
   return CLI::Validator(
       [ok, bound](std::string& input) -> std::string {
@@ -46,16 +47,8 @@ CLI::Validator non_negative_number() {
 CLI::Validator number_in_range(double lo, double hi) {
   std::ostringstream range;
   range << "in [" << lo << ", " << hi << "]";
-  const std::string bound = range.str();
-  return CLI::Validator(
-      [lo, hi, bound](std::string& input) -> std::string {
-        double x = 0;
-        if (!CLI::detail::lexical_cast(input, x) || !std::isfinite(x)) {
-          return "Value " + input + " is not a finite number";
-        }
-        return x >= lo && x <= hi ? "" : "Value " + input + " is not " + bound;
-      },
-      "FLOAT " + bound);
+  return finite_number([lo, hi](double x) { return x >= lo && x <= hi; }, range.str(),
+                       "FLOAT " + range.str());
 }
 
 CLI::Validator integer_in_range(long long lo, long long hi) {
