@@ -244,11 +244,20 @@ TEST(NonconvexContacts, ReusedContactsStayWithinTheDriftOfTheExactOnes) {
   };
   // Both at `closed` with the object moved by `dx` along x; the reusing registry's calls answered
   // by kept contacts.
-  const auto at = [&](double dx) {
+  // Or turned by `turn` about the vertical through `pivot` (world).
+  const auto at = [&](double dx, double turn = 0, const Vec3& pivot = Vec3::Zero()) {
     for (Scene* s : {&reusing, &exact}) {
       mjData* d = s->data.get();
       std::copy(closed.begin(), closed.end(), d->qpos);
       d->qpos[x] += dx;
+      const double cs = std::cos(turn), sn = std::sin(turn);
+      const double px = d->qpos[x] - pivot.x(), py = d->qpos[x + 1] - pivot.y();
+      d->qpos[x] = pivot.x() + cs * px - sn * py;
+      d->qpos[x + 1] = pivot.y() + sn * px + cs * py;
+      const mjtNum about_z[4] = {std::cos(turn / 2), 0, 0, std::sin(turn / 2)};
+      mjtNum q[4];
+      mju_mulQuat(q, about_z, d->qpos + x + 3);
+      std::copy(q, q + 4, d->qpos + x + 3);
       mj_forward(s->model.get(), d);
     }
     reference.take_stats();
@@ -275,14 +284,36 @@ TEST(NonconvexContacts, ReusedContactsStayWithinTheDriftOfTheExactOnes) {
     }
   }
   EXPECT_EQ(reused_steps, 4);
-  std::printf("deepest contact of a touching pair, reused against exact: at most %.1f um apart\n",
-              worst * 1e6);
   // Back at the pose of the last query: exactly its contacts, reused.
   EXPECT_GT(at(0), 0u);
   EXPECT_TRUE(same(reusing.data.get(), exact.data.get()));
   // Beyond the drift: queried again, exact.
   EXPECT_EQ(at(6e-5), 0u);
   EXPECT_TRUE(same(reusing.data.get(), exact.data.get()));
+  // Turned about the vertical through a touching finger segment's origin (geom1 of its pair), by
+  // more than the drift over the object's radius but less than over the segment's: that pair is
+  // reused (contact_drift bounds the object's points near the segment by the segment's radius),
+  // and every reused pair stays within twice the drift of the exact contacts.
+  const int segment = deepest(exact.data.get()).begin()->first.first;
+  const Vec3 pivot(exact.data->geom_xpos[3 * segment], exact.data->geom_xpos[3 * segment + 1], 0);
+  at(0, 0);  // queried again at the closed hand
+  std::uint64_t reused_turning = 0;
+  for (const double turn : {5e-4, 1e-3}) {
+    reused_turning += at(0, turn, pivot);
+    const auto a = deepest(reusing.data.get());
+    const auto b = deepest(exact.data.get());
+    ASSERT_EQ(a.size(), b.size()) << turn;
+    for (const auto& [pair, depth] : b) {
+      ASSERT_TRUE(a.count(pair)) << turn;
+      worst = std::max(worst, std::abs(a.at(pair) - depth));
+      EXPECT_LE(std::abs(a.at(pair) - depth), 2 * drift)
+          << turn << " geoms " << pair.first << ", " << pair.second;
+    }
+  }
+  std::printf("reused calls turning: %llu\n", static_cast<unsigned long long>(reused_turning));
+  EXPECT_GT(reused_turning, 0u);
+  std::printf("deepest contact of a touching pair, reused against exact: at most %.1f um apart\n",
+              worst * 1e6);
 }
 
 }  // namespace

@@ -719,8 +719,22 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
 
 // pose_drift: the bound of contact.h. ||R - R0||_2 = ||R0^T R - I||_2 = 2 sin(theta / 2), and
 // ||R0^T R - I||_F = 2 sqrt(2) sin(theta / 2) (two singular values of 2 sin(theta / 2), one 0).
+namespace {
+double turn_norm(const Pose& from, const Pose& to) {
+  return (to.R - from.R).norm() / std::sqrt(2.0);
+}
+}  // namespace
+
 double pose_drift(const Pose& from, const Pose& to, double radius) {
-  return (to.t - from.t).norm() + (to.R - from.R).norm() / std::sqrt(2.0) * radius;
+  return (to.t - from.t).norm() + turn_norm(from, to) * radius;
+}
+
+// contact_drift: the bound of contact.h. The inverse pose is (R^T, -R^T t), and ||R^T - R0^T||
+// = ||R - R0||.
+double contact_drift(const Pose& from, const Pose& to, double radius_a, double radius_b) {
+  const double turn = turn_norm(from, to);
+  const double seen_from_b = (to.R.transpose() * to.t - from.R.transpose() * from.t).norm();
+  return std::min((to.t - from.t).norm() + turn * radius_b, seen_from_b + turn * radius_a);
 }
 
 // After Bullet's btPersistentManifold (refreshContactPoints): points kept on both bodies, the
@@ -731,22 +745,30 @@ void ReusedContacts::store(const Pose& pose, const std::vector<TriContact>& cont
   pose_ = pose;
   contacts_ = contacts;
   on_b_.clear();
+  reach_ = 0;
   const Mat3 Rt = pose.R.transpose();
   for (const TriContact& c : contacts) {
     // The contact lies midway: geom2's surface point half the depth back along the normal (the
     // normal points from geom1 toward geom2, and geom2 reaches depth into geom1).
-    on_b_.push_back(Rt * (c.pos - 0.5 * c.depth * c.normal - pose.t));
+    const Vec3 on_b = c.pos - 0.5 * c.depth * c.normal;
+    reach_ = std::max(reach_, on_b.norm());
+    on_b_.push_back(Rt * (on_b - pose.t));
   }
 }
 
-bool ReusedContacts::refresh(const Pose& pose, double radius, double max_drift,
+bool ReusedContacts::refresh(const Pose& pose, double radius_a, double radius_b, double max_drift,
                              std::vector<TriContact>& out) const {
   if (!valid_) return false;
   if (pose.R == pose_.R && pose.t == pose_.t) {
     out = contacts_;
     return true;
   }
-  if (!(pose_drift(pose_, pose, radius) <= max_drift)) return false;  // NaN: not reused
+  // The points of geom2 near geom1 moved at most the drift, and (the normal is not refreshed: it
+  // is off by the pair's turn) the larger geom's rim turned at most the drift. NaN: not reused.
+  if (!(contact_drift(pose_, pose, std::max(radius_a, reach_), radius_b) <= max_drift &&
+        turn_norm(pose_, pose) * std::max(radius_a, radius_b) <= max_drift)) {
+    return false;
+  }
   out.resize(contacts_.size());
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const TriContact& c = contacts_[i];

@@ -71,7 +71,7 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
   const Clock::time_point start = Clock::now();
   const double reuse = registry.config().contact_reuse;
   ReusedContacts* kept = reuse > 0 ? &registry.reused(d, pair_index) : nullptr;
-  if (kept && kept->refresh(pose, t2->radius, reuse, candidates)) {
+  if (kept && kept->refresh(pose, t1->radius, t2->radius, reuse, candidates)) {
     const double max_depth = registry.config().max_depth;
     for (TriContact& c : candidates) c.depth = std::min(c.depth, max_depth);
     const int n = write_contacts(candidates, d, g1, con);

@@ -96,10 +96,11 @@ struct RegistryConfig {
   // collide_coherent). The contacts are the same either way; false: every query from the roots.
   bool front_list = true;
   // Contacts reused across steps (contact.h, ReusedContacts), opt-in: while no point of geom2
-  // moved more than this (metres) relative to geom1 since the pair's last exact query on the same
-  // mjData, its contacts are refreshed instead of queried (their depths along their normals; a
-  // region that begins or ends to touch within this drift is seen at the next exact query). 0
-  // (the default): every step's contacts come from an exact query. At most kMaxContactReuse.
+  // that can touch geom1 moved more than this (metres) relative to geom1, and the larger geom's
+  // rim turned no more, since the pair's last exact query on the same mjData, its contacts are
+  // refreshed instead of queried (their depths along their normals; a region that begins or ends
+  // to touch within this drift is seen at the next exact query). 0 (the default): every step's
+  // contacts come from an exact query. At most kMaxContactReuse.
   double contact_reuse = 0;
   static constexpr double kMaxContactReuse = 0.001;
   std::vector<PairPattern> patterns;
