@@ -193,7 +193,8 @@ TEST(NonconvexContacts, FrontListGivesBitwiseTheSameGraspWithStateRestores) {
 // (drift 50 um) and one exact, then the object moved in small steps. Within the drift the reusing
 // registry queries nothing, and each touching pair's deepest contact stays within twice the drift
 // of the exact one (its points move at most the drift; the exact deepest moves as little); beyond
-// it, and back at the pose of its last query, it gives bitwise the exact contacts.
+// it, and back at the pose of its last query, it gives bitwise the exact contacts. Then the
+// object turned about a finger segment: reused by contact_drift's bound seen from the segment.
 TEST(NonconvexContacts, ReusedContactsStayWithinTheDriftOfTheExactOnes) {
   const std::string scene = kMjcf + "/example1.xml";
   std::vector<mjtNum> closed;

@@ -14,8 +14,8 @@
 // and over the last second: penetration at most max(1 mm, native + 0.5 mm), the object's speed at
 // most max(1 mm/s, 1.2 x native), kinetic energy not rising. graspcd runs every scene twice: exact
 // contacts every step, and contacts reused across steps within 20 um (registry.h, "contact_reuse"),
-// both against the same bounds. (At 50 um the PD-driven C-block and the bowl drop fail them: the
-// object keeps moving, its energy rises; docs/performance.md.)
+// both against the same bounds. (At 50 um the PD-driven hands fail them, the C-block keeps moving;
+// at 10 um the bowl drop's energy rises; docs/performance.md.)
 //
 // Release pass only (ctest label "slow"; README, "The two commands"): thousands of steps each.
 #include <gtest/gtest.h>
