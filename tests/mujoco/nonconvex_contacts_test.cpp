@@ -265,24 +265,29 @@ TEST(NonconvexContacts, ReusedContactsStayWithinTheDriftOfTheExactOnes) {
     return ours.take_stats().reused;
   };
 
+  // Each touching pair's deepest contact, reused against exact: within twice the drift.
+  double worst = 0;
+  const auto within_twice_the_drift = [&](double step) {
+    const auto a = deepest(reusing.data.get());
+    const auto b = deepest(exact.data.get());
+    ASSERT_EQ(a.size(), b.size()) << step;
+    for (const auto& [pair, depth] : b) {
+      ASSERT_TRUE(a.count(pair)) << step;
+      worst = std::max(worst, std::abs(a.at(pair) - depth));
+      EXPECT_LE(std::abs(a.at(pair) - depth), 2 * drift)
+          << step << " geoms " << pair.first << ", " << pair.second;
+    }
+  };
+
   EXPECT_EQ(at(0), 0u);  // the first query is exact
   ASSERT_TRUE(same(reusing.data.get(), exact.data.get()));
   ASSERT_GE(deepest(exact.data.get()).size(), 2u);  // fingers touch the cup
   int reused_steps = 0;
-  double worst = 0;
   for (const double dx : {1e-5, 2e-5, 3e-5, 4e-5}) {
     const std::uint64_t reused = at(dx);
     EXPECT_EQ(reused, deepest(exact.data.get()).size()) << dx;  // every touching pair
     reused_steps += reused > 0;
-    const auto a = deepest(reusing.data.get());
-    const auto b = deepest(exact.data.get());
-    ASSERT_EQ(a.size(), b.size()) << dx;
-    for (const auto& [pair, depth] : b) {
-      ASSERT_TRUE(a.count(pair)) << dx;
-      worst = std::max(worst, std::abs(a.at(pair) - depth));
-      EXPECT_LE(std::abs(a.at(pair) - depth), 2 * drift)
-          << dx << " geoms " << pair.first << ", " << pair.second;
-    }
+    within_twice_the_drift(dx);
   }
   EXPECT_EQ(reused_steps, 4);
   // Back at the pose of the last query: exactly its contacts, reused.
@@ -291,25 +296,18 @@ TEST(NonconvexContacts, ReusedContactsStayWithinTheDriftOfTheExactOnes) {
   // Beyond the drift: queried again, exact.
   EXPECT_EQ(at(6e-5), 0u);
   EXPECT_TRUE(same(reusing.data.get(), exact.data.get()));
-  // Turned about the vertical through a touching finger segment's origin (geom1 of its pair), by
-  // more than the drift over the object's radius but less than over the segment's: that pair is
-  // reused (contact_drift bounds the object's points near the segment by the segment's radius),
-  // and every reused pair stays within twice the drift of the exact contacts.
+  // Turned about the vertical through a touching finger segment's origin (geom1 of its pair): the
+  // object's origin moves by the turn times its distance from the pivot, beyond the drift, but
+  // the object's points near the segment only by the turn times the segment's radius. That pair
+  // is reused by contact_drift's bound seen from the segment (pose_drift's would query it), and
+  // every reused pair stays within twice the drift of the exact contacts.
   const int segment = deepest(exact.data.get()).begin()->first.first;
   const Vec3 pivot(exact.data->geom_xpos[3 * segment], exact.data->geom_xpos[3 * segment + 1], 0);
-  at(0, 0);  // queried again at the closed hand
+  EXPECT_EQ(at(0), 0u);  // 60 um back: queried again at the closed hand
   std::uint64_t reused_turning = 0;
   for (const double turn : {5e-4, 1e-3}) {
     reused_turning += at(0, turn, pivot);
-    const auto a = deepest(reusing.data.get());
-    const auto b = deepest(exact.data.get());
-    ASSERT_EQ(a.size(), b.size()) << turn;
-    for (const auto& [pair, depth] : b) {
-      ASSERT_TRUE(a.count(pair)) << turn;
-      worst = std::max(worst, std::abs(a.at(pair) - depth));
-      EXPECT_LE(std::abs(a.at(pair) - depth), 2 * drift)
-          << turn << " geoms " << pair.first << ", " << pair.second;
-    }
+    within_twice_the_drift(turn);
   }
   std::printf("reused calls turning: %llu\n", static_cast<unsigned long long>(reused_turning));
   EXPECT_GT(reused_turning, 0u);
