@@ -420,10 +420,10 @@ TEST(ReusedContacts, PoseDriftBoundsHowFarEveryPointWithinTheRadiusMoved) {
   EXPECT_NEAR(pose_drift(a, b, radius), (b.R * rim - rim).norm(), 1e-15);
 }
 
-// contact_drift bounds the motion of every point of geom2 that lies within radius_a of geom1's
-// origin, at either pose (and of every point of geom2 within radius_b of its own); for a small
-// geom1 turning about its own origin against a large geom2 (a finger on its joint against the
-// object) it is the turn times geom1's radius, far below pose_drift's turn times geom2's.
+// contact_drift bounds the motion of every point of geom2 within radius_b of its own origin that
+// lies within radius_a of geom1's origin, at either pose; for a small geom1 turning about its own
+// origin against a large geom2 (a finger on its joint against the object) it is the turn times
+// geom1's radius, far below pose_drift's turn times geom2's.
 TEST(ReusedContacts, ContactDriftBoundsThePointsOfGeom2NearGeom1) {
   const double radius_a = 0.02, radius_b = 0.1;
   std::uint32_t seed = 11;

@@ -185,8 +185,8 @@ class ReusedContacts {
   // the kept points on geom2) and geom2's radius `radius_b`, each about its geom's origin; the
   // turn is held too because the normal is not refreshed (without it, the PD-driven hand of
   // hard_scenes_test on example 3 keeps the object moving at 11-14 mm/s at 20-30 um, against
-  // 1.3 mm/s). At the very pose they were computed at, exactly the stored contacts. Otherwise
-  // false and `out` unspecified: the caller queries exactly (and stores again).
+  // 0.7-1.3 mm/s with it). At the very pose they were computed at, exactly the stored contacts.
+  // Otherwise false and `out` unspecified: the caller queries exactly (and stores again).
   bool refresh(const Pose& pose, double radius_a, double radius_b, double max_drift,
                std::vector<TriContact>& out) const;
 
