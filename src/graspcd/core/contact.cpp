@@ -723,6 +723,13 @@ namespace {
 double turn_norm(const Pose& from, const Pose& to) {
   return (to.R - from.R).norm() / std::sqrt(2.0);
 }
+
+// contact_drift with the turn ||R - R0||_2 already at hand.
+double contact_drift_turned(const Pose& from, const Pose& to, double turn, double radius_a,
+                            double radius_b) {
+  const double seen_from_b = (to.R.transpose() * to.t - from.R.transpose() * from.t).norm();
+  return std::min((to.t - from.t).norm() + turn * radius_b, seen_from_b + turn * radius_a);
+}
 }  // namespace
 
 double pose_drift(const Pose& from, const Pose& to, double radius) {
@@ -732,9 +739,7 @@ double pose_drift(const Pose& from, const Pose& to, double radius) {
 // contact_drift: the bound of contact.h. The inverse pose is (R^T, -R^T t), and ||R^T - R0^T||
 // = ||R - R0||.
 double contact_drift(const Pose& from, const Pose& to, double radius_a, double radius_b) {
-  const double turn = turn_norm(from, to);
-  const double seen_from_b = (to.R.transpose() * to.t - from.R.transpose() * from.t).norm();
-  return std::min((to.t - from.t).norm() + turn * radius_b, seen_from_b + turn * radius_a);
+  return contact_drift_turned(from, to, turn_norm(from, to), radius_a, radius_b);
 }
 
 // After Bullet's btPersistentManifold (refreshContactPoints): points kept on both bodies, the
@@ -765,8 +770,10 @@ bool ReusedContacts::refresh(const Pose& pose, double radius_a, double radius_b,
   }
   // The points of geom2 near geom1 moved at most the drift, and (the normal is not refreshed: it
   // is off by the pair's turn) the larger geom's rim turned at most the drift. NaN: not reused.
-  if (!(contact_drift(pose_, pose, std::max(radius_a, reach_), radius_b) <= max_drift &&
-        turn_norm(pose_, pose) * std::max(radius_a, radius_b) <= max_drift)) {
+  const double turn = turn_norm(pose_, pose);
+  if (!(contact_drift_turned(pose_, pose, turn, std::max(radius_a, reach_), radius_b) <=
+            max_drift &&
+        turn * std::max(radius_a, radius_b) <= max_drift)) {
     return false;
   }
   out.resize(contacts_.size());

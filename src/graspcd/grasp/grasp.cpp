@@ -149,6 +149,17 @@ void throw_if_nonfinite(const mjData* d, const std::string& scene, const std::st
   }
 }
 
+// The bridge's counters summed over a whole grasp (every phase), as GraspResult reports them.
+struct BridgeTotals {
+  std::uint64_t detection_ns = 0, contained = 0, nonfinite_skips = 0, reused = 0;
+  void add(const BridgeStats& s) {
+    detection_ns += s.detection_ns;
+    contained += s.contained;
+    nonfinite_skips += s.nonfinite_skips;
+    reused += s.reused;
+  }
+};
+
 // The state the phases share: the model, the controller's targets, the contact scan and the
 // accumulated statistics.
 class GraspRun {
@@ -232,10 +243,7 @@ class GraspRun {
   BridgeStats take_stats() {
     if (!registry_) return BridgeStats{};
     BridgeStats s = registry_->take_stats();
-    detection_ns_total_ += s.detection_ns;
-    contained_total_ += s.contained;
-    nonfinite_total_ += s.nonfinite_skips;
-    reused_total_ += s.reused;
+    totals_.add(s);
     return s;
   }
 
@@ -271,10 +279,7 @@ class GraspRun {
   PairRun pair_run_;
   long physics_steps_ = 0;
   std::int64_t wall_ns_ = 0;
-  std::uint64_t detection_ns_total_ = 0;
-  std::uint64_t contained_total_ = 0;
-  std::uint64_t nonfinite_total_ = 0;
-  std::uint64_t reused_total_ = 0;
+  BridgeTotals totals_;
 };
 
 // Appends grasp step k's record (its contacts, segments touching, the bridge's counters over the
@@ -395,10 +400,10 @@ void finish_result(const Run& run, const mjData* d, double final_z, GraspResult&
   result.step_wall_ms = run.physics_steps_ > 0 ? static_cast<double>(run.wall_ns_) / 1e6 /
                                                      static_cast<double>(run.physics_steps_)
                                                : 0.0;
-  result.detection_ns_total = run.detection_ns_total_;
-  result.contained_calls = run.contained_total_;
-  result.nonfinite_skips = run.nonfinite_total_;
-  result.reused_calls = run.reused_total_;
+  result.detection_ns_total = run.totals_.detection_ns;
+  result.contained_calls = run.totals_.contained;
+  result.nonfinite_skips = run.totals_.nonfinite_skips;
+  result.reused_calls = run.totals_.reused;
   result.max_contacts = run.max_contacts_;
   result.mean_contacts = run.physics_steps_ > 0 ? static_cast<double>(run.contacts_sum_) /
                                                       static_cast<double>(run.physics_steps_)
@@ -529,10 +534,7 @@ class DrivenRun {
   BridgeStats take_stats() {
     if (!registry_) return BridgeStats{};
     const BridgeStats s = registry_->take_stats();
-    detection_ns_total_ += s.detection_ns;
-    contained_total_ += s.contained;
-    nonfinite_total_ += s.nonfinite_skips;
-    reused_total_ += s.reused;
+    totals_.add(s);
     return s;
   }
 
@@ -555,8 +557,7 @@ class DrivenRun {
   PairRun pair_run_;
   long physics_steps_ = 0;
   std::int64_t wall_ns_ = 0;
-  std::uint64_t detection_ns_total_ = 0, contained_total_ = 0, nonfinite_total_ = 0;
-  std::uint64_t reused_total_ = 0;
+  BridgeTotals totals_;
 };
 
 void run_driven_grasp(DrivenRun& run, const GraspOptions& options, GraspResult& result) {

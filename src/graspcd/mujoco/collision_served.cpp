@@ -70,7 +70,10 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
   const Pose pose = relative_pose(d, g1, g2);
   const Clock::time_point start = Clock::now();
   const double reuse = registry.config().contact_reuse;
-  ReusedContacts* kept = reuse > 0 ? &registry.reused(d, pair_index) : nullptr;
+  const bool front_list = registry.config().front_list;
+  Registry::DataPairState* carried =
+      reuse > 0 || front_list ? &registry.pair_state(d, pair_index) : nullptr;
+  ReusedContacts* kept = reuse > 0 ? &carried->reused : nullptr;
   if (kept && kept->refresh(pose, t1->radius, t2->radius, reuse, candidates)) {
     const double max_depth = registry.config().max_depth;
     for (TriContact& c : candidates) c.depth = std::min(c.depth, max_depth);
@@ -82,8 +85,8 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
     return n;
   }
   tri_pairs.clear();
-  if (registry.config().front_list) {
-    QueryFront& front = registry.front(d, pair_index);
+  if (front_list) {
+    QueryFront& front = carried->front;
     served.detector->collide_coherent(t1->tree, t2->tree, pose, stats.counters, &tri_pairs, front);
     stats.front_restarts += front.restarted;
   } else {

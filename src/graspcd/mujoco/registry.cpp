@@ -384,7 +384,7 @@ void Registry::reset_detectors() {
   states_.clear();
 }
 
-Registry::DataPairState& Registry::state(const mjData* d, int pair_index) {
+Registry::DataPairState& Registry::pair_state(const mjData* d, int pair_index) {
   auto it = states_.find(d);
   if (it == states_.end()) {
     // Bounded: past kMaxFrontData mjData, forget them all (a speed matter only: any front, even

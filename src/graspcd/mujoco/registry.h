@@ -266,10 +266,14 @@ class Registry {
   // the tree query's temporal coherence is kept per (mjData, pair), so that two mjData stepping
   // the same model (the study's threads, a planner's rollouts) never follow each other's fronts.
   // Created empty on first use; at most kMaxFrontData mjData are remembered.
-  QueryFront& front(const mjData* d, int pair_index) { return state(d, pair_index).front; }
-  // The contacts a tree-path pair keeps on one mjData (RegistryConfig::contact_reuse), per
-  // (mjData, pair) like the fronts and forgotten with them.
-  ReusedContacts& reused(const mjData* d, int pair_index) { return state(d, pair_index).reused; }
+  QueryFront& front(const mjData* d, int pair_index) { return pair_state(d, pair_index).front; }
+  // What a tree-path pair carries from step to step on one mjData: its front, and the contacts it
+  // keeps (RegistryConfig::contact_reuse), forgotten with the front. One lookup for both.
+  struct DataPairState {
+    QueryFront front;
+    ReusedContacts reused;
+  };
+  DataPairState& pair_state(const mjData* d, int pair_index);
   // Forgets the fronts and reused contacts of `d` (e.g. before mj_deleteData; not needed for
   // correctness: both depend on the pose alone).
   void forget_fronts(const mjData* d);
@@ -297,12 +301,6 @@ class Registry {
   std::map<std::array<double, 4>, MeshTree> primitive_trees_;
   std::vector<const MeshTree*> geom_trees_;  // by geom id
   BridgeStats stats_;
-  // What a tree-path pair carries from step to step on one mjData.
-  struct DataPairState {
-    QueryFront front;
-    ReusedContacts reused;
-  };
-  DataPairState& state(const mjData* d, int pair_index);
   std::unordered_map<const mjData*, std::vector<DataPairState>> states_;
   std::vector<std::string> warnings_;
   // Adds a warning to warnings_ and to the process's sink under `code`.
