@@ -7,9 +7,11 @@ build and the provenance envelope.
     /usr/bin/python3 study/compare_outputs.py --run GRASPCD OUT
 
 --run writes the answers a change must keep into OUT with the executable GRASPCD: `study --quick`
-(OUT/study/), `stress --quick --json` (OUT/stress.json) and `validate --json` of example1,
-example3, hand_boxes and hand_triangles (OUT/validate_SCENE.json). Run it with the executable
-before and after a change, then compare the two folders.
+(OUT/study/), `stress --quick --json` (OUT/stress.json), `validate --json` of example1,
+example3, hand_boxes and hand_triangles (OUT/validate_SCENE.json) and `grasp --json` of
+example1-3, hand_triangles and real_robotiq_cup (OUT/grasp_SCENE.json; the Robotiq scene includes
+the hand of ../shared/models). Run it with the executable before and after a change, then compare
+the two folders.
 
 BEFORE and AFTER are folders (every *.json below BEFORE is compared with the file of the same
 relative path below AFTER; a file missing from AFTER is a difference) or two JSON files. Removed
@@ -82,6 +84,7 @@ def load(path):
 
 
 VALIDATED_SCENES = ("example1", "example3", "hand_boxes", "hand_triangles")
+GRASPED_SCENES = ("example1", "example2", "example3", "hand_triangles", "real_robotiq_cup")
 
 
 def run_outputs(graspcd, out):
@@ -94,6 +97,9 @@ def run_outputs(graspcd, out):
     for scene in VALIDATED_SCENES:
         runs.append(([graspcd, "validate", str(mjcf / f"{scene}.xml"), "--json",
                       "--out", str(out / "validate_out")], out / f"validate_{scene}.json"))
+    for scene in GRASPED_SCENES:
+        runs.append(([graspcd, "grasp", str(mjcf / f"{scene}.xml"), "--json"],
+                     out / f"grasp_{scene}.json"))
     for command, stdout_file in runs:
         print("running " + " ".join(command[1:3]), file=sys.stderr)
         with open(stdout_file, "w", encoding="utf-8") if stdout_file else open(
