@@ -66,10 +66,10 @@ namespace fs = std::filesystem;
 struct ObjectRun {
   std::string file;  // the user's mesh, as given
   std::string hand;
-  bridge::ObjectScene scene;
+  grasp::ObjectScene scene;
 };
 
-std::string segments_text(const bridge::GraspResult& g, const bridge::GraspStepRecord& r) {
+std::string segments_text(const grasp::GraspResult& g, const grasp::GraspStepRecord& r) {
   std::string out;
   for (std::size_t s = 0; s < r.touching.size(); ++s) {
     if (!r.touching[s]) continue;
@@ -99,10 +99,10 @@ nlohmann::json judge_json(const study::ContactJudgeSummary& j) {
 // config at config_path (drive_config.h), the body "object" and no support (the world body only,
 // which the judge always leaves out) when there is no such file or section (examples 1-3).
 std::unique_ptr<study::ContactJudge> make_judge(const mjModel* m, const std::string& config_path) {
-  std::optional<bridge::DriveConfig> drive;
+  std::optional<grasp::DriveConfig> drive;
   std::error_code ec;
   if (std::filesystem::is_regular_file(config_path, ec))
-    drive = bridge::load_drive_config(config_path);
+    drive = grasp::load_drive_config(config_path);
   if (!drive) return std::make_unique<study::ContactJudge>(m);
   return std::make_unique<study::ContactJudge>(m, drive->object, drive->support);
 }
@@ -117,14 +117,14 @@ std::string object_line(const ObjectRun& o) {
   return out.str();
 }
 
-void print_text(const bridge::GraspResult& r, const std::optional<ObjectRun>& object,
-                const std::optional<bridge::DecomposedScene>& decomposed,
+void print_text(const grasp::GraspResult& r, const std::optional<ObjectRun>& object,
+                const std::optional<grasp::DecomposedScene>& decomposed,
                 const std::optional<study::ContactJudgeSummary>& judged) {
   std::ostringstream out;
   if (object) out << object_line(*object) << '\n';
   out << "step contacts detection_ns box_tests triangle_tests object_z segments\n";
   out << std::fixed;
-  for (const bridge::GraspStepRecord& s : r.steps) {
+  for (const grasp::GraspStepRecord& s : r.steps) {
     out << s.step << ' ' << s.contacts << ' ' << s.detection_ns << ' ' << s.box_tests << ' '
         << s.triangle_tests << ' ' << std::setprecision(6) << s.object_z << ' '
         << segments_text(r, s) << '\n';
@@ -162,11 +162,11 @@ void print_text(const bridge::GraspResult& r, const std::optional<ObjectRun>& ob
   std::cout << out.str();
 }
 
-void print_json(const bridge::GraspResult& r, const std::optional<ObjectRun>& object,
-                const std::optional<bridge::DecomposedScene>& decomposed, const std::string& dir,
+void print_json(const grasp::GraspResult& r, const std::optional<ObjectRun>& object,
+                const std::optional<grasp::DecomposedScene>& decomposed, const std::string& dir,
                 const std::optional<study::ContactJudgeSummary>& judged) {
   nlohmann::json steps = nlohmann::json::array();
-  for (const bridge::GraspStepRecord& s : r.steps) {
+  for (const grasp::GraspStepRecord& s : r.steps) {
     nlohmann::json segments = nlohmann::json::array();
     for (std::size_t i = 0; i < s.touching.size(); ++i) {
       if (s.touching[i]) segments.push_back(r.segments[i]);
@@ -228,7 +228,7 @@ void print_json(const bridge::GraspResult& r, const std::optional<ObjectRun>& ob
       {"nonfinite_skips", r.nonfinite_skips},
       {"reused_calls", r.reused_calls}};
   if (object) {
-    const bridge::ObjectScene& o = object->scene;
+    const grasp::ObjectScene& o = object->scene;
     doc["object"] = {{"file", object->file}, {"hand", object->hand},
                      {"scale", o.scale},     {"fitted", o.fitted},
                      {"size", o.size},       {"pos", o.pos},
@@ -247,7 +247,7 @@ void print_json(const bridge::GraspResult& r, const std::optional<ObjectRun>& ob
 
 void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_code) {
   finish_method_options(options.method);
-  bridge::GraspOptions grasp;
+  grasp::GraspOptions grasp;
   grasp.config_path = options.config;
   grasp.native = options.native;
   grasp.max_steps = options.max_steps;
@@ -277,17 +277,17 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
         "grasp: --decomposed goes with SCENE (write the --object scene with "
         "--write-scene first)");
   }
-  std::optional<bridge::TempFolder> temp;
+  std::optional<grasp::TempFolder> temp;
   std::optional<ObjectRun> object;
   std::string scene = options.scene;
   // --decomposed: the scene with the object's pieces, beside SCENE (removed on return), run
   // natively; the pair config (the drive section of a real hand) stays SCENE's
-  // (bridge::run_decomposed_grasp).
-  std::optional<bridge::DecomposedScene> decomposed;
+  // (grasp::run_decomposed_grasp).
+  std::optional<grasp::DecomposedScene> decomposed;
   if (!options.decomposed.empty()) decomposed.emplace();
   if (!options.object.empty()) {
     const HandTemplate hand = hand_template(options.hand, "grasp");
-    bridge::ObjectPlacement placement;
+    grasp::ObjectPlacement placement;
     placement.file = options.object;
     placement.scale = options.scale;
     placement.fit = options.fit;
@@ -301,8 +301,8 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
     object = ObjectRun{options.object, options.hand, {}};
     try {
       object->scene =
-          bridge::write_object_scene(placement, hand.scene, options.hand,
-                                     temp ? temp->path().string() : options.write_scene, hand.fit);
+          grasp::write_object_scene(placement, hand.scene, options.hand,
+                                    temp ? temp->path().string() : options.write_scene, hand.fit);
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("grasp: ") + e.what());
     }
@@ -318,23 +318,23 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   std::unique_ptr<study::ContactJudge> judge;
   if (options.judge) {
     const std::string config_path =
-        options.config.empty() ? bridge::pair_config_path(scene) : options.config;
+        options.config.empty() ? mujoco::pair_config_path(scene) : options.config;
     grasp.on_grasp_step = [&judge, config_path](const mjModel* m, const mjData* d, int step) {
       if (!judge) judge = make_judge(m, config_path);
       judge->judge_step(m, d, step);
     };
   }
-  bridge::GraspResult result;
+  grasp::GraspResult result;
   try {
-    result = decomposed ? bridge::run_decomposed_grasp(options.scene, options.decomposed, grasp,
-                                                       &*decomposed)
-                        : bridge::run_grasp(scene, grasp);
-  } catch (const bridge::GraspInputError& e) {
+    result = decomposed ? grasp::run_decomposed_grasp(options.scene, options.decomposed, grasp,
+                                                      &*decomposed)
+                        : grasp::run_grasp(scene, grasp);
+  } catch (const grasp::GraspInputError& e) {
     if (object && e.file() == object->scene.scene) {
       throw io::InputError(options.object, 0, "in the template scene: " + e.message());
     }
     throw io::InputError(e.file(), e.line(), e.message());
-  } catch (const bridge::MujocoError& e) {
+  } catch (const mujoco::MujocoError& e) {
     throw io::InputError(named(scene), 0, e.what());
   }
   if (object && !temp) result.scene = object->scene.scene;
@@ -404,7 +404,7 @@ Command add_grasp_command(CLI::App& parent) {
                   "contacts that begin or end within it wait for the next query; the hard scenes "
                   "pass at 2e-5, not at 5e-5); 0: exact contacts every step (default: the "
                   "config's, else 0)")
-      ->check(number_in_range(0.0, bridge::RegistryConfig::kMaxContactReuse));
+      ->check(number_in_range(0.0, mujoco::RegistryConfig::kMaxContactReuse));
   app->footer(wrap_help(
       "The fingers close in grasp steps of 0.003 rad (5 physics steps each, computed-torque "
       "control of every joint); a finger segment stops at its first contact with the object "

@@ -124,9 +124,9 @@ int main(int argc, char** argv) {
     ~RestoreCout() { std::cout.rdbuf(previous); }
   } restore_cout{std::cout.rdbuf(&stdout_buffer)};
   // MuJoCo's warnings go to the warning sink, never to stdout or MUJOCO_LOG.TXT.
-  graspcd::bridge::route_mujoco_warnings();
+  graspcd::mujoco::route_mujoco_warnings();
   // MuJoCo's errors become exceptions: one line naming the scene, exit 2, destructors run.
-  graspcd::bridge::route_mujoco_errors();
+  graspcd::mujoco::route_mujoco_errors();
   CLI::App app{"graspcd: exact OBB-tree collision detection for robotic grasping.", "graspcd"};
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text(),

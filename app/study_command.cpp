@@ -44,7 +44,7 @@ void run_study_command(StudyCliOptions& o, const CLI::App& app) {
   if (!o.study.table && !o.study.sweep) throw UsageError("--no-table and --no-sweep leave nothing");
   try {
     study::run_study(o.study, log);
-  } catch (const bridge::GraspInputError& e) {
+  } catch (const grasp::GraspInputError& e) {
     throw io::InputError(e.file(), e.line(), e.message());
   }
 }

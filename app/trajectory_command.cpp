@@ -31,9 +31,9 @@ void run_trajectory_command(TrajectoryCliOptions& o) {
   }
   try {
     study::export_grasp(o.scene, o.out, o.options);
-  } catch (const bridge::GraspInputError& e) {
+  } catch (const grasp::GraspInputError& e) {
     throw io::InputError(e.file(), e.line(), e.message());
-  } catch (const bridge::MujocoError& e) {
+  } catch (const mujoco::MujocoError& e) {
     throw io::InputError(o.scene, 0, e.what());
   }
   std::cerr << "[trajectory] wrote " << o.out << std::endl;

@@ -65,7 +65,7 @@ constexpr int kExitBadInput = 2;
 // --objects); cap and switch from the command line when given, else from the config.
 std::vector<study::TesterSpec> testers_of(ValidateCliOptions& o, const CLI::App& app,
                                           const std::string& scene) {
-  const std::string config_path = o.config.empty() ? bridge::pair_config_path(scene) : o.config;
+  const std::string config_path = o.config.empty() ? mujoco::pair_config_path(scene) : o.config;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(scene, ec)) {
     throw io::InputError(scene, 0, "cannot open the scene");
@@ -73,11 +73,11 @@ std::vector<study::TesterSpec> testers_of(ValidateCliOptions& o, const CLI::App&
   if (!std::filesystem::is_regular_file(config_path, ec)) {
     throw io::InputError(config_path, 0, "cannot open the pair config");
   }
-  bridge::RegistryConfig config;
+  mujoco::RegistryConfig config;
   try {
-    config = bridge::load_registry_config(config_path);
+    config = mujoco::load_registry_config(config_path);
   } catch (const std::runtime_error& e) {
-    const bridge::GraspInputError error = bridge::config_error(config_path, e);
+    const grasp::GraspInputError error = grasp::config_error(config_path, e);
     throw io::InputError(error.file(), error.line(), error.message());
   }
   DetectorOptions detector = config.detector;
@@ -415,9 +415,9 @@ int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
   study::ValidationReport report;
   try {
     report = study::validate_scene(o.scene, testers, options);
-  } catch (const bridge::GraspInputError& e) {
+  } catch (const grasp::GraspInputError& e) {
     throw io::InputError(e.file(), e.line(), e.message());
-  } catch (const bridge::MujocoError& e) {
+  } catch (const mujoco::MujocoError& e) {
     throw io::InputError(o.scene, 0, e.what());
   }
   if (report.steps_with_contact == 0) {

@@ -46,8 +46,8 @@ const char* const kTetrahedron =
 
 struct Scene {
   graspcd::fuzz::InputFile file{"scene.xml"};
-  graspcd::bridge::ModelPtr model;
-  graspcd::bridge::DataPtr data;
+  graspcd::mujoco::ModelPtr model;
+  graspcd::mujoco::DataPtr data;
 
   Scene() {
     std::ofstream(file.dir() + "/tet.obj") << kTetrahedron;
@@ -66,14 +66,14 @@ struct Scene {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static Scene scene;
-  static graspcd::bridge::ScopedInstall install;
+  static graspcd::mujoco::ScopedInstall install;
   const std::string text(reinterpret_cast<const char*>(data), size);
   const std::string source = "fuzz.pairs.json";
   try {
-    const graspcd::bridge::RegistryConfig config =
-        graspcd::bridge::parse_registry_config(text, source);
-    graspcd::bridge::Registry registry(scene.model.get(), config, source);
-    graspcd::bridge::attach(registry);
+    const graspcd::mujoco::RegistryConfig config =
+        graspcd::mujoco::parse_registry_config(text, source);
+    graspcd::mujoco::Registry registry(scene.model.get(), config, source);
+    graspcd::mujoco::attach(registry);
     mj_resetData(scene.model.get(), scene.data.get());
     mj_forward(scene.model.get(), scene.data.get());
   } catch (const std::runtime_error& e) {

@@ -2,7 +2,7 @@
 // plane, a pair config) whose numeric attributes take their values from the input: line k of the
 // input replaces attribute k of kAttributes (quotes and markup characters dropped, so the XML
 // stays well formed); the lines after them are prepended to the finger's OBJ (a byte-order mark,
-// a NaN vertex, a bad face...). The scene then goes through bridge::load_model (graspcd's checks,
+// a NaN vertex, a bad face...). The scene then goes through grasp::load_model (graspcd's checks,
 // MuJoCo's compiler, the model check), NonconvexContacts and a few mj_step.
 // MuJoCo's errors (mju_error exits the process by default) are routed to exceptions and its
 // warnings to the sink, as the command line does. Bad input must end in a GraspInputError that is
@@ -74,8 +74,8 @@ void one_line(const std::string& what, const char* kind) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static graspcd::fuzz::InputFile file("scene.xml");
   static const bool routed = [] {
-    graspcd::bridge::route_mujoco_warnings();
-    graspcd::bridge::route_mujoco_errors();
+    graspcd::mujoco::route_mujoco_warnings();
+    graspcd::mujoco::route_mujoco_errors();
     std::ofstream(file.dir() + "/scene.pairs.json") << kPairs;
     return true;
   }();
@@ -95,19 +95,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string scene = file.path();
   const std::string mesh = file.dir() + "/tet.obj";
   try {
-    const graspcd::bridge::ModelPtr model = graspcd::bridge::load_model(scene);
-    if (!graspcd::bridge::find_non_finite(model.get()).empty()) {
+    const graspcd::mujoco::ModelPtr model = graspcd::grasp::load_model(scene);
+    if (!graspcd::mujoco::find_non_finite(model.get()).empty()) {
       graspcd::fuzz::disagreement("load_model returned a model holding a non-finite number");
     }
-    graspcd::bridge::NonconvexContacts contacts(model.get(), file.dir() + "/scene.pairs.json");
-    const graspcd::bridge::DataPtr d(mj_makeData(model.get()));
+    graspcd::mujoco::NonconvexContacts contacts(model.get(), file.dir() + "/scene.pairs.json");
+    const graspcd::mujoco::DataPtr d(mj_makeData(model.get()));
     for (int step = 0; step < 5; ++step) mj_step(model.get(), d.get());
-  } catch (const graspcd::bridge::GraspInputError& e) {
+  } catch (const graspcd::grasp::GraspInputError& e) {
     one_line(e.what(), "a scene error");
     if (e.file() != scene && e.file() != mesh) {
       graspcd::fuzz::disagreement(("a scene error naming another file: " + e.file()).c_str());
     }
-  } catch (const graspcd::bridge::MujocoError& e) {
+  } catch (const graspcd::mujoco::MujocoError& e) {
     one_line(e.what(), "a MuJoCo error");
   } catch (const std::runtime_error& e) {
     // The registry's errors name the pair config (registry.h).

@@ -36,9 +36,9 @@
 
 namespace {
 
-using graspcd::bridge::DataPtr;
-using graspcd::bridge::ModelPtr;
-using graspcd::bridge::Registry;
+using graspcd::mujoco::DataPtr;
+using graspcd::mujoco::ModelPtr;
+using graspcd::mujoco::Registry;
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
 
@@ -56,7 +56,7 @@ long& call_count() {
 int counting_collision(const mjModel* m, const mjData* d, mjContact* con, int g1, int g2,
                        mjtNum margin) {
   ++call_count();
-  return graspcd::bridge::collide_geoms(m, d, con, g1, g2, margin);
+  return graspcd::mujoco::collide_geoms(m, d, con, g1, g2, margin);
 }
 
 // The triangle hand, its closed state, and a model of another scene for variant (b).
@@ -78,7 +78,7 @@ struct Bench {
   int finger_object_contacts(const mjData* d) const {
     const mjModel* m = model.get();
     std::set<int> fingers;
-    for (const std::string& s : graspcd::bridge::finger_segment_names()) {
+    for (const std::string& s : graspcd::grasp::finger_segment_names()) {
       fingers.insert(mj_name2id(m, mjOBJ_GEOM, s.c_str()));
     }
     int n = 0;
@@ -93,7 +93,7 @@ struct Bench {
   void set_fingers(mjData* d, double a) const {
     const mjModel* m = model.get();
     mj_resetData(m, d);
-    for (const std::string& s : graspcd::bridge::finger_segment_names()) {
+    for (const std::string& s : graspcd::grasp::finger_segment_names()) {
       d->qpos[m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, s.c_str())]] = a;
     }
   }
@@ -103,9 +103,9 @@ struct Bench {
     const mjModel* m = model.get();
     DataPtr d(mj_makeData(m));
     {
-      graspcd::bridge::ScopedInstall install;
-      Registry registry(m, graspcd::bridge::load_registry_config(config_path), config_path);
-      graspcd::bridge::attach(registry);
+      graspcd::mujoco::ScopedInstall install;
+      Registry registry(m, graspcd::mujoco::load_registry_config(config_path), config_path);
+      graspcd::mujoco::attach(registry);
       for (int k = 0; k <= 160 && finger_contacts == 0; ++k) {
         angle = 0.01 * k + 0.01;
         set_fingers(d.get(), 0.01 * k);
@@ -124,11 +124,11 @@ struct Bench {
                 finger_contacts, native_finger_contacts);
     // Calls into graspcd's function per mj_step at this state (none served).
     {
-      graspcd::bridge::ScopedInstall install;
+      graspcd::mujoco::ScopedInstall install;
       std::vector<mjfCollision*> ours;
       for (int t1 = 0; t1 < mjNGEOMTYPES; ++t1) {
         for (int t2 = 0; t2 < mjNGEOMTYPES; ++t2) {
-          if (mjCOLLISIONFUNC[t1][t2] == &graspcd::bridge::collide_geoms) {
+          if (mjCOLLISIONFUNC[t1][t2] == &graspcd::mujoco::collide_geoms) {
             ours.push_back(&mjCOLLISIONFUNC[t1][t2]);
           }
         }
@@ -137,7 +137,7 @@ struct Bench {
       set_fingers(d.get(), angle);
       call_count() = 0;
       mj_step(m, d.get());
-      for (mjfCollision* e : ours) *e = &graspcd::bridge::collide_geoms;
+      for (mjfCollision* e : ours) *e = &graspcd::mujoco::collide_geoms;
       std::printf("calls into graspcd's function per mj_step (installed, nothing served): %ld\n",
                   call_count());
     }
@@ -171,7 +171,7 @@ void step_loop(benchmark::State& state, const Registry* registry) {
     const auto per_step = [&](double x) {
       return benchmark::Counter(x / static_cast<double>(steps));
     };
-    const graspcd::bridge::BridgeStats& st = registry->stats();
+    const graspcd::mujoco::BridgeStats& st = registry->stats();
     state.counters["served_calls"] = per_step(static_cast<double>(st.calls));
     state.counters["detect_us"] = per_step(static_cast<double>(st.detection_ns) / 1e3);
     state.counters["contact_us"] = per_step(static_cast<double>(st.contact_ns) / 1e3);
@@ -181,25 +181,25 @@ void step_loop(benchmark::State& state, const Registry* registry) {
 void BM_StepPlain(benchmark::State& state) { step_loop(state, nullptr); }
 
 void BM_StepInstalledNoRegistry(benchmark::State& state) {
-  graspcd::bridge::ScopedInstall install;
+  graspcd::mujoco::ScopedInstall install;
   step_loop(state, nullptr);
 }
 
 void BM_StepInstalledOtherModel(benchmark::State& state) {
   Bench& b = Bench::get();
   const std::string other_config = kMjcf + "/hand_boxes.pairs.json";
-  graspcd::bridge::ScopedInstall install;
-  Registry other(b.other.get(), graspcd::bridge::load_registry_config(other_config), other_config);
-  graspcd::bridge::attach(other);
+  graspcd::mujoco::ScopedInstall install;
+  Registry other(b.other.get(), graspcd::mujoco::load_registry_config(other_config), other_config);
+  graspcd::mujoco::attach(other);
   step_loop(state, &other);
 }
 
 void BM_StepServed(benchmark::State& state) {
   Bench& b = Bench::get();
-  graspcd::bridge::ScopedInstall install;
-  Registry registry(b.model.get(), graspcd::bridge::load_registry_config(b.config_path),
+  graspcd::mujoco::ScopedInstall install;
+  Registry registry(b.model.get(), graspcd::mujoco::load_registry_config(b.config_path),
                     b.config_path);
-  graspcd::bridge::attach(registry);
+  graspcd::mujoco::attach(registry);
   step_loop(state, &registry);
 }
 
@@ -232,7 +232,7 @@ void BM_NoopDelegated(benchmark::State& state) {
   const mjfCollision saved = mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH];
   mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH] = &noop_collision;
   {
-    graspcd::bridge::ScopedInstall install;
+    graspcd::mujoco::ScopedInstall install;
     mjfCollision volatile f = mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH];  // graspcd's
     for (auto _ : state) benchmark::DoNotOptimize(f(m, d.get(), con, g1, g2, 0));
   }
@@ -253,14 +253,14 @@ void BM_NoopDelegated(benchmark::State& state) {
 constexpr double kWholeGraspReuse = 2e-5;  // metres
 
 void whole_grasp(benchmark::State& state, const std::string& scene, const std::string& variant) {
-  graspcd::bridge::GraspOptions options;
+  graspcd::grasp::GraspOptions options;
   options.native = variant == "native";
   if (variant == "served-roots") options.front_list = false;
   if (variant == "served-reuse") options.contact_reuse = kWholeGraspReuse;
   long steps = 0;
-  graspcd::bridge::GraspResult r;
+  graspcd::grasp::GraspResult r;
   for (auto _ : state) {
-    r = graspcd::bridge::run_grasp(kMjcf + "/" + scene, options);
+    r = graspcd::grasp::run_grasp(kMjcf + "/" + scene, options);
     state.SetIterationTime(r.step_wall_ms / 1e3);  // seconds per physics step
     steps = r.physics_steps;
   }

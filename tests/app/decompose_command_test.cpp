@@ -119,7 +119,7 @@ class DecomposeCommand : public CommandTest {
                                      "\"/><include file=\"" + out.filename().string() + "/" +
                                      doc.at("fragment").get<std::string>() + "\"/></mujoco>");
     char error[1000] = "";
-    const bridge::ModelPtr m(mj_loadXML(model.c_str(), nullptr, error, sizeof(error)));
+    const mujoco::ModelPtr m(mj_loadXML(model.c_str(), nullptr, error, sizeof(error)));
     ASSERT_NE(m, nullptr) << error;
     const int pieces = doc.at("piece_count").get<int>();
     EXPECT_EQ(m->nmesh, pieces);
@@ -403,12 +403,12 @@ TEST_F(DecomposeCommand, DecomposedSceneKeepsMassAndPlace) {
   if (!fs::exists(cup)) GTEST_SKIP() << "real models not found at " << kModels;
   const std::string scene = write_cube_cup_scene(cup).string();
   const nlohmann::json d = decompose(cup, 4, "cup4");
-  const bridge::DecomposedScene written =
-      bridge::write_decomposed_scene(scene, (dir_ / "cup4").string());
+  const grasp::DecomposedScene written =
+      grasp::write_decomposed_scene(scene, (dir_ / "cup4").string());
   char error[1000] = "";
-  const bridge::ModelPtr original(mj_loadXML(scene.c_str(), nullptr, error, sizeof(error)));
+  const mujoco::ModelPtr original(mj_loadXML(scene.c_str(), nullptr, error, sizeof(error)));
   ASSERT_NE(original, nullptr) << error;
-  const bridge::ModelPtr m(mj_loadXML(written.scene.c_str(), nullptr, error, sizeof(error)));
+  const mujoco::ModelPtr m(mj_loadXML(written.scene.c_str(), nullptr, error, sizeof(error)));
   fs::remove(written.scene);
   ASSERT_NE(m, nullptr) << error;
   const int pieces = d.at("piece_count").get<int>();

@@ -12,7 +12,7 @@
 
 #include "support/scene_support.h"
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 namespace {
 
 using testing::load_scene;
@@ -327,4 +327,4 @@ TEST_F(ControllersTest, CommandsAreClampedToTheControlRangeAndCounted) {
 }
 
 }  // namespace
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

@@ -19,7 +19,7 @@
 
 #include "support/test_scale.h"
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 namespace {
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
@@ -239,4 +239,4 @@ TEST(GraspErrors, JoinLinesMakesOneLine) {
 }
 
 }  // namespace
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

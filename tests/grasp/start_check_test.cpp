@@ -10,7 +10,7 @@
 #include "graspcd/core/warnings.h"
 #include "support/temp_dir.h"
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 namespace {
 
 // A closed cube of half-extent h (OBJ, outward faces), its centre at the origin.
@@ -92,4 +92,4 @@ TEST_F(StartCheckTest, ObjectsWhollyInsideEitherWayAreRefused) {
 }
 
 }  // namespace
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

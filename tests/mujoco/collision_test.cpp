@@ -19,7 +19,7 @@
 #include "graspcd/support/seeded.h"
 #include "support/scene_support.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 using testing::contacts_between;
@@ -864,4 +864,4 @@ TEST(Dynamics, BallRestsInsideARealBowl) {
 }
 
 }  // namespace
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

@@ -15,7 +15,7 @@
 #include "graspcd/support/meshes.h"
 #include "support/scene_support.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 using graspcd::testing::TempDir;
@@ -79,4 +79,4 @@ TEST_F(ModelCheckTest, NonconvexContactsRefusesANanFromItsConstructor) {
 }
 
 }  // namespace
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

@@ -8,7 +8,7 @@
 
 #include "support/scene_support.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 // Two boxes resting on each other with room for one contact: MuJoCo warns that the contact buffer
@@ -63,4 +63,4 @@ TEST(MujocoMessages, WarningsReachTheSinkAndTheCapturingThreadOnly) {
 }
 
 }  // namespace
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

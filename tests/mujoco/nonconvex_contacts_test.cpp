@@ -18,7 +18,7 @@
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
@@ -27,7 +27,7 @@ struct Scene {
   ModelPtr model;
   DataPtr data;
   explicit Scene(const std::string& name)
-      : model(load_model(kMjcf + "/" + name + ".xml")), data(mj_makeData(model.get())) {}
+      : model(grasp::load_model(kMjcf + "/" + name + ".xml")), data(mj_makeData(model.get())) {}
   std::string config(const std::string& name) const { return kMjcf + "/" + name + ".pairs.json"; }
 };
 
@@ -121,12 +121,12 @@ TEST(NonconvexContacts, FrontListGivesBitwiseTheSameGraspWithStateRestores) {
     struct Trace {
       std::vector<std::vector<mjtNum>> qpos;
       std::vector<std::vector<mjContact>> contacts;
-      GraspResult result;
+      grasp::GraspResult result;
     };
     const auto run = [&](bool front_list) {
       Trace trace;
       DataPtr saved10, saved25;
-      GraspOptions options;
+      grasp::GraspOptions options;
       options.front_list = front_list;
       options.settle_time = 0.1;
       options.lift_time = 0.3;
@@ -145,7 +145,7 @@ TEST(NonconvexContacts, FrontListGivesBitwiseTheSameGraspWithStateRestores) {
           mj_copyData(d, m, saved25.get());
         }
       };
-      trace.result = run_grasp(kMjcf + "/" + name + ".xml", options);
+      trace.result = grasp::run_grasp(kMjcf + "/" + name + ".xml", options);
       return trace;
     };
     const Trace coherent = run(true);
@@ -166,8 +166,8 @@ TEST(NonconvexContacts, FrontListGivesBitwiseTheSameGraspWithStateRestores) {
       }
       touching_steps += coherent.result.steps[k].contacts > 0;
     }
-    const GraspResult& a = coherent.result;
-    const GraspResult& b = fresh.result;
+    const grasp::GraspResult& a = coherent.result;
+    const grasp::GraspResult& b = fresh.result;
     EXPECT_EQ(a.first_contact, b.first_contact) << name;
     EXPECT_EQ(a.gripped, b.gripped) << name;
     EXPECT_EQ(a.object_z_final, b.object_z_final) << name;
@@ -198,14 +198,14 @@ TEST(NonconvexContacts, FrontListGivesBitwiseTheSameGraspWithStateRestores) {
 TEST(NonconvexContacts, ReusedContactsStayWithinTheDriftOfTheExactOnes) {
   const std::string scene = kMjcf + "/example1.xml";
   std::vector<mjtNum> closed;
-  GraspOptions options;
+  grasp::GraspOptions options;
   options.settle_time = 0.01;
   options.lift_time = 0.01;
   options.hold_time = 0.01;
   options.on_grasp_step = [&](const mjModel* m, const mjData* d, int) {
     closed.assign(d->qpos, d->qpos + m->nq);  // the last closing step's: every finger touches
   };
-  run_grasp(scene, options);
+  grasp::run_grasp(scene, options);
   ASSERT_FALSE(closed.empty());
 
   const double drift = 5e-5;
@@ -316,4 +316,4 @@ TEST(NonconvexContacts, ReusedContactsStayWithinTheDriftOfTheExactOnes) {
 }
 
 }  // namespace
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

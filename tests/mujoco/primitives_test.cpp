@@ -27,7 +27,7 @@
 #include "graspcd/support/seeded.h"
 #include "support/scene_support.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 using testing::contacts_between;
@@ -564,7 +564,7 @@ TEST(BoxHand, ClosingTouchesWithoutTrianglesOrTrees) {
   const DataPtr ours(mj_makeData(m.get()));
   const auto close_to = [&](mjData* d, double angle) {
     mj_resetData(m.get(), d);
-    for (const std::string& s : finger_segment_names()) {
+    for (const std::string& s : grasp::finger_segment_names()) {
       d->qpos[m->jnt_qposadr[mj_name2id(m.get(), mjOBJ_JOINT, s.c_str())]] = angle;
     }
     mj_forward(m.get(), d);
@@ -574,7 +574,8 @@ TEST(BoxHand, ClosingTouchesWithoutTrianglesOrTrees) {
   for (int g = 0; g < m->ngeom; ++g) {
     if (m->geom_bodyid[g] == object_body) object.insert(g);
   }
-  for (const std::string& s : finger_segment_names()) fingers.insert(geom_id(m.get(), s.c_str()));
+  for (const std::string& s : grasp::finger_segment_names())
+    fingers.insert(geom_id(m.get(), s.c_str()));
   ASSERT_EQ(object.size(), 3u);
   ASSERT_EQ(fingers.size(), 12u);
   const auto finger_object_contacts = [&](const mjData* d) {
@@ -626,11 +627,11 @@ TEST(BoxHand, ClosingTouchesWithoutTrianglesOrTrees) {
 // the object is lifted and held both ways, and every closing step ran box tests, no triangle.
 TEST(BoxHand, GraspLiftsAndHoldsLikeTheNativeRun) {
   const std::string scene = kMjcf + "/hand_boxes.xml";
-  GraspOptions options;
-  const GraspResult ours = run_grasp(scene, options);
+  grasp::GraspOptions options;
+  const grasp::GraspResult ours = grasp::run_grasp(scene, options);
   options.native = true;
-  const GraspResult native = run_grasp(scene, options);
-  for (const GraspResult* r : {&ours, &native}) {
+  const grasp::GraspResult native = grasp::run_grasp(scene, options);
+  for (const grasp::GraspResult* r : {&ours, &native}) {
     std::printf("hand_boxes %-6s: %zu grasp steps, first contact", r->method.c_str(),
                 r->steps.size());
     for (int k : r->first_contact) std::printf(" %d", k);
@@ -645,7 +646,7 @@ TEST(BoxHand, GraspLiftsAndHoldsLikeTheNativeRun) {
   EXPECT_EQ(ours.steps.size(), native.steps.size());
   EXPECT_EQ(ours.object_z_final, native.object_z_final);
   std::uint64_t box_tests = 0;
-  for (const GraspStepRecord& s : ours.steps) {
+  for (const grasp::GraspStepRecord& s : ours.steps) {
     EXPECT_EQ(s.triangle_tests, 0u) << "step " << s.step;
     box_tests += s.box_tests;
   }
@@ -654,4 +655,4 @@ TEST(BoxHand, GraspLiftsAndHoldsLikeTheNativeRun) {
 }
 
 }  // namespace
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

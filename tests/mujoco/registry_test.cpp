@@ -9,7 +9,7 @@
 #include "graspcd/mujoco/primitives.h"
 #include "support/scene_support.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 using testing::load_scene;
@@ -354,4 +354,4 @@ TEST(RegistryHygiene, ZeroAreaFacesAreLeftOutOfTheTreeWithAWarning) {
 }
 
 }  // namespace
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

@@ -35,7 +35,7 @@
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/nonconvex_contacts.h"
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 namespace {
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
@@ -72,18 +72,18 @@ using Control = std::function<void(const mjModel*, mjData*)>;
 // natively), its "contact_reuse" set to `reuse`, the body "object" watched.
 Outcome simulate(const std::string& scene, const std::string& config, double seconds,
                  const Control& control = {}, double reuse = 0) {
-  const ModelPtr model = load_model(scene);
+  const mujoco::ModelPtr model = load_model(scene);
   const mjModel* m = model.get();
-  DataPtr data(mj_makeData(m));
+  mujoco::DataPtr data(mj_makeData(m));
   mjData* d = data.get();
-  std::unique_ptr<NonconvexContacts> contacts;
+  std::unique_ptr<mujoco::NonconvexContacts> contacts;
   if (!config.empty()) {
-    RegistryConfig c = load_registry_config(config);
+    mujoco::RegistryConfig c = mujoco::load_registry_config(config);
     c.contact_reuse = reuse;
-    contacts = std::make_unique<NonconvexContacts>(m, c, config);
+    contacts = std::make_unique<mujoco::NonconvexContacts>(m, c, config);
   }
   WarningSink sink;
-  ScopedMujocoWarnings capture(sink);
+  mujoco::ScopedMujocoWarnings capture(sink);
   const int object = mj_name2id(m, mjOBJ_BODY, "object");
   const long steps = std::lround(seconds / m->opt.timestep);
   const long window = std::lround(1.0 / m->opt.timestep);
@@ -230,7 +230,7 @@ TEST(HardScenes, ObjectRestsInTheClosedHandForFiveSeconds) {
       const std::string run = name + (reuse > 0 ? " reused" : "");
       options.contact_reuse = reuse;
       WarningSink sink;
-      ScopedMujocoWarnings capture(sink);
+      mujoco::ScopedMujocoWarnings capture(sink);
       const GraspResult ours = run_grasp(scene, options);
       Outcome o = outcome(ours);
       o.messages = sink.list().size();
@@ -242,4 +242,4 @@ TEST(HardScenes, ObjectRestsInTheClosedHandForFiveSeconds) {
 }
 
 }  // namespace
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

@@ -23,7 +23,7 @@
 #include "graspcd/mujoco/mujoco_ptr.h"
 #include "graspcd/mujoco/registry.h"
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 namespace {
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
@@ -34,10 +34,10 @@ const std::vector<std::string> kAllScenes = {"hand_boxes", "hand_triangles", "ex
 constexpr double kGraspStep = 0.003;  // rad, the paper's grasp step
 constexpr int kSegments = 12;
 
-ModelPtr load(const std::string& scene) {
+mujoco::ModelPtr load(const std::string& scene) {
   const std::string file = kMjcf + "/" + scene + ".xml";
   char error[1024] = "";
-  ModelPtr m(mj_loadXML(file.c_str(), nullptr, error, sizeof(error)));
+  mujoco::ModelPtr m(mj_loadXML(file.c_str(), nullptr, error, sizeof(error)));
   if (!m) ADD_FAILURE() << file << ": " << error;
   return m;
 }
@@ -146,7 +146,7 @@ P3 hull_point(const std::vector<std::array<P3, 3>>& faces, const P3& centre) {
 class EveryScene : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(EveryScene, LoadsWithTheArmAndHandKinematics) {
-  const ModelPtr m = load(GetParam());
+  const mujoco::ModelPtr m = load(GetParam());
   ASSERT_TRUE(m);
   EXPECT_EQ(m->opt.timestep, 0.002);
   EXPECT_LT(m->opt.gravity[2], -9.0);
@@ -199,7 +199,7 @@ TEST_P(EveryScene, LoadsWithTheArmAndHandKinematics) {
 
 // Fingers collide with objects, not with each other or the palm.
 TEST_P(EveryScene, ContactFilterLetsFingersTouchObjectsOnly) {
-  const ModelPtr m = load(GetParam());
+  const mujoco::ModelPtr m = load(GetParam());
   ASSERT_TRUE(m);
   const auto collide = [&](int a, int b) {
     return (m->geom_contype[a] & m->geom_conaffinity[b]) ||
@@ -223,9 +223,9 @@ TEST_P(EveryScene, ContactFilterLetsFingersTouchObjectsOnly) {
 // a second of simulation leaves the object resting where it stands (it starts on the floor) and
 // MuJoCo reports no instability.
 TEST_P(EveryScene, ObjectRestsOnTheFloorAndTheSceneIsStable) {
-  const ModelPtr m = load(GetParam());
+  const mujoco::ModelPtr m = load(GetParam());
   ASSERT_TRUE(m);
-  const DataPtr d(mj_makeData(m.get()));
+  const mujoco::DataPtr d(mj_makeData(m.get()));
   const int object = id(m.get(), mjOBJ_BODY, "object");
   mj_forward(m.get(), d.get());
   const P3 start = {d->xpos[3 * object], d->xpos[3 * object + 1], d->xpos[3 * object + 2]};
@@ -250,7 +250,7 @@ TEST_P(EveryScene, ObjectRestsOnTheFloorAndTheSceneIsStable) {
 INSTANTIATE_TEST_SUITE_P(Scenes, EveryScene, ::testing::ValuesIn(kAllScenes));
 
 TEST(SceneBoxHand, SegmentsAndObjectAreBoxes) {
-  const ModelPtr m = load("hand_boxes");
+  const mujoco::ModelPtr m = load("hand_boxes");
   ASSERT_TRUE(m);
   for (const std::string& s : segment_names()) {
     EXPECT_EQ(m->geom_type[id(m.get(), mjOBJ_GEOM, s)], mjGEOM_BOX) << s;
@@ -264,7 +264,7 @@ TEST(SceneBoxHand, SegmentsAndObjectAreBoxes) {
 class TriangleScene : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(TriangleScene, SegmentsAreMeshesOfAFewHundredToAFewThousandFaces) {
-  const ModelPtr m = load(GetParam());
+  const mujoco::ModelPtr m = load(GetParam());
   ASSERT_TRUE(m);
   for (const std::string& s : segment_names()) {
     const int g = id(m.get(), mjOBJ_GEOM, s);
@@ -282,7 +282,7 @@ TEST_P(TriangleScene, SegmentsAreMeshesOfAFewHundredToAFewThousandFaces) {
 // Each undirected edge is used by exactly two faces, once in each direction, after welding the
 // vertices by exact coordinates; the signed volume is positive (outward normals).
 TEST_P(TriangleScene, EveryMeshIsClosedAndConsistentlyOutward) {
-  const ModelPtr m = load(GetParam());
+  const mujoco::ModelPtr m = load(GetParam());
   ASSERT_TRUE(m);
   ASSERT_GT(m->nmesh, 3);
   for (int mesh = 0; mesh < m->nmesh; ++mesh) {
@@ -328,9 +328,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TriangleScene, ::testing::ValuesIn(kTriangleSce
 // outside the mesh by ray parity, where MuJoCo's native (convex hull) collision would see solid.
 // The can, the control: the same construction gives a point inside.
 TEST(SceneObjects, CupBowlAndCBlockAreNonConvexTheCanIsNot) {
-  const ModelPtr m = load("hand_triangles");
+  const mujoco::ModelPtr m = load("hand_triangles");
   ASSERT_TRUE(m);
-  const DataPtr d(mj_makeData(m.get()));
+  const mujoco::DataPtr d(mj_makeData(m.get()));
   mj_forward(m.get(), d.get());
   for (const auto& [geom, convex] : std::vector<std::pair<std::string, bool>>{
            {"object", false}, {"object_bowl", false}, {"object_can", true}}) {
@@ -353,32 +353,32 @@ TEST(SceneObjects, CupBowlAndCBlockAreNonConvexTheCanIsNot) {
 TEST(ScenePairConfigs, ServeEverySegmentAgainstEveryObjectGeom) {
   for (const std::string& scene : kAllScenes) {
     SCOPED_TRACE(scene);
-    const ModelPtr m = load(scene);
+    const mujoco::ModelPtr m = load(scene);
     ASSERT_TRUE(m);
     const std::string path = kMjcf + "/" + scene + ".pairs.json";
-    RegistryConfig config;
-    ASSERT_NO_THROW(config = load_registry_config(path));
+    mujoco::RegistryConfig config;
+    ASSERT_NO_THROW(config = mujoco::load_registry_config(path));
     ASSERT_EQ(config.patterns.size(), 1u);
     const std::string b = config.patterns[0].b;
     ASSERT_EQ(b.rfind("body:", 0), 0u);
     std::size_t object_count = 0;
     for (int g = 0; g < m->ngeom; ++g) {
       object_count +=
-          glob_match(b.substr(5), mj_id2name(m.get(), mjOBJ_BODY, m->geom_bodyid[g])
-                                      ? mj_id2name(m.get(), mjOBJ_BODY, m->geom_bodyid[g])
-                                      : "");
+          mujoco::glob_match(b.substr(5), mj_id2name(m.get(), mjOBJ_BODY, m->geom_bodyid[g])
+                                              ? mj_id2name(m.get(), mjOBJ_BODY, m->geom_bodyid[g])
+                                              : "");
     }
     EXPECT_EQ(object_count, scene == "hand_boxes" ? 3u : scene == "hand_triangles" ? 4u : 1u);
     std::size_t finger_count = 0;
     ASSERT_EQ(config.patterns[0].a.rfind("geom:", 0), 0u);
     for (int g = 0; g < m->ngeom; ++g) {
       const char* n = mj_id2name(m.get(), mjOBJ_GEOM, g);
-      finger_count += n && glob_match(config.patterns[0].a.substr(5), n);
+      finger_count += n && mujoco::glob_match(config.patterns[0].a.substr(5), n);
     }
     EXPECT_EQ(finger_count, static_cast<std::size_t>(kSegments));
     if (scene == "hand_boxes") continue;
-    std::unique_ptr<Registry> registry;
-    ASSERT_NO_THROW(registry = std::make_unique<Registry>(m.get(), config, path));
+    std::unique_ptr<mujoco::Registry> registry;
+    ASSERT_NO_THROW(registry = std::make_unique<mujoco::Registry>(m.get(), config, path));
     EXPECT_EQ(registry->pairs().size(), kSegments * object_count);
     EXPECT_TRUE(registry->warnings().empty());
     EXPECT_EQ(registry->tree_count(), 3u + object_count);  // finger_A/B/C + one per object mesh
@@ -415,23 +415,24 @@ int first_contact_step(const mjModel* m, mjData* d, const std::string& prefix = 
 }
 
 TEST(SceneGrasp, ClosingTheBoxHandTouchesTheObject) {
-  const ModelPtr m = load("hand_boxes");
+  const mujoco::ModelPtr m = load("hand_boxes");
   ASSERT_TRUE(m);
-  const DataPtr d(mj_makeData(m.get()));
+  const mujoco::DataPtr d(mj_makeData(m.get()));
   const int step = first_contact_step(m.get(), d.get());
   std::printf("hand_boxes: first finger-object contact at grasp step %d\n", step);
   EXPECT_GT(step, 5);
 }
 
 TEST(SceneGrasp, ClosingTheTriangleHandTouchesTheObjectThroughTheBridge) {
-  ScopedInstall bridge;
+  mujoco::ScopedInstall bridge;
   for (const std::string& scene : kTriangleScenes) {
     SCOPED_TRACE(scene);
-    const ModelPtr m = load(scene);
+    const mujoco::ModelPtr m = load(scene);
     ASSERT_TRUE(m);
-    Registry registry(m.get(), load_registry_config(kMjcf + "/" + scene + ".pairs.json"));
-    attach(registry);
-    const DataPtr d(mj_makeData(m.get()));
+    mujoco::Registry registry(m.get(),
+                              mujoco::load_registry_config(kMjcf + "/" + scene + ".pairs.json"));
+    mujoco::attach(registry);
+    const mujoco::DataPtr d(mj_makeData(m.get()));
     const int step = first_contact_step(m.get(), d.get());
     std::printf("%s: first finger-object contact at grasp step %d\n", scene.c_str(), step);
     EXPECT_GT(step, 5);
@@ -443,15 +444,16 @@ TEST(SceneGrasp, ClosingTheTriangleHandTouchesTheObjectThroughTheBridge) {
 // native (convex hull) collision has it touch the object when it reaches the slot's mouth; the
 // bridge, answering on the real surface, only when it reaches the slot's back wall, later.
 TEST(SceneGrasp, InExample3TheBridgeLetsFinger2IntoTheSlotWhereTheHullIsSolid) {
-  const ModelPtr m = load("example3");
+  const mujoco::ModelPtr m = load("example3");
   ASSERT_TRUE(m);
-  const DataPtr d(mj_makeData(m.get()));
+  const mujoco::DataPtr d(mj_makeData(m.get()));
   const int native = first_contact_step(m.get(), d.get(), "finger2_");
   int ours = -1;
   {
-    ScopedInstall bridge;
-    Registry registry(m.get(), load_registry_config(kMjcf + "/example3.pairs.json"));
-    attach(registry);
+    mujoco::ScopedInstall bridge;
+    mujoco::Registry registry(m.get(),
+                              mujoco::load_registry_config(kMjcf + "/example3.pairs.json"));
+    mujoco::attach(registry);
     ours = first_contact_step(m.get(), d.get(), "finger2_");
   }
   std::printf("example3, finger 2: first contact at grasp step %d natively, %d with the bridge\n",
@@ -461,4 +463,4 @@ TEST(SceneGrasp, InExample3TheBridgeLetsFinger2IntoTheSlotWhereTheHullIsSolid) {
 }
 
 }  // namespace
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

@@ -62,9 +62,9 @@ ValidationReport validate_with_sat(const std::string& scene, int max_steps) {
 TEST(RealModels, RobotiqGraspsTheCupAndLiftsIt) {
   std::string why;
   if (skip_reason(why)) GTEST_SKIP() << why;
-  bridge::GraspOptions options;
+  grasp::GraspOptions options;
   options.max_steps = 80;
-  const bridge::GraspResult r = bridge::run_grasp(kScene, options);
+  const grasp::GraspResult r = grasp::run_grasp(kScene, options);
   ASSERT_EQ(r.segments, (std::vector<std::string>{"body:left_pad", "body:right_pad"}));
   // Both pads touch the cup's real surface within the closing, then it is lifted and held.
   EXPECT_TRUE(r.gripped);
@@ -98,9 +98,9 @@ TEST(RealModels, ShadowHandHooksTheGlassAndAgreesWithCgal) {
   EXPECT_LT(report.steps, 200);
   EXPECT_FALSE(report.missed_any());
   EXPECT_GT(expect_every_check_agrees(report), 0);  // CGAL saw the fingers touch
-  bridge::GraspOptions grasp;
+  grasp::GraspOptions grasp;
   grasp.max_steps = 200;
-  const bridge::GraspResult r = bridge::run_grasp(kShadowScene, grasp);
+  const grasp::GraspResult r = grasp::run_grasp(kShadowScene, grasp);
   EXPECT_TRUE(r.gripped);
   EXPECT_TRUE(r.held) << "height " << r.object_z_initial << " -> " << r.object_z_final;
   EXPECT_GT(r.object_z_final, r.object_z_initial + 0.05);  // the lift is 6 cm

@@ -230,7 +230,7 @@ TEST(CompareAnswers, CountsWhatDiffersFromTheTruth) {
   using namespace graspcd::study;
   const std::string scene = std::string(GRASPCD_SOURCE_DIR) + "/mjcf/example1.xml";
   const MeshScene ms(scene);
-  const bridge::ModelPtr model = bridge::load_model(scene);
+  const mujoco::ModelPtr model = grasp::load_model(scene);
   mjData* d = mj_makeData(model.get());
   mj_forward(model.get(), d);
   Recording rec;

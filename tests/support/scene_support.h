@@ -48,8 +48,8 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-using bridge::DataPtr;
-using bridge::ModelPtr;
+using mujoco::DataPtr;
+using mujoco::ModelPtr;
 
 // Writes `meshes` (name -> mesh, as NAME.obj) and `xml` (as scene.xml) into `dir`, loads the
 // scene. Fails the test with MuJoCo's message on a load error.

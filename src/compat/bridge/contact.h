@@ -3,10 +3,11 @@
 #pragma once
 
 #include "graspcd/core/contact.h"
+#include "graspcd/mujoco/bridge_namespace.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 using graspcd::select_contacts;
 using graspcd::sharp_edge_masks;
 using graspcd::triangle_pair_contact;
 using graspcd::TriContact;
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

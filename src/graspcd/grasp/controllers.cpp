@@ -5,7 +5,7 @@
 #include <set>
 #include <stdexcept>
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 namespace {
 
 [[noreturn]] void fail(const std::string& message) { throw std::invalid_argument(message); }
@@ -225,4 +225,4 @@ void FuzzyController::apply(const mjModel* m, mjData* d) {
   write_torques(m, d);
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

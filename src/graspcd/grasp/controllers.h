@@ -32,7 +32,7 @@
 #include <string>
 #include <vector>
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 
 // One controlled joint and the motor that drives it.
 struct JointDrive {
@@ -189,4 +189,4 @@ class FuzzyController : public JointController {
   std::vector<double> e_previous_, du_;
 };
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

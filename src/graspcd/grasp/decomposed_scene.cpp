@@ -18,7 +18,7 @@
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/mujoco/registry.h"
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 
 namespace {
 
@@ -164,7 +164,7 @@ GraspResult run_decomposed_grasp(const std::string& scene_path,
   const RemovedOnExit remove{scene.scene};
   if (written != nullptr) *written = scene;
   options.native = true;
-  if (options.config_path.empty()) options.config_path = pair_config_path(scene_path);
+  if (options.config_path.empty()) options.config_path = mujoco::pair_config_path(scene_path);
   GraspResult result;
   try {
     result = run_grasp(scene.scene, options);
@@ -183,8 +183,8 @@ bool is_piece(const mjModel* m, int g) {
   return mesh != nullptr && std::string(mesh).find("__piece_") != std::string::npos;
 }
 
-ModelPtr true_object_model(const mjModel* m) {
-  ModelPtr copy(mj_copyModel(nullptr, m));
+mujoco::ModelPtr true_object_model(const mjModel* m) {
+  mujoco::ModelPtr copy(mj_copyModel(nullptr, m));
   if (!copy) throw std::runtime_error("true_object_model: mj_copyModel failed");
   // The pieces of a geom follow it in its body (write_decomposed_scene inserts them right after
   // it, and MuJoCo keeps a body's geoms in document order): the replaced geom is the nearest
@@ -205,4 +205,4 @@ ModelPtr true_object_model(const mjModel* m) {
   return copy;
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

@@ -10,7 +10,7 @@
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 
 struct DecomposedScene {
   std::string scene;       // the written MJCF (beside the original, so its relative paths hold)
@@ -55,6 +55,6 @@ bool is_piece(const mjModel* m, int g);
 // collision (contype = conaffinity = 0) and every replaced geom colliding again as its pieces did.
 // Geom ids are `m`'s, so a registry built on the copy checks the true meshes at the poses of a
 // grasp run on `m` (validate --decomposed).
-ModelPtr true_object_model(const mjModel* m);
+mujoco::ModelPtr true_object_model(const mjModel* m);
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

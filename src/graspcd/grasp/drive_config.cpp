@@ -7,7 +7,7 @@
 
 #include "graspcd/mujoco/json_config.h"
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 namespace {
 
 [[noreturn]] void fail(const std::string& source, const std::string& message) {
@@ -83,7 +83,7 @@ DriveConfig parse_drive(const nlohmann::json& j, const std::string& source) {
 
 std::optional<DriveConfig> parse_drive_config(const std::string& json_text,
                                               const std::string& source) {
-  const nlohmann::json j = parse_json_config(json_text, source);
+  const nlohmann::json j = mujoco::parse_json_config(json_text, source);
   if (!j.is_object() || !j.contains("grasp")) return std::nullopt;
   return parse_drive(j.at("grasp"), source);
 }
@@ -96,4 +96,4 @@ std::optional<DriveConfig> load_drive_config(const std::string& path) {
   return parse_drive_config(text.str(), path);
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

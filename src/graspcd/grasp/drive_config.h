@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 
 // How `graspcd grasp` drives a hand that is not ours (the "grasp" section of the pair config,
 // e.g. a real hand of ../shared/models): the hand's own actuators close it, one more
@@ -45,4 +45,4 @@ std::optional<DriveConfig> parse_drive_config(const std::string& json_text,
 // The same, from a file. Throws std::runtime_error naming the file when it cannot be read.
 std::optional<DriveConfig> load_drive_config(const std::string& path);
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

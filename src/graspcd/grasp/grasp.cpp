@@ -25,7 +25,7 @@
 #include "graspcd/mujoco/mujoco_ptr.h"
 #include "graspcd/mujoco/registry.h"
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 
 namespace {
 
@@ -152,7 +152,7 @@ void throw_if_nonfinite(const mjData* d, const std::string& scene, const std::st
 // The bridge's counters summed over a whole grasp (every phase), as GraspResult reports them.
 struct BridgeTotals {
   std::uint64_t detection_ns = 0, contained = 0, nonfinite_skips = 0, reused = 0;
-  void add(const BridgeStats& s) {
+  void add(const mujoco::BridgeStats& s) {
     detection_ns += s.detection_ns;
     contained += s.contained;
     nonfinite_skips += s.nonfinite_skips;
@@ -164,7 +164,7 @@ struct BridgeTotals {
 // accumulated statistics.
 class GraspRun {
  public:
-  GraspRun(const mjModel* m, mjData* d, Registry* registry, const GraspOptions& options,
+  GraspRun(const mjModel* m, mjData* d, mujoco::Registry* registry, const GraspOptions& options,
            const std::string& scene)
       : m_(m),
         d_(d),
@@ -240,9 +240,9 @@ class GraspRun {
   void check_finite() const { throw_if_nonfinite(d_, scene_, phase_, physics_steps_); }
 
   // The bridge's statistics since the last call (zero with native collision).
-  BridgeStats take_stats() {
-    if (!registry_) return BridgeStats{};
-    BridgeStats s = registry_->take_stats();
+  mujoco::BridgeStats take_stats() {
+    if (!registry_) return mujoco::BridgeStats{};
+    mujoco::BridgeStats s = registry_->take_stats();
     totals_.add(s);
     return s;
   }
@@ -262,7 +262,7 @@ class GraspRun {
 
   const mjModel* m_;
   mjData* d_;
-  Registry* registry_;
+  mujoco::Registry* registry_;
   std::string scene_;
   std::string phase_ = "the closing";  // for messages
   ComputedTorqueController controller_;
@@ -284,8 +284,8 @@ class GraspRun {
 
 // Appends grasp step k's record (its contacts, segments touching, the bridge's counters over the
 // step, the object's height) to the result, and adds its detection time to the closing's.
-void add_step_record(int k, int contacts, std::vector<bool> touching, const BridgeStats& stats,
-                     double object_z, GraspResult& result) {
+void add_step_record(int k, int contacts, std::vector<bool> touching,
+                     const mujoco::BridgeStats& stats, double object_z, GraspResult& result) {
   GraspStepRecord record;
   record.step = k;
   record.contacts = contacts;
@@ -423,7 +423,7 @@ void finish_result(const Run& run, const mjData* d, double final_z, GraspResult&
 // our hands with heights along -gravity measured from the support body.
 class DrivenRun {
  public:
-  DrivenRun(const mjModel* m, mjData* d, Registry* registry, const DriveConfig& drive,
+  DrivenRun(const mjModel* m, mjData* d, mujoco::Registry* registry, const DriveConfig& drive,
             const std::string& scene, const std::string& config)
       : m_(m), d_(d), registry_(registry), drive_(drive), scene_(scene) {
     const auto bad = [&](const std::string& what) { return GraspInputError(config, what); };
@@ -448,7 +448,7 @@ class DrivenRun {
       close_.push_back(actuator(c.actuator));
       std::vector<int> segments;
       for (const std::string& pattern : c.touch) {
-        const std::vector<int> geoms = match_geoms(m, pattern);
+        const std::vector<int> geoms = mujoco::match_geoms(m, pattern);
         if (geoms.empty()) {
           throw bad("'grasp': touch pattern '" + pattern + "' matches no collidable geom");
         }
@@ -531,16 +531,16 @@ class DrivenRun {
       observe();
     }
   }
-  BridgeStats take_stats() {
-    if (!registry_) return BridgeStats{};
-    const BridgeStats s = registry_->take_stats();
+  mujoco::BridgeStats take_stats() {
+    if (!registry_) return mujoco::BridgeStats{};
+    const mujoco::BridgeStats s = registry_->take_stats();
     totals_.add(s);
     return s;
   }
 
   const mjModel* m_;
   mjData* d_;
-  Registry* registry_;
+  mujoco::Registry* registry_;
   const DriveConfig& drive_;
   std::string scene_;
   std::string phase_ = "the closing";
@@ -759,7 +759,7 @@ double kinetic_energy(const mjModel* m, const mjData* d) {
   return 0.5 * mju_dot(d->qvel, mv.data(), m->nv);
 }
 
-ModelPtr load_model(const std::string& path) {
+mujoco::ModelPtr load_model(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec) || !std::ifstream(path).good())
     throw GraspInputError(path, "cannot open the scene file");
@@ -767,7 +767,7 @@ ModelPtr load_model(const std::string& path) {
   // then the compiled numbers (model_check.h: the same rule for what the checks cannot see).
   check_scene_file(path);
   char error[2048] = "";
-  ModelPtr m;
+  mujoco::ModelPtr m;
   std::string qhull;
   {
     CapturedStderr captured;
@@ -785,7 +785,7 @@ ModelPtr load_model(const std::string& path) {
     if (!qhull.empty()) message += "; " + qhull;
     throw GraspInputError(path, message);
   }
-  const std::string non_finite = find_non_finite(m.get());
+  const std::string non_finite = mujoco::find_non_finite(m.get());
   if (!non_finite.empty()) throw GraspInputError(path, non_finite);
   return m;
 }
@@ -831,18 +831,18 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   const auto model = load_model(scene_path);
   const mjModel* m = model.get();
 
-  std::unique_ptr<ScopedInstall> install_guard;
-  std::unique_ptr<Registry> registry;
-  RegistryConfig config;
+  std::unique_ptr<mujoco::ScopedInstall> install_guard;
+  std::unique_ptr<mujoco::Registry> registry;
+  mujoco::RegistryConfig config;
   const std::string config_path =
-      options.config_path.empty() ? pair_config_path(scene_path) : options.config_path;
+      options.config_path.empty() ? mujoco::pair_config_path(scene_path) : options.config_path;
   // How to drive the hand (the config's "grasp" section, drive_config.h); with native collision
   // that is all the config says.
   std::optional<DriveConfig> drive;
   std::error_code exists_ec;
   if (std::filesystem::is_regular_file(config_path, exists_ec)) {
     try {
-      if (options.native) config = load_registry_config(config_path);
+      if (options.native) config = mujoco::load_registry_config(config_path);
       drive = load_drive_config(config_path);
     } catch (const std::runtime_error& e) {
       throw config_error(config_path, e);
@@ -853,25 +853,25 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
       std::error_code ec;
       if (!std::filesystem::is_regular_file(config_path, ec))
         throw GraspInputError(config_path, "cannot open the pair config");
-      config = load_registry_config(config_path);
+      config = mujoco::load_registry_config(config_path);
       if (options.method) config.method = *options.method;
       if (options.cap) config.detector.cap = *options.cap;
       if (options.switch_passes) config.detector.switch_passes = *options.switch_passes;
       if (options.front_list) config.front_list = *options.front_list;
       if (options.contact_reuse) config.contact_reuse = *options.contact_reuse;
-      registry = std::make_unique<Registry>(m, config, config_path);
+      registry = std::make_unique<mujoco::Registry>(m, config, config_path);
     } catch (const GraspInputError&) {
       throw;
     } catch (const std::runtime_error& e) {
       throw config_error(config_path, e);
     }
-    install_guard = std::make_unique<ScopedInstall>();
-    attach(*registry);
+    install_guard = std::make_unique<mujoco::ScopedInstall>();
+    mujoco::attach(*registry);
   }
   GraspResult result;
   if (registry) result.warnings = registry->warnings();
 
-  DataPtr data(mj_makeData(m));
+  mujoco::DataPtr data(mj_makeData(m));
   mjData* d = data.get();
   result.scene = scene_path;
   result.native = options.native;
@@ -979,4 +979,4 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   return result;
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

@@ -65,7 +65,7 @@
 #include "graspcd/core/separators.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 
 inline constexpr double kGraspStepRad = 0.003;  // the paper's grasp step
 inline constexpr int kFingerSegments = 12;      // finger{1..4}_{A,B,C}
@@ -193,7 +193,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
 
 // Loads an MJCF file. A missing file or MuJoCo's error become a GraspInputError whose message is
 // "FILE: <MuJoCo's message on one line>" (mujoco-2.2-notes.md "Errors").
-ModelPtr load_model(const std::string& path);
+mujoco::ModelPtr load_model(const std::string& path);
 
 // The system's kinetic energy, 0.5 qvel^T M qvel with the joint-space inertia of the last step
 // (mj_energyVel's formula; MuJoCo 2.2 fills d->energy only with the energy flag enabled), J.
@@ -206,4 +206,4 @@ GraspInputError config_error(const std::string& config_path, const std::runtime_
 // Joins MuJoCo's multi-line error text into one line (line breaks become "; ", blanks trimmed).
 std::string join_lines(const std::string& text);
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

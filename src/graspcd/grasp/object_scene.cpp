@@ -20,7 +20,7 @@
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/text_input.h"
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 
 namespace {
 
@@ -353,4 +353,4 @@ TempFolder::~TempFolder() {
   fs::remove_all(path_, ignored);
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

@@ -22,7 +22,7 @@
 #include <optional>
 #include <string>
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 
 // How far above the support the object's lowest point is placed, m: clear of it by much less
 // than the start check's tolerance (start_check.h), so that the object drops onto it at once.
@@ -70,4 +70,4 @@ class TempFolder {
   std::filesystem::path path_;
 };
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

@@ -14,7 +14,7 @@
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/text_input.h"
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 namespace {
 
 namespace fs = std::filesystem;
@@ -122,4 +122,4 @@ void check_scene_file(const std::string& path) {
   }
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

@@ -6,7 +6,7 @@
 
 #include <string>
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 
 // Reads the MJCF file `path` with tinyxml2 (MuJoCo's own XML parser) and the files it includes,
 // and refuses, with a GraspInputError naming the file and the attribute's line:
@@ -19,4 +19,4 @@ namespace graspcd::bridge {
 // the caller reports.
 void check_scene_file(const std::string& path);
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

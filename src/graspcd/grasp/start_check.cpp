@@ -14,7 +14,7 @@
 #include "graspcd/mujoco/primitives.h"
 #include "graspcd/mujoco/registry.h"
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 
 namespace {
 
@@ -23,7 +23,7 @@ std::string geom_name(const mjModel* m, int g) {
   const char* name = mj_id2name(m, mjOBJ_GEOM, g);
   if (name != nullptr && *name != '\0') return "geom '" + std::string(name) + "'";
   const char* body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]);
-  std::string type = geom_type_name(m->geom_type[g]);
+  std::string type = mujoco::geom_type_name(m->geom_type[g]);
   if (m->geom_type[g] == mjGEOM_MESH) {
     const char* mesh = mj_id2name(m, mjOBJ_MESH, m->geom_dataid[g]);
     if (mesh != nullptr) type += " '" + std::string(mesh) + "'";
@@ -51,13 +51,13 @@ std::optional<WorldSurface> world_surface(const mjModel* m, const mjData* d, int
   std::vector<Triangle> local;
   const int type = m->geom_type[g];
   if (type == mjGEOM_MESH) {
-    local = Registry::mesh_triangles(m, m->geom_dataid[g]);
-  } else if (is_primitive(type)) {
-    const TriangleMesh mesh = tessellate_primitive(type, m->geom_size + 3 * g);
+    local = mujoco::Registry::mesh_triangles(m, m->geom_dataid[g]);
+  } else if (mujoco::is_primitive(type)) {
+    const TriangleMesh mesh = mujoco::tessellate_primitive(type, m->geom_size + 3 * g);
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) local.push_back(mesh.triangle(f));
   }
   if (local.empty()) return std::nullopt;
-  const Pose pose{from_row_major(d->geom_xmat + 9 * g), geom_position(d, g)};
+  const Pose pose{mujoco::from_row_major(d->geom_xmat + 9 * g), mujoco::geom_position(d, g)};
   std::vector<Triangle> world;
   world.reserve(local.size());
   WorldSurface out;
@@ -112,8 +112,8 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
       const int type = m->geom_type[g];
       if (type == mjGEOM_HFIELD) continue;
       if (type != mjGEOM_PLANE) {
-        const double gap = (geom_position(d, o) - geom_position(d, g)).norm() - m->geom_rbound[o] -
-                           m->geom_rbound[g];
+        const double gap = (mujoco::geom_position(d, o) - mujoco::geom_position(d, g)).norm() -
+                           m->geom_rbound[o] - m->geom_rbound[g];
         if (gap > kStartPenetration) continue;
       }
       if (!object) {
@@ -123,9 +123,9 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
       const std::string what = geom_name(m, o) + " of the object";
       if (type == mjGEOM_PLANE) {
         // The plane's solid is the half-space below it (its z axis points out).
-        const Mat3 R = from_row_major(d->geom_xmat + 9 * g);
+        const Mat3 R = mujoco::from_row_major(d->geom_xmat + 9 * g);
         const Vec3 normal = R.col(2);
-        const Vec3 at = geom_position(d, g);
+        const Vec3 at = mujoco::geom_position(d, g);
         double depth = 0;
         for (const Vec3& v : object->probes) depth = std::max(depth, -normal.dot(v - at));
         if (depth > kStartPenetration) {
@@ -168,4 +168,4 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
   return "";
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

@@ -24,7 +24,7 @@
 
 #include <string>
 
-namespace graspcd::bridge {
+namespace graspcd::grasp {
 
 // The largest penetration allowed at the start, m. A scene placed by hand or by graspcd grasp
 // --object (the object's lowest point 0.5 mm above its support, fingers open) passes with room;
@@ -35,4 +35,4 @@ inline constexpr double kStartPenetration = 0.5e-3;
 // valid. `object_body` is the object's body id; `d` holds the initial state after mj_forward.
 std::string check_start_state(const mjModel* m, const mjData* d, int object_body);
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::grasp

@@ -1,7 +1,7 @@
 // Placements of MuJoCo geoms as graspcd poses (collision_pose.h).
 #include "graspcd/mujoco/collision_pose.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 
 Mat3 from_row_major(const mjtNum* x) {
   Mat3 r;
@@ -34,4 +34,4 @@ Vec3 geom_position(const mjData* d, int g) {
   return Vec3(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

@@ -6,7 +6,7 @@
 
 #include "graspcd/core/geometry.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 
 // A row-major 3x3 of MuJoCo as an Eigen matrix.
 Mat3 from_row_major(const mjtNum* x);
@@ -21,4 +21,4 @@ bool bad_geom_placement(const mjData* d, int g);
 // R = R1^T R2, t = R1^T (p2 - p1), so that x_1 = R x_2 + t.
 Pose relative_pose(const mjData* d, int g1, int g2);
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

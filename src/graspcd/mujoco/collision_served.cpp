@@ -12,7 +12,7 @@
 #include "graspcd/mujoco/collision_pose.h"
 #include "graspcd/mujoco/collision_table.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 // Writes one contact in the world frame: frame[0..2] the normal, frame[3..5] and [6..8] a
@@ -206,4 +206,4 @@ int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjC
                                           : collide_trees(registry, pair_index, d, con, g1, g2);
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

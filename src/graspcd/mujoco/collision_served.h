@@ -5,7 +5,7 @@
 
 #include "graspcd/mujoco/registry.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 
 // Runs a served pair by its path (registry.h); a pair whose placement in `d` holds a bad number
 // is skipped and counted (collision.h, "Non-finite state"). Trees: the tree query with the pair's
@@ -17,4 +17,4 @@ namespace graspcd::bridge {
 int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
                         int g2);
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

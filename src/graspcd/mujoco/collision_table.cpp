@@ -12,7 +12,7 @@
 #include "graspcd/mujoco/collision_served.h"
 #include "graspcd/mujoco/primitives.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 // The process-wide model -> registry table. Writers hold g_mutex; readers (every collision call)
@@ -148,4 +148,4 @@ int collide_geoms(const mjModel* m, const mjData* d, mjContact* con, int g1, int
   return original ? original(m, d, con, g1, g2, margin) : 0;
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

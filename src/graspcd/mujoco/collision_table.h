@@ -13,7 +13,7 @@
 
 #include "graspcd/mujoco/registry.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 
 // The most registries attached at once (one per live model using the bridge).
 inline constexpr int kMaxAttachedModels = 64;
@@ -57,4 +57,4 @@ class ScopedInstall {
   bool owner_;
 };
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

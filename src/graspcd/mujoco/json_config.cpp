@@ -4,7 +4,7 @@
 #include <regex>
 #include <stdexcept>
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 // The 1-based line of byte offset `at` (0 = before the first byte) of `text`.
@@ -45,4 +45,4 @@ nlohmann::json parse_json_config(const std::string& text, const std::string& sou
   }
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

@@ -7,11 +7,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 
 // Parses `text`. A syntax error, or a number that overflows a double, throws std::runtime_error
 // "SOURCE:LINE: bad JSON: MESSAGE": LINE is 1-based (the line of nlohmann's byte position, or of
 // the overflowing literal), MESSAGE nlohmann's without its exception id and position.
 nlohmann::json parse_json_config(const std::string& text, const std::string& source);
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

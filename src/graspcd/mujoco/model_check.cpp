@@ -7,7 +7,7 @@
 #include <sstream>
 #include <type_traits>
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 // The object type of an array's rows, by the name of its row count in MJMODEL_POINTERS.
@@ -92,4 +92,4 @@ std::string find_non_finite(const mjModel* m) {
   return found;
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

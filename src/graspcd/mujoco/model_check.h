@@ -7,7 +7,7 @@
 
 #include <string>
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 
 // "" when every real number of `m` is finite: every mjtNum and float array of mjModel (mjxmacro.h,
 // MJMODEL_POINTERS: positions, orientations, sizes, masses, mesh vertices, ...) and the physics
@@ -16,4 +16,4 @@ namespace graspcd::bridge {
 //   "the model holds a non-finite number: geom_pos of geom 5 'object' is nan".
 std::string find_non_finite(const mjModel* m);
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

@@ -4,7 +4,7 @@
 
 #include <string>
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 thread_local WarningSink* t_capture = nullptr;
@@ -41,4 +41,4 @@ ScopedMujocoWarnings::ScopedMujocoWarnings(WarningSink& sink) : previous_(t_capt
 
 ScopedMujocoWarnings::~ScopedMujocoWarnings() { t_capture = previous_; }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

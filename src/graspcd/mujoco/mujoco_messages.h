@@ -23,8 +23,9 @@
 #include <stdexcept>
 
 #include "graspcd/core/warnings.h"
+#include "graspcd/mujoco/bridge_namespace.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 
 // Sets mju_user_warning to graspcd's handler. Idempotent.
 void route_mujoco_warnings();
@@ -50,4 +51,4 @@ class ScopedMujocoWarnings {
   WarningSink* previous_;
 };
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

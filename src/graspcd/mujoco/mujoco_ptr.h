@@ -5,7 +5,9 @@
 
 #include <memory>
 
-namespace graspcd::bridge {
+#include "graspcd/mujoco/bridge_namespace.h"
+
+namespace graspcd::mujoco {
 
 struct ModelDeleter {
   void operator()(mjModel* m) const { mj_deleteModel(m); }
@@ -16,4 +18,4 @@ struct DataDeleter {
 using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
 using DataPtr = std::unique_ptr<mjData, DataDeleter>;
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

@@ -2,7 +2,7 @@
 
 #include <mutex>
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 // How many NonconvexContacts are alive, and whether the first of them installed the table (it was
@@ -50,4 +50,4 @@ NonconvexContacts::~NonconvexContacts() {
   detach(registry_);
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

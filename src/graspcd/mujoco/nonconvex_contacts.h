@@ -4,9 +4,9 @@
 //
 //   mjModel* m = mj_loadXML("scene.xml", nullptr, error, sizeof error);
 //   mjData* d = mj_makeData(m);
-//   graspcd::bridge::NonconvexContacts contacts(m, "scene.pairs.json");
+//   graspcd::mujoco::NonconvexContacts contacts(m, "scene.pairs.json");
 //   for (...) mj_step(m, d);                  // as usual: served pairs get graspcd's contacts
-//   graspcd::bridge::BridgeStats s = contacts.take_stats();
+//   graspcd::mujoco::BridgeStats s = contacts.take_stats();
 //
 // Construction builds the pair registry (the OBB trees of the meshes and primitives in served
 // pairs), attaches it to the model and installs graspcd's function in mjCOLLISIONFUNC; destruction
@@ -31,7 +31,7 @@
 #include "graspcd/mujoco/collision.h"
 #include "graspcd/mujoco/registry.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 
 class NonconvexContacts {
  public:
@@ -81,4 +81,4 @@ class NonconvexContacts {
   Registry registry_;
 };
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 const double kPi = std::acos(-1.0);
@@ -192,4 +192,4 @@ double tessellation_tolerance(int geom_type, const mjtNum* size) {
   }
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

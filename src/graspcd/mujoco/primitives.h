@@ -46,8 +46,9 @@
 #include <mujoco/mujoco.h>
 
 #include "graspcd/core/geometry.h"
+#include "graspcd/mujoco/bridge_namespace.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 
 inline constexpr int kTessAround = 32;     // N: vertices per ring around the axis
 inline constexpr int kTessProfile = 15;    // M: profile segments over the half circle (odd)
@@ -79,4 +80,4 @@ TriangleMesh tessellate_primitive(int geom_type, const mjtNum* size);
 // The documented tolerance (metres) of that tessellation: see the table above.
 double tessellation_tolerance(int geom_type, const mjtNum* size);
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

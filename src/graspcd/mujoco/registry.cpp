@@ -16,7 +16,7 @@
 #include "graspcd/mujoco/model_check.h"
 #include "graspcd/mujoco/primitives.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 namespace {
 
 [[noreturn]] void fail(const std::string& source, const std::string& message) {
@@ -403,4 +403,4 @@ void Registry::warn(const std::string& code, const std::string& message) {
   graspcd::warnings().add(code, message);
 }
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

@@ -61,8 +61,9 @@
 #include "graspcd/core/containment.h"
 #include "graspcd/core/obb_tree.h"
 #include "graspcd/core/separators.h"
+#include "graspcd/mujoco/bridge_namespace.h"
 
-namespace graspcd::bridge {
+namespace graspcd::mujoco {
 
 struct PairPattern {
   PairPattern() = default;
@@ -307,4 +308,4 @@ class Registry {
   void warn(const std::string& code, const std::string& message);
 };
 
-}  // namespace graspcd::bridge
+}  // namespace graspcd::mujoco

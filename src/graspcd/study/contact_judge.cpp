@@ -20,7 +20,7 @@ namespace {
 // circumscribed within tessellation_tolerance).
 TriangleMesh geom_mesh(const mjModel* m, int g) {
   if (m->geom_type[g] != mjGEOM_MESH)
-    return bridge::tessellate_primitive(m->geom_type[g], m->geom_size + 3 * g);
+    return mujoco::tessellate_primitive(m->geom_type[g], m->geom_size + 3 * g);
   const int mesh = m->geom_dataid[g];
   TriangleMesh out;
   const int vadr = m->mesh_vertadr[mesh];
@@ -109,10 +109,10 @@ ContactJudge::ContactJudge(const mjModel* m, const std::string& object_body,
     for (int b = body; b > 0; b = m->body_parentid[b]) inside = inside || b == s.object;
     s.in_object[static_cast<std::size_t>(g)] = inside;
     if (inside) {
-      if (m->geom_type[g] == mjGEOM_MESH && !bridge::is_piece(m, g)) {
+      if (m->geom_type[g] == mjGEOM_MESH && !grasp::is_piece(m, g)) {
         s.truth.push_back(judged(m, g));
       }
-    } else if (m->geom_type[g] != mjGEOM_MESH && !bridge::is_primitive(m->geom_type[g])) {
+    } else if (m->geom_type[g] != mjGEOM_MESH && !mujoco::is_primitive(m->geom_type[g])) {
       continue;  // a plane or a height field
     } else if (body != 0 && body != support &&
                (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0)) {
@@ -156,7 +156,7 @@ void ContactJudge::judge_step(const mjModel* /*m*/, const mjData* d, int step) {
   for (std::size_t h = 0; h < s.hand.size(); ++h) {
     bool meets = false;
     for (const JudgedGeom& t : s.truth) {
-      const Pose pose = bridge::relative_pose(d, s.hand[h].id, t.id);
+      const Pose pose = mujoco::relative_pose(d, s.hand[h].id, t.id);
       meets =
           meets ||
           !exact::mesh_mesh_pairs(s.hand[h].triangles, posed_triangles(t.mesh, pose), true).empty();

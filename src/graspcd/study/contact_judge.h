@@ -34,12 +34,12 @@ constexpr double kPhantomDistance = 1e-3;
 // Built on the model a grasp runs (after mj_loadXML, before the grasp), it is then called after
 // each closing grasp step (GraspOptions::on_grasp_step).
 //  - The object: the body named `object_body` (and its subtree). Its true surfaces are its mesh
-//    geoms but the pieces of a decomposition (bridge::is_piece: grasp --decomposed keeps the
+//    geoms but the pieces of a decomposition (grasp::is_piece: grasp --decomposed keeps the
 //    original geom, without collision, beside its pieces, named or not).
 //  - The hand: every mesh or primitive geom that can collide (contype or conaffinity non-zero)
 //    outside the object's subtree, the world body and the body named `support_body` ("": none);
-//    a primitive's true surface is bridge::tessellate_primitive's (a box exactly, curved ones
-//    circumscribed within bridge::tessellation_tolerance, far below the 1 mm of a phantom).
+//    a primitive's true surface is mujoco::tessellate_primitive's (a box exactly, curved ones
+//    circumscribed within mujoco::tessellation_tolerance, far below the 1 mm of a phantom).
 //  - The support: the body the object stands on (the drive config's "support", drive_config.h;
 //    the table of mjcf/real_robotiq_*.xml, a driven body whose box MuJoCo collides with the
 //    object natively in every configuration). The race is on the grasp's contacts, hand against
@@ -52,7 +52,7 @@ constexpr double kPhantomDistance = 1e-3;
 //    nearest true object surface (exact::SurfaceDistance, CGAL's AABB tree, in each geom's frame
 //    from MuJoCo's float vertices); and every (hand geom, true object geom) pair is decided by
 //    exact::mesh_mesh_pairs (first contact) on the geom-frame triangles posed by
-//    bridge::relative_pose. A hand geom whose true mesh meets the object's with no contact with
+//    mujoco::relative_pose. A hand geom whose true mesh meets the object's with no contact with
 //    any object geom at that step is a missed contact.
 // Not judged: whether the true meshes are more than 1 mm apart when a contact's point is within
 // 1 mm of both surfaces (the meshes are then within 2 mm).

@@ -29,7 +29,7 @@ bool is_object_file(const fs::path& p) {
 json settings_json(const ObjectSetOptions& o, const std::vector<TesterSpec>& testers) {
   json methods = json::array();
   for (const TesterSpec& t : testers) methods.push_back(t.name);
-  const bridge::ObjectPlacement& p = o.placement;
+  const grasp::ObjectPlacement& p = o.placement;
   return {{"scale", p.fit ? json() : json(p.scale)},
           {"fit", p.fit},
           {"up", p.pose ? json() : json(p.up)},
@@ -44,7 +44,7 @@ json refused_row(const std::string& object, const std::string& error) {
 }
 
 // The row of a checked object from its scene and its validation.
-json checked_row(const std::string& object, const bridge::ObjectScene& scene,
+json checked_row(const std::string& object, const grasp::ObjectScene& scene,
                  const ValidationReport& report) {
   // CGAL's hits are the truth, the same in every method's table: read from the first.
   int cgal_hits = 0;
@@ -142,14 +142,14 @@ json validate_object_set(const ObjectSetOptions& options, const std::vector<Test
       options.log("object " + std::to_string(i + 1) + " of " + std::to_string(objects.size()) +
                   ": " + object);
     }
-    bridge::ObjectPlacement placement = options.placement;
+    grasp::ObjectPlacement placement = options.placement;
     placement.file = file;
-    bridge::TempFolder folder;
-    bridge::ObjectScene scene;
+    grasp::TempFolder folder;
+    grasp::ObjectScene scene;
     // A bad object is its row and a warning; a bad --up (std::invalid_argument) stops the set.
     try {
-      scene = bridge::write_object_scene(placement, options.template_path, options.hand,
-                                         folder.path().string(), options.default_fit);
+      scene = grasp::write_object_scene(placement, options.template_path, options.hand,
+                                        folder.path().string(), options.default_fit);
       ValidateOptions validate;
       validate.max_steps = options.max_steps;
       if (!options.out_dir.empty()) {
@@ -165,13 +165,13 @@ json validate_object_set(const ObjectSetOptions& options, const std::vector<Test
       rows.push_back(checked_row(object, scene, report));
     } catch (const io::InputError& e) {
       rows.push_back(refused_row(object, e.what()));
-    } catch (const bridge::GraspInputError& e) {
+    } catch (const grasp::GraspInputError& e) {
       // The scene is a temporary file: the error names the user's object.
       const std::string error = e.file() == scene.scene
                                     ? file + ": in the template scene: " + e.message()
                                     : std::string(e.what());
       rows.push_back(refused_row(object, error));
-    } catch (const bridge::MujocoError& e) {
+    } catch (const mujoco::MujocoError& e) {
       rows.push_back(refused_row(object, file + ": " + e.what()));
     }
     if (rows.back()["status"] == "refused") {

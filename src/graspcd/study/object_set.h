@@ -36,7 +36,7 @@ struct ObjectSetOptions {
   std::string template_path;  // the template scene (object_scene.h)
   std::optional<std::array<double, 2>> default_fit;  // when the template has no graspcd_fit
   // scale, fit, up, yaw_degrees, pose: the same for every object (file is ignored).
-  bridge::ObjectPlacement placement;
+  grasp::ObjectPlacement placement;
   int max_steps = 400;  // most closing grasp steps per object
   // The first disagreement of each (method, pair, object) is written into OUT/<object path
   // without its extension>/ (validate.h); empty: nothing is written.

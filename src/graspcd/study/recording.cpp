@@ -47,7 +47,7 @@ Recording record_grasp(const std::string& name, const std::string& scene, bool n
   r.name = name;
   r.scene = scene;
   r.native = native;
-  bridge::GraspOptions options;
+  grasp::GraspOptions options;
   options.native = native;
   options.max_steps = max_steps;
   options.on_grasp_step = [&r](const mjModel* m, const mjData* d, int) {
@@ -57,7 +57,7 @@ Recording record_grasp(const std::string& name, const std::string& scene, bool n
     r.qpos.emplace_back(d->qpos, d->qpos + m->nq);
     r.contacts.push_back(recorded_contacts(d));
   };
-  r.grasp = bridge::run_grasp(scene, options);
+  r.grasp = grasp::run_grasp(scene, options);
   Fnv1a h;
   for (std::size_t s = 0; s < r.xpos.size(); ++s) {
     h.add_bytes(r.xpos[s].data(), r.xpos[s].size() * sizeof(double));
@@ -72,7 +72,7 @@ namespace {
 int segment_of(const mjModel* m, int geom) {
   const char* name = mj_id2name(m, mjOBJ_GEOM, geom);
   if (!name) return -1;
-  const auto& names = bridge::finger_segment_names();
+  const auto& names = grasp::finger_segment_names();
   for (std::size_t s = 0; s < names.size(); ++s) {
     if (names[s] == name) return static_cast<int>(s);
   }
@@ -93,13 +93,13 @@ void restore(const Recording& r, int step, const mjModel* m, mjData* d) {
 }  // namespace
 
 MeshScene::MeshScene(const std::string& scene, const ObbTreeOptions& tree_options)
-    : model_(bridge::load_model(scene)), data_(mj_makeData(model_.get())) {
-  const std::string config_path = bridge::pair_config_path(scene);
-  const bridge::Registry registry(model_.get(), bridge::load_registry_config(config_path),
+    : model_(grasp::load_model(scene)), data_(mj_makeData(model_.get())) {
+  const std::string config_path = mujoco::pair_config_path(scene);
+  const mujoco::Registry registry(model_.get(), mujoco::load_registry_config(config_path),
                                   config_path);
   const mjModel* m = model_.get();
   std::set<int> meshes;
-  for (const bridge::ServedPair& p : registry.pairs()) {
+  for (const mujoco::ServedPair& p : registry.pairs()) {
     MeshPair pair;
     // The finger segment first when there is one: contacts and poses in the finger's frame.
     const bool lo_is_finger = segment_of(m, p.geom_lo) >= 0;
@@ -114,7 +114,7 @@ MeshScene::MeshScene(const std::string& scene, const ObbTreeOptions& tree_option
   }
   for (int mesh : meshes) {
     mesh_ids_.push_back(mesh);
-    faces_[mesh] = bridge::Registry::mesh_triangles(m, mesh);
+    faces_[mesh] = mujoco::Registry::mesh_triangles(m, mesh);
     trees_[mesh] = ObbTree::build(faces_[mesh], tree_options);
   }
 }
@@ -127,11 +127,11 @@ std::size_t MeshScene::face_count() const {
 
 Pose MeshScene::pose(const Recording& r, int step, const MeshPair& pair) const {
   restore(r, step, model_.get(), data_.get());
-  return bridge::relative_pose(data_.get(), pair.geom1, pair.geom2);
+  return mujoco::relative_pose(data_.get(), pair.geom1, pair.geom2);
 }
 
 BoxScene::BoxScene(const std::string& scene, const std::string& kinds)
-    : model_(bridge::load_model(scene)), data_(mj_makeData(model_.get())) {
+    : model_(grasp::load_model(scene)), data_(mj_makeData(model_.get())) {
   const mjModel* m = model_.get();
   const int object = mj_name2id(m, mjOBJ_BODY, "object");
   if (object < 0) throw std::runtime_error(scene + ": no body named object");
@@ -161,7 +161,7 @@ BoxScene::BoxScene(const std::string& scene, const std::string& kinds)
 
 Obb BoxScene::box2(const Recording& r, int step, const BoxPair& pair) const {
   restore(r, step, model_.get(), data_.get());
-  const Pose p = bridge::relative_pose(data_.get(), pair.geom1, pair.geom2);
+  const Pose p = mujoco::relative_pose(data_.get(), pair.geom1, pair.geom2);
   Obb b;
   b.center = p.t;
   b.axes = p.R;

@@ -43,7 +43,7 @@ struct Recording {
   // Per closing grasp step: d->qpos and d->contact after its last physics step (not hashed).
   std::vector<std::vector<double>> qpos;
   std::vector<std::vector<RecordedContact>> contacts;
-  bridge::GraspResult grasp;
+  grasp::GraspResult grasp;
   std::uint64_t pose_hash = 0;  // FNV-1a over the bits of every recorded pose
 
   int steps() const { return static_cast<int>(xpos.size()); }
@@ -79,7 +79,7 @@ struct MeshPair {
   int geom2 = 0;
   int mesh1 = 0;
   int mesh2 = 0;
-  int segment = -1;  // index into bridge::finger_segment_names() of the finger geom, -1 none
+  int segment = -1;  // index into grasp::finger_segment_names() of the finger geom, -1 none
 };
 
 class MeshScene {
@@ -96,7 +96,7 @@ class MeshScene {
   const mjModel* model() const { return model_.get(); }
   std::size_t face_count() const;
 
-  // geom2 in geom1's frame at a recorded step (bridge::relative_pose on the recorded state).
+  // geom2 in geom1's frame at a recorded step (mujoco::relative_pose on the recorded state).
   Pose pose(const Recording& r, int step, const MeshPair& pair) const;
 
   // Replaces every tree by `make(tree)` (e.g. ObbTree::rounded_to_float).
@@ -106,8 +106,8 @@ class MeshScene {
   }
 
  private:
-  bridge::ModelPtr model_;
-  bridge::DataPtr data_;
+  mujoco::ModelPtr model_;
+  mujoco::DataPtr data_;
   std::vector<MeshPair> pairs_;
   std::vector<int> mesh_ids_;
   std::map<int, ObbTree> trees_;
@@ -134,8 +134,8 @@ class BoxScene {
   Obb box2(const Recording& r, int step, const BoxPair& pair) const;
 
  private:
-  bridge::ModelPtr model_;
-  bridge::DataPtr data_;
+  mujoco::ModelPtr model_;
+  mujoco::DataPtr data_;
   std::vector<BoxPair> pairs_;
 };
 

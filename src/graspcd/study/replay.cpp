@@ -178,7 +178,7 @@ Answers exact_answers(const MeshScene& scene, const Recording& recording) {
 }
 
 std::vector<int> first_contact_steps(const MeshScene& scene, const Answers& answers, int steps) {
-  std::vector<int> first(bridge::finger_segment_names().size(), -1);
+  std::vector<int> first(grasp::finger_segment_names().size(), -1);
   const auto& pairs = scene.pairs();
   for (int s = 0; s < steps; ++s) {
     for (std::size_t i = 0; i < pairs.size(); ++i) {

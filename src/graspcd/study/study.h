@@ -47,7 +47,7 @@ struct StudyOptions {
 };
 
 // Runs the study; progress lines go to `log` (stderr in the command). Throws std::runtime_error
-// (and bridge::GraspInputError for a bad scene) with a one-line message.
+// (and grasp::GraspInputError for a bad scene) with a one-line message.
 void run_study(const StudyOptions& options, const std::function<void(const std::string&)>& log);
 
 // Joins sweep shard files (each written by a --shard run) into OUT/sweep.json and OUT/sweep.csv.

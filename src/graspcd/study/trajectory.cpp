@@ -49,7 +49,7 @@ std::string geom_type_name(int type) {
 
 // "A", "B" or "C" for a finger segment geom (finger<k>_<letter>), "" otherwise.
 std::string segment_letter(const std::string& name) {
-  for (const std::string& s : bridge::finger_segment_names()) {
+  for (const std::string& s : grasp::finger_segment_names()) {
     if (s == name) return name.substr(name.size() - 1);
   }
   return "";
@@ -112,7 +112,7 @@ std::vector<double> step_medians(const std::vector<std::vector<double>>& step_ns
 
 void write_trajectory(const std::string& path, const Recording& r, const MeshScene* scene,
                       const StepTimes& times) {
-  const bridge::ModelPtr model = bridge::load_model(r.scene);
+  const mujoco::ModelPtr model = grasp::load_model(r.scene);
   const mjModel* m = model.get();
   if (r.ngeom != m->ngeom || r.qpos.size() != r.xpos.size() || r.contacts.size() != r.xpos.size())
     throw std::runtime_error(r.scene + ": the recording does not match the scene");
@@ -173,7 +173,7 @@ void write_trajectory(const std::string& path, const Recording& r, const MeshSce
 
   // Per step: poses, our contacts, and MuJoCo's native ones at the same joint positions (the
   // bridge is not installed here: record_grasp's grasp has torn it down).
-  const bridge::DataPtr data(mj_makeData(m));
+  const mujoco::DataPtr data(mj_makeData(m));
   mjData* d = data.get();
   json steps = json::array();
   for (std::size_t s = 0; s < r.xpos.size(); ++s) {
@@ -199,7 +199,7 @@ void write_trajectory(const std::string& path, const Recording& r, const MeshSce
               {"recorded_with", r.native ? "native" : "bridge, " + r.grasp.method},
               {"grasp_steps", r.steps()},
               {"first_contact", r.grasp.first_contact},
-              {"segment_names", bridge::finger_segment_names()},
+              {"segment_names", grasp::finger_segment_names()},
               {"held", r.grasp.held},
               {"meshes", meshes},
               {"geoms", geoms},
@@ -218,7 +218,7 @@ void export_grasp(const std::string& scene, const std::string& path,
                   const TrajectoryOptions& options) {
   const Recording r =
       record_grasp(std::filesystem::path(scene).stem().string(), scene, false, options.max_steps);
-  const bridge::ModelPtr model = bridge::load_model(scene);
+  const mujoco::ModelPtr model = grasp::load_model(scene);
   const int finger = mj_name2id(model.get(), mjOBJ_GEOM, "finger1_A");
   if (finger < 0 || model->geom_type[finger] != mjGEOM_MESH) {
     write_trajectory(path, r, nullptr, {});

@@ -51,8 +51,8 @@ struct CheckedPair {
   int geom1 = 0;
   int geom2 = 0;
   bool box_box = false;
-  const bridge::MeshTree* tree1 = nullptr;
-  const bridge::MeshTree* tree2 = nullptr;
+  const mujoco::MeshTree* tree1 = nullptr;
+  const mujoco::MeshTree* tree2 = nullptr;
   const std::vector<Triangle>* faces1 = nullptr;  // face order (the tree's face ids)
   const std::vector<Triangle>* faces2 = nullptr;
   Vec3 half1 = Vec3::Zero();  // box-box pairs: the geom boxes' half-extents
@@ -139,18 +139,18 @@ class Validator {
 
   // After closing grasp step `step`: every pair of `registry` (built on the model `d` steps, or on
   // a copy of it with the same geom ids) at the poses of `d`.
-  void check_step(const bridge::Registry& registry, const mjData* d, int step) {
+  void check_step(const mujoco::Registry& registry, const mjData* d, int step) {
     if (pairs_.empty()) set_up(registry);
     bool any_contact = false;
     for (std::size_t i = 0; i < pairs_.size(); ++i) {
       const CheckedPair& p = pairs_[i];
       // A placement MuJoCo calls bad (NaN, inf, beyond 1e10), as the served path: not checked,
       // counted (neither the methods nor CGAL answer on a meaningless pose).
-      if (bridge::bad_geom_placement(d, p.geom1) || bridge::bad_geom_placement(d, p.geom2)) {
+      if (mujoco::bad_geom_placement(d, p.geom1) || mujoco::bad_geom_placement(d, p.geom2)) {
         ++report_.nonfinite_skips;
         continue;
       }
-      const Pose pose = bridge::relative_pose(d, p.geom1, p.geom2);
+      const Pose pose = mujoco::relative_pose(d, p.geom1, p.geom2);
       const bool truth = p.box_box ? check_boxes(i, pose, step) : check_trees(i, pose, step);
       any_contact = any_contact || truth;
     }
@@ -159,7 +159,7 @@ class Validator {
     if (options_.on_step) options_.on_step(step);
   }
 
-  ValidationReport finish(const bridge::GraspResult& grasp) {
+  ValidationReport finish(const grasp::GraspResult& grasp) {
     report_.grasp_method = grasp.method;
     report_.gripped = grasp.gripped;
     report_.held = grasp.held;
@@ -170,15 +170,15 @@ class Validator {
   ValidationReport& report() { return report_; }
 
  private:
-  void set_up(const bridge::Registry& registry) {
+  void set_up(const mujoco::Registry& registry) {
     const mjModel* m = registry.model();
-    for (const bridge::ServedPair& s : registry.pairs()) {
+    for (const mujoco::ServedPair& s : registry.pairs()) {
       CheckedPair p;
       // MuJoCo's order (mj_collision): the geom of the lower type first, then the lower id.
       const bool swap = m->geom_type[s.geom_lo] > m->geom_type[s.geom_hi];
       p.geom1 = swap ? s.geom_hi : s.geom_lo;
       p.geom2 = swap ? s.geom_lo : s.geom_hi;
-      p.box_box = s.path == bridge::PairPath::kBoxBox;
+      p.box_box = s.path == mujoco::PairPath::kBoxBox;
       if (p.box_box) {
         p.half1 = Vec3(m->geom_size[3 * p.geom1], m->geom_size[3 * p.geom1 + 1],
                        m->geom_size[3 * p.geom1 + 2]);
@@ -209,7 +209,7 @@ class Validator {
     }
   }
 
-  const std::vector<Triangle>& faces_of(const bridge::MeshTree& tree) {
+  const std::vector<Triangle>& faces_of(const mujoco::MeshTree& tree) {
     auto it = faces_.find(&tree);
     if (it == faces_.end()) {
       std::vector<Triangle> f(tree.slot_of_face.size());
@@ -341,7 +341,7 @@ class Validator {
   ValidationReport report_;
   std::vector<CheckedPair> pairs_;
   std::vector<std::unique_ptr<PairTester>> testers_;
-  std::map<const bridge::MeshTree*, std::vector<Triangle>> faces_;
+  std::map<const mujoco::MeshTree*, std::vector<Triangle>> faces_;
   std::vector<TrianglePair> found_;
 };
 
@@ -375,48 +375,48 @@ ValidationReport validate_scene(const std::string& scene, const std::vector<Test
                                 const ValidateOptions& options) {
   Validator validator(testers, options);
   validator.report().scene = scene;
-  bridge::GraspOptions grasp;
+  grasp::GraspOptions grasp;
   grasp.config_path = options.config_path;
   grasp.max_steps = options.max_steps;
   const std::string config =
-      options.config_path.empty() ? bridge::pair_config_path(scene) : options.config_path;
+      options.config_path.empty() ? mujoco::pair_config_path(scene) : options.config_path;
   if (options.decomposed_dir.empty()) {
     grasp.on_grasp_step = [&validator](const mjModel* m, const mjData* d, int step) {
-      const bridge::Registry* registry = bridge::find_registry(m);
+      const mujoco::Registry* registry = mujoco::find_registry(m);
       if (!registry) {
         throw std::runtime_error("validate: no pair registry is attached to the model");
       }
       validator.check_step(*registry, d, step);
     };
-    const bridge::GraspResult result = bridge::run_grasp(scene, grasp);
+    const grasp::GraspResult result = grasp::run_grasp(scene, grasp);
     ValidationReport report = validator.finish(result);
     report.config = config;
     return report;
   }
   // The decomposed grasp runs natively (no registry): the pairs and trees come from a registry of
   // the config built, unattached, on a copy of its model with the true object colliding.
-  bridge::RegistryConfig registry_config;
+  mujoco::RegistryConfig registry_config;
   try {
-    registry_config = bridge::load_registry_config(config);
+    registry_config = mujoco::load_registry_config(config);
   } catch (const std::runtime_error& e) {
-    throw bridge::config_error(config, e);
+    throw grasp::config_error(config, e);
   }
-  bridge::ModelPtr truth;
-  std::unique_ptr<bridge::Registry> registry;
+  mujoco::ModelPtr truth;
+  std::unique_ptr<mujoco::Registry> registry;
   grasp.on_grasp_step = [&](const mjModel* m, const mjData* d, int step) {
     if (!registry) {
-      truth = bridge::true_object_model(m);
+      truth = grasp::true_object_model(m);
       try {
-        registry = std::make_unique<bridge::Registry>(truth.get(), registry_config, config);
+        registry = std::make_unique<mujoco::Registry>(truth.get(), registry_config, config);
       } catch (const std::runtime_error& e) {
-        throw bridge::config_error(config, e);
+        throw grasp::config_error(config, e);
       }
     }
     validator.check_step(*registry, d, step);
   };
-  bridge::DecomposedScene decomposed;
-  const bridge::GraspResult result =
-      bridge::run_decomposed_grasp(scene, options.decomposed_dir, grasp, &decomposed);
+  grasp::DecomposedScene decomposed;
+  const grasp::GraspResult result =
+      grasp::run_decomposed_grasp(scene, options.decomposed_dir, grasp, &decomposed);
   registry.reset();  // before its model
   ValidationReport report = validator.finish(result);
   report.config = config;

@@ -7,7 +7,7 @@
 // - The grasp runs once through the bridge (bridge/grasp.h) with the pair config's method (the
 //   trajectory the user times). After each closing grasp step (the state after its last physics
 //   step, as the study records it), every pair of the registry the bridge attached is posed from
-//   d->geom_xpos / d->geom_xmat (bridge::relative_pose, geom2 in geom1's frame, geom1 the geom
+//   d->geom_xpos / d->geom_xmat (mujoco::relative_pose, geom2 in geom1's frame, geom1 the geom
 //   MuJoCo passes first: the lower type, then the lower id).
 // - Tree pairs (meshes and tessellated primitives): each method's tester queries the bridge's own
 //   trees, built from MuJoCo's float vertices in the geom frames, in all-contacts mode. The truth
@@ -69,9 +69,9 @@ struct ValidateOptions {
   // Called after each checked grasp step (1-based), e.g. for progress.
   std::function<void(int step)> on_step;
   // A folder written by `graspcd decompose` (empty: none): the grasp runs with the object replaced
-  // by its convex pieces under MuJoCo's native collision (bridge::run_decomposed_grasp, as
+  // by its convex pieces under MuJoCo's native collision (grasp::run_decomposed_grasp, as
   // `graspcd grasp --decomposed`), and at its poses every registered pair is checked on the true
-  // meshes (the original geoms, bridge::true_object_model), as without it.
+  // meshes (the original geoms, grasp::true_object_model), as without it.
   std::string decomposed_dir;
 };
 
@@ -121,23 +121,23 @@ struct ValidationReport {
   std::string grasp_method;    // the method that drove the grasp
   int steps = 0;               // closing grasp steps checked
   int steps_with_contact = 0;  // those at which CGAL found some pair intersecting
-  bool gripped = false;        // the grasp's verdict (bridge::GraspResult::gripped)
-  bool held = false;           // bridge::GraspResult::held
-  std::string reason;          // why not held (bridge::GraspResult::reason); empty when held
+  bool gripped = false;        // the grasp's verdict (grasp::GraspResult::gripped)
+  bool held = false;           // grasp::GraspResult::held
+  std::string reason;          // why not held (grasp::GraspResult::reason); empty when held
   std::vector<MethodTable> methods;
   double exact_seconds = 0;   // CGAL's time over the run
   double tester_seconds = 0;  // the testers' time over the run
   // (step, pair) checks skipped because a geom's placement held NaN, inf or a number beyond 1e10
-  // (bridge::bad_geom_placement, the rule of the served path): nothing to check on such a pose.
+  // (mujoco::bad_geom_placement, the rule of the served path): nothing to check on such a pose.
   std::uint64_t nonfinite_skips = 0;
   // ValidateOptions::decomposed_dir: the folder and what was replaced (pieces 0 without it).
   std::string decomposed_dir;
-  bridge::DecomposedScene decomposed;
+  grasp::DecomposedScene decomposed;
   bool missed_any() const;
 };
 
 // Runs the grasp of `scene` and checks every tester at every closing grasp step. Throws
-// bridge::GraspInputError for a missing or bad scene or config (as `graspcd grasp`).
+// grasp::GraspInputError for a missing or bad scene or config (as `graspcd grasp`).
 ValidationReport validate_scene(const std::string& scene, const std::vector<TesterSpec>& testers,
                                 const ValidateOptions& options = {});
 

@@ -1,6 +1,7 @@
 // A program written against graspcd 0.1's include paths: "bridge/..." and "core/..." (forwarding
-// headers in 0.2, removed in 0.3), plus the mesh reader graspcd::io. It reads a mesh, builds its
-// OBB tree and prints "faces N boxes M". Usage: legacy_includes MESH.obj. Errors: one line, exit 2.
+// headers in 0.2, removed in 0.3) and the namespace graspcd::bridge (an alias of graspcd::mujoco
+// since 0.3), plus the mesh reader graspcd::io. It reads a mesh, builds its OBB tree and prints
+// "faces N boxes M". Usage: legacy_includes MESH.obj. Errors: one line, exit 2.
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -19,8 +20,9 @@ int main(int argc, char** argv) {
     const graspcd::TriangleMesh mesh = graspcd::io::load_mesh(argv[1]);
     const graspcd::ObbTree tree = graspcd::ObbTree::build(mesh);
     const graspcd::bridge::TriContact unused{};  // the 0.1 name of graspcd::TriContact
+    const graspcd::bridge::BridgeStats stats{};  // the 0.2 name of graspcd::mujoco::BridgeStats
     std::printf("faces %zu boxes %zu depth %.0f\n", mesh.faces.size(), tree.nodes().size(),
-                unused.depth);
+                unused.depth + static_cast<double>(stats.calls));
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());

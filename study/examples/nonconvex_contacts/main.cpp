@@ -62,7 +62,7 @@ int run(int argc, char** argv) {
   std::unique_ptr<mjData, DataDeleter> d(mj_makeData(m.get()));
 
   // graspcd's contacts for the config's pairs, until `contacts` goes out of scope.
-  graspcd::bridge::NonconvexContacts contacts(m.get(), graspcd::bridge::pair_config_path(scene),
+  graspcd::mujoco::NonconvexContacts contacts(m.get(), graspcd::mujoco::pair_config_path(scene),
                                               method);
   for (const std::string& w : contacts.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
@@ -71,7 +71,7 @@ int run(int argc, char** argv) {
   int max_ncon = 0;
   for (long s = 1; s <= steps; ++s) {
     mj_step(m.get(), d.get());
-    const graspcd::bridge::BridgeStats st = contacts.take_stats();
+    const graspcd::mujoco::BridgeStats st = contacts.take_stats();
     calls += st.calls;
     served_contacts += st.contacts;
     detection_ns += st.detection_ns;
