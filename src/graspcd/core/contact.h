@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "graspcd/core/geometry.h"
+#include "graspcd/core/mesh_features.h"
 #include "graspcd/core/tolerances.h"
 
 namespace graspcd {
@@ -46,11 +47,6 @@ struct TriContact {
 TriContact triangle_pair_contact(const Triangle& a, const Triangle& b, double max_depth,
                                  const Vec3& fallback_normal, std::uint8_t sharp_a = 7,
                                  std::uint8_t sharp_b = 7);
-
-// Per face, 3 bits: bit k set when edge v[k] -> v[k+1] is sharp: its two faces (found by
-// welding vertices with identical coordinates) meet at more than tol::kSharpEdgeAngle
-// (tolerances.h), or the edge has one face or more than two, or a face is degenerate.
-std::vector<std::uint8_t> sharp_edge_masks(const std::vector<Triangle>& faces);
 
 // Chooses at most `k` of `contacts` (indices, the deepest first): the deepest contact, then
 // farthest-point sampling on positions (Gonzalez 1985: each next contact maximises its distance
@@ -114,20 +110,6 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
                                        const std::vector<Triangle>& faces_a,
                                        const std::vector<Triangle>& faces_b,
                                        const ManifoldOptions& options = {});
-
-// The three vertices of a face as ids: two vertices have the same id exactly when their
-// coordinates are equal (-0.0 and 0.0 alike), the relation the manifold grows patches by.
-using FaceVertexIds = std::array<std::uint32_t, 3>;
-
-// Welds `faces` by exact coordinates: one FaceVertexIds per face, ids 0, 1, ... numbered in the
-// order of the coordinates' bit patterns. Throws std::length_error beyond 2^31 distinct vertices.
-std::vector<FaceVertexIds> weld_vertex_ids(const std::vector<Triangle>& faces);
-
-// sharp_edge_masks(faces) with the faces' welded ids already at hand (`ids` from
-// weld_vertex_ids(faces)), so that a mesh is welded once. Throws std::invalid_argument when `ids`
-// and `faces` differ in length.
-std::vector<std::uint8_t> sharp_edge_masks(const std::vector<Triangle>& faces,
-                                           const std::vector<FaceVertexIds>& ids);
 
 // The same manifold from the candidates' triangles given as welded vertex ids (ids of one geom
 // from one weld_vertex_ids call, e.g. kept with the geom's tree): what the MuJoCo seam calls, with
