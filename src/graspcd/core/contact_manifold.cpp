@@ -1,4 +1,4 @@
-#include "graspcd/core/contact.h"
+#include "graspcd/core/contact_manifold.h"
 
 #include <algorithm>
 #include <array>
@@ -6,54 +6,10 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <map>
 #include <stdexcept>
-#include <string>
 #include <utility>
 
 #include "graspcd/core/tolerances.h"
-
-namespace graspcd {
-
-std::vector<std::size_t> select_contacts(const std::vector<TriContact>& contacts, std::size_t k) {
-  const std::size_t n = contacts.size();
-  std::vector<std::size_t> chosen;
-  if (n == 0 || k == 0) return chosen;
-  // The deepest first.
-  std::size_t first = 0;
-  for (std::size_t i = 1; i < n; ++i) {
-    if (contacts[i].depth > contacts[first].depth) first = i;
-  }
-  if (n <= k) {
-    chosen.resize(n);
-    for (std::size_t i = 0; i < n; ++i) chosen[i] = i;
-    std::swap(chosen[0], chosen[first]);
-    return chosen;
-  }
-  // Farthest-point sampling: dist2[i] is the squared distance of i to the chosen set.
-  std::vector<double> dist2(n, std::numeric_limits<double>::infinity());
-  chosen.push_back(first);
-  for (std::size_t round = 1; round < k; ++round) {
-    const Vec3& last = contacts[chosen.back()].pos;
-    std::size_t next = n;
-    for (std::size_t i = 0; i < n; ++i) {
-      dist2[i] = std::min(dist2[i], (contacts[i].pos - last).squaredNorm());
-      if (dist2[i] <= 0) continue;  // chosen already, or at a chosen position
-      if (next == n || dist2[i] > dist2[next] ||
-          (dist2[i] == dist2[next] && contacts[i].depth > contacts[next].depth)) {
-        next = i;
-      }
-    }
-    if (next == n) break;  // every remaining contact sits on a chosen position
-    chosen.push_back(next);
-  }
-  return chosen;
-}
-
-}  // namespace graspcd
-
-// ---- The contact manifold
-// -------------------------------------------------------------------------
 
 namespace graspcd {
 namespace {
@@ -216,6 +172,41 @@ void small_stable_sort(It first, It last, Before before) {
 }
 
 }  // namespace
+
+std::vector<std::size_t> select_contacts(const std::vector<TriContact>& contacts, std::size_t k) {
+  const std::size_t n = contacts.size();
+  std::vector<std::size_t> chosen;
+  if (n == 0 || k == 0) return chosen;
+  // The deepest first.
+  std::size_t first = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    if (contacts[i].depth > contacts[first].depth) first = i;
+  }
+  if (n <= k) {
+    chosen.resize(n);
+    for (std::size_t i = 0; i < n; ++i) chosen[i] = i;
+    std::swap(chosen[0], chosen[first]);
+    return chosen;
+  }
+  // Farthest-point sampling: dist2[i] is the squared distance of i to the chosen set.
+  std::vector<double> dist2(n, std::numeric_limits<double>::infinity());
+  chosen.push_back(first);
+  for (std::size_t round = 1; round < k; ++round) {
+    const Vec3& last = contacts[chosen.back()].pos;
+    std::size_t next = n;
+    for (std::size_t i = 0; i < n; ++i) {
+      dist2[i] = std::min(dist2[i], (contacts[i].pos - last).squaredNorm());
+      if (dist2[i] <= 0) continue;  // chosen already, or at a chosen position
+      if (next == n || dist2[i] > dist2[next] ||
+          (dist2[i] == dist2[next] && contacts[i].depth > contacts[next].depth)) {
+        next = i;
+      }
+    }
+    if (next == n) break;  // every remaining contact sits on a chosen position
+    chosen.push_back(next);
+  }
+  return chosen;
+}
 
 ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates,
                                        const std::vector<Triangle>& faces_a,
