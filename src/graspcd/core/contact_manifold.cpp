@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "graspcd/core/adjacency_index.h"
 #include "graspcd/core/tolerances.h"
 
 namespace graspcd {
@@ -80,6 +81,51 @@ double hull_gain(const std::vector<HullEdge>& edges, const Point2& x) {
   return 0.5 * twice;
 }
 
+double squared_distance(const Point2& a, const Point2& b) {
+  const double dx = a[0] - b[0], dy = a[1] - b[1];
+  return dx * dx + dy * dy;
+}
+
+// The member not taken yet that most enlarges the convex hull `hull` of the chosen points (`edges`
+// its edges, rebuilt here), or `count` when none enlarges it by more than tol::kManifoldFlatArea
+// times `extent2` (collinear points). Members are deepest first, so the strict > keeps ties
+// deepest.
+std::size_t largest_hull_gain(const std::vector<Point2>& q, std::size_t count,
+                              const std::vector<char>& taken, const std::vector<Point2>& hull,
+                              double extent2, std::vector<HullEdge>& edges) {
+  hull_edges(hull, edges);
+  std::size_t best = count;
+  double best_gain = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (taken[i]) continue;
+    const double gain = hull_gain(edges, q[i]);
+    if (gain > best_gain) {
+      best_gain = gain;
+      best = i;
+    }
+  }
+  return best_gain <= tol::kManifoldFlatArea * extent2 ? count : best;
+}
+
+// The member not taken yet farthest from the chosen ones (the deeper on ties), or `count` when
+// every other member sits on a chosen point.
+std::size_t farthest_from_chosen(const std::vector<Point2>& q, std::size_t count,
+                                 const std::vector<char>& taken,
+                                 const std::vector<std::size_t>& chosen) {
+  std::size_t best = count;
+  double best_d2 = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (taken[i]) continue;
+    double d2 = std::numeric_limits<double>::infinity();
+    for (std::size_t c : chosen) d2 = std::min(d2, squared_distance(q[i], q[c]));
+    if (d2 > best_d2) {
+      best_d2 = d2;
+      best = i;
+    }
+  }
+  return best;
+}
+
 // Chooses at most `k` of a patch's `count` members (deepest first; q their positions in the patch
 // plane) by the rule of build_contact_manifold, step 2: their positions in the members into
 // `chosen`, in choice order, and the convex hull of the chosen points (convex_hull's) into `hull`.
@@ -92,44 +138,17 @@ void choose_patch_points(std::size_t count, const std::vector<Point2>& q, std::s
   thread_local std::vector<char> taken;
   taken.assign(count, 0);
   taken[0] = 1;
-  const auto dist2 = [&](std::size_t a, std::size_t b) {
-    const double dx = q[a][0] - q[b][0], dy = q[a][1] - q[b][1];
-    return dx * dx + dy * dy;
-  };
   double extent2 = 0;  // squared largest distance from the deepest point: the patch's scale
-  for (std::size_t i = 1; i < count; ++i) extent2 = std::max(extent2, dist2(i, 0));
+  for (std::size_t i = 1; i < count; ++i) extent2 = std::max(extent2, squared_distance(q[i], q[0]));
   thread_local std::vector<Point2> sorted;
   thread_local std::vector<HullEdge> edges;
   hull.push_back(q[0]);
   while (chosen.size() < k) {
-    // The largest hull-area gain; members are deepest first, so the strict > keeps ties deepest.
-    std::size_t best = count;
-    double best_gain = 0;
-    if (chosen.size() >= 2) {
-      hull_edges(hull, edges);
-      for (std::size_t i = 0; i < count; ++i) {
-        if (taken[i]) continue;
-        const double gain = hull_gain(edges, q[i]);
-        if (gain > best_gain) {
-          best_gain = gain;
-          best = i;
-        }
-      }
-      if (best_gain <= tol::kManifoldFlatArea * extent2) best = count;
-    }
-    if (best == count) {
-      // The second point, or collinear points: the member farthest from the chosen ones.
-      double best_d2 = 0;
-      for (std::size_t i = 0; i < count; ++i) {
-        if (taken[i]) continue;
-        double d2 = std::numeric_limits<double>::infinity();
-        for (std::size_t c : chosen) d2 = std::min(d2, dist2(i, c));
-        if (d2 > best_d2) {
-          best_d2 = d2;
-          best = i;
-        }
-      }
-    }
+    // The largest hull-area gain; for the second point, or collinear points, the member farthest
+    // from the chosen ones.
+    std::size_t best =
+        chosen.size() >= 2 ? largest_hull_gain(q, count, taken, hull, extent2, edges) : count;
+    if (best == count) best = farthest_from_chosen(q, count, taken, chosen);
     if (best == count) break;  // every other member sits on a chosen point
     taken[best] = 1;
     chosen.push_back(best);
@@ -168,6 +187,143 @@ void small_stable_sort(It first, It last, Before before) {
   }
   for (It i = first; i != last; ++i) {
     for (It j = i; j != first && before(*j, *(j - 1)); --j) std::iter_swap(j, j - 1);
+  }
+}
+
+// ---- The steps of build_contact_manifold_by_ids
+
+// Throws std::length_error for a vertex id of 2^31 or more (AdjacencyIndex's precondition).
+void check_vertex_ids(const std::vector<FaceVertexIds>& vertices_a,
+                      const std::vector<FaceVertexIds>& vertices_b) {
+  for (std::size_t i = 0; i < vertices_a.size(); ++i) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      if ((vertices_a[i][k] | vertices_b[i][k]) >> 31) {
+        throw std::length_error("build_contact_manifold_by_ids: a vertex id beyond 2^31");
+      }
+    }
+  }
+}
+
+// The candidates deepest first, ties in the given order: sorted by depth, then index, the order a
+// stable sort by depth gives.
+void sort_deepest_first(const std::vector<TriContact>& candidates, std::vector<KeyIndex>& order) {
+  order.resize(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    order[i] = {order_key(candidates[i].depth), static_cast<std::uint32_t>(i)};
+  }
+  std::sort(order.begin(), order.end(), larger_key_first);
+}
+
+// Step 1: patches grown breadth-first through `adjacency`, each from the deepest unassigned
+// candidate (`order`: deepest first), into `patches`, their members in the order found. (The
+// patches depend on which candidates share a vertex, not on the order they are found in: a patch
+// is the seed's connected component, and its members are sorted in step 2.)
+void grow_patches(const std::vector<TriContact>& candidates, const std::vector<KeyIndex>& order,
+                  const AdjacencyIndex& adjacency, double patch_cosine,
+                  std::vector<ContactPatch>& patches) {
+  thread_local std::vector<int> patch_of;
+  patch_of.assign(candidates.size(), -1);
+  thread_local std::vector<std::size_t> queue;
+  thread_local std::vector<int> slot_scanned;  // the last patch that scanned the vertex's list
+  slot_scanned.assign(adjacency.slot_count(), -1);
+  for (const KeyIndex& by_depth : order) {
+    const std::size_t seed = by_depth.index;
+    if (patch_of[seed] >= 0) continue;
+    const int id = static_cast<int>(patches.size());
+    const Vec3& seed_normal = candidates[seed].normal;
+    patch_of[seed] = id;
+    queue.assign(1, seed);
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const std::size_t i = queue[head];
+      for (std::size_t k = 0; k < 6; ++k) {
+        // A vertex scanned once for this patch needs no second scan: whom it admits depends only
+        // on the seed's normal.
+        const std::uint32_t h = adjacency.slot(i, k);
+        if (slot_scanned[h] == id) continue;
+        slot_scanned[h] = id;
+        adjacency.for_each_candidate(h, [&](std::size_t j) {
+          if (patch_of[j] >= 0 || candidates[j].normal.dot(seed_normal) < patch_cosine) return;
+          patch_of[j] = id;
+          queue.push_back(j);
+        });
+      }
+    }
+    ContactPatch patch;
+    patch.members.assign(queue.begin(), queue.end());
+    // The patch normal: the seed's, the penetration direction at the deepest point. (A mean over
+    // the members mixes in the edge directions of the patch's rim; on a cube resting on a cube
+    // their tilt of 0.1 degree made the cube creep 7 mm in 1.5 s.)
+    patch.normal = seed_normal;
+    patches.push_back(std::move(patch));
+  }
+}
+
+// Two unit axes spanning the plane across the unit `normal`: u across normal and the coordinate
+// axis least aligned with it, w = normal x u.
+struct PlaneAxes {
+  Vec3 u, w;
+};
+
+PlaneAxes plane_axes(const Vec3& nrm) {
+  Vec3 axis = Vec3::Zero();
+  axis[std::abs(nrm[0]) <= std::abs(nrm[1]) ? (std::abs(nrm[0]) <= std::abs(nrm[2]) ? 0 : 2)
+                                            : (std::abs(nrm[1]) <= std::abs(nrm[2]) ? 1 : 2)] = 1;
+  const Vec3 u = nrm.cross(axis).normalized();
+  const Vec3 w = nrm.cross(u);
+  return {u, w};
+}
+
+// Step 2 for one patch: its members' depths along its normal into `along` (indexed by candidate),
+// the members sorted by that depth (deepest first, ties by index), the patch's depth, and its
+// points chosen in the plane across its normal (choose_patch_points) with their hull's area.
+void choose_points(const std::vector<TriContact>& candidates, std::size_t per_patch,
+                   ContactPatch& patch, std::vector<double>& along) {
+  thread_local std::vector<std::uint64_t> along_key;  // order_key(along)
+  along_key.resize(candidates.size());
+  for (std::size_t i : patch.members) {
+    along[i] = candidates[i].depth * std::clamp(candidates[i].normal.dot(patch.normal), 0.0, 1.0);
+  }
+  for (std::size_t i : patch.members) along_key[i] = order_key(along[i]);
+  std::sort(patch.members.begin(), patch.members.end(), [&](std::size_t a, std::size_t b) {
+    return along_key[a] > along_key[b] || (along_key[a] == along_key[b] && a < b);
+  });
+  patch.depth = along[patch.members.front()];
+  const PlaneAxes axes = plane_axes(patch.normal);
+  thread_local std::vector<Point2> q, hull;
+  thread_local std::vector<std::size_t> chosen;
+  q.clear();
+  for (std::size_t i : patch.members) {
+    q.push_back({candidates[i].pos.dot(axes.u), candidates[i].pos.dot(axes.w)});
+  }
+  choose_patch_points(patch.members.size(), q, per_patch, chosen, hull);
+  patch.selected.reserve(chosen.size());
+  for (std::size_t pos : chosen) patch.selected.push_back(patch.members[pos]);
+  patch.area = polygon_area(hull);
+}
+
+// Step 3: the pair's budget of `per_pair` points into `contacts` (ContactManifold::contacts), from
+// `patches` sorted deepest first: every patch's deepest point, then the further points by patch
+// area. Each point has its patch's normal and its depth along it (`along`).
+void spend_pair_budget(const std::vector<TriContact>& candidates,
+                       const std::vector<ContactPatch>& patches, const std::vector<double>& along,
+                       std::size_t per_pair, std::vector<TriContact>& contacts) {
+  const auto emit = [&](const ContactPatch& patch, std::size_t i) {
+    contacts.push_back(TriContact{candidates[i].pos, patch.normal, along[i]});
+  };
+  contacts.reserve(std::min(per_pair, candidates.size()));
+  for (const ContactPatch& patch : patches) {
+    if (contacts.size() == per_pair) break;
+    emit(patch, patch.selected.front());
+  }
+  thread_local std::vector<const ContactPatch*> by_area;
+  by_area.clear();
+  for (const ContactPatch& patch : patches) by_area.push_back(&patch);
+  small_stable_sort(by_area.begin(), by_area.end(),
+                    [](const ContactPatch* a, const ContactPatch* b) { return a->area > b->area; });
+  for (const ContactPatch* patch : by_area) {
+    for (std::size_t k = 1; k < patch->selected.size() && contacts.size() < per_pair; ++k) {
+      emit(*patch, patch->selected[k]);
+    }
   }
 }
 
@@ -226,153 +382,22 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
   ContactManifold out;
   if (n == 0 || vertices_a.size() != n || vertices_b.size() != n) return out;
   if (n >> 32) throw std::length_error("build_contact_manifold_by_ids: more than 2^32 candidates");
+  check_vertex_ids(vertices_a, vertices_b);
   const auto per_patch = static_cast<std::size_t>(std::max(options.max_per_patch, 1));
   const auto per_pair = static_cast<std::size_t>(std::max(options.max_per_pair, 1));
-
-  // Deepest first, ties in the given order: sorted by depth, then index, the order a stable sort
-  // by depth gives. (Scratch vectors are thread_local: the seam calls this for every touching pair
-  // of every physics step, and allocating them each time cost a tenth.)
+  // Scratch is thread_local: the seam calls this for every touching pair of every physics step,
+  // and allocating it each time cost a tenth.
   thread_local std::vector<KeyIndex> order;
-  order.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    order[i] = {order_key(candidates[i].depth), static_cast<std::uint32_t>(i)};
-  }
-  std::sort(order.begin(), order.end(), larger_key_first);
-
-  // Which candidates share each triangle vertex, on geom1 (side 0) and on geom2 (side 1): each
-  // vertex side << 31 | id has a slot of an open-addressing hash table (linear probing), which
-  // heads the list of the candidates' vertex entries 6 * candidate + k on it. (The patches below
-  // depend on which candidates share a vertex, not on the order they are found in: a patch is the
-  // seed's connected component, and its members are then sorted.)
-  const std::size_t entries = 6 * n;
-  std::size_t table_size = 16;
-  int table_bits = 4;
-  while (table_size < entries) {
-    table_size <<= 1;
-    ++table_bits;
-  }
-  constexpr std::uint32_t kNone = ~std::uint32_t{0};
-  thread_local std::vector<std::uint32_t> table_key;
-  thread_local std::vector<std::uint32_t> table_head;  // the slot's last entry, kNone: empty slot
-  thread_local std::vector<std::uint32_t> slot_of;     // entry -> its vertex's slot
-  thread_local std::vector<std::uint32_t> next_entry;  // entry -> the previous one on its vertex
-  table_key.resize(table_size);
-  table_head.assign(table_size, kNone);
-  slot_of.resize(entries);
-  next_entry.resize(entries);
-  const std::size_t mask = table_size - 1;
-  const auto add = [&](std::uint32_t key, std::size_t e) {
-    std::size_t h = (std::uint64_t{key} * 0x9E3779B97F4A7C15ull) >> (64 - table_bits);
-    while (table_head[h] != kNone && table_key[h] != key) h = (h + 1) & mask;
-    table_key[h] = key;
-    next_entry[e] = table_head[h];
-    table_head[h] = static_cast<std::uint32_t>(e);
-    slot_of[e] = static_cast<std::uint32_t>(h);
-  };
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::uint32_t ia = vertices_a[i][k], ib = vertices_b[i][k];
-      if ((ia | ib) >> 31) {
-        throw std::length_error("build_contact_manifold_by_ids: a vertex id beyond 2^31");
-      }
-      add(ia, 6 * i + k);
-      add(std::uint32_t{1} << 31 | ib, 6 * i + 3 + k);
-    }
-  }
-
-  // 1. Patches, grown breadth-first from the deepest unassigned candidate.
-  thread_local std::vector<int> patch_of;
-  patch_of.assign(n, -1);
-  thread_local std::vector<std::size_t> queue;
-  thread_local std::vector<int> slot_scanned;  // the last patch that scanned the vertex's list
-  slot_scanned.assign(table_size, -1);
-  for (const KeyIndex& by_depth : order) {
-    const std::size_t seed = by_depth.index;
-    if (patch_of[seed] >= 0) continue;
-    const int id = static_cast<int>(out.patches.size());
-    ContactPatch patch;
-    const Vec3& seed_normal = candidates[seed].normal;
-    patch_of[seed] = id;
-    queue.assign(1, seed);
-    for (std::size_t head = 0; head < queue.size(); ++head) {
-      const std::size_t i = queue[head];
-      for (std::size_t k = 0; k < 6; ++k) {
-        // A vertex scanned once for this patch needs no second scan: whom it admits depends only
-        // on the seed's normal.
-        const std::uint32_t h = slot_of[6 * i + k];
-        if (slot_scanned[h] == id) continue;
-        slot_scanned[h] = id;
-        for (std::uint32_t e = table_head[h]; e != kNone; e = next_entry[e]) {
-          const std::size_t j = e / 6;
-          if (patch_of[j] >= 0 || candidates[j].normal.dot(seed_normal) < options.patch_cosine) {
-            continue;
-          }
-          patch_of[j] = id;
-          queue.push_back(j);
-        }
-      }
-    }
-    patch.members.assign(queue.begin(), queue.end());
-    // The patch normal: the seed's, the penetration direction at the deepest point. (A mean over
-    // the members mixes in the edge directions of the patch's rim; on a cube resting on a cube
-    // their tilt of 0.1 degree made the cube creep 7 mm in 1.5 s.)
-    patch.normal = seed_normal;
-    out.patches.push_back(std::move(patch));
-  }
-
-  // 2. The points of each patch, in the plane across its normal.
+  thread_local AdjacencyIndex adjacency;
   thread_local std::vector<double> along;  // each candidate's depth along its patch's normal
+  sort_deepest_first(candidates, order);
+  adjacency.build(vertices_a, vertices_b);
+  grow_patches(candidates, order, adjacency, options.patch_cosine, out.patches);
   along.assign(n, 0);
-  thread_local std::vector<Point2> q, hull;
-  thread_local std::vector<std::size_t> chosen;
-  thread_local std::vector<std::uint64_t> along_key;  // order_key(along)
-  along_key.resize(n);
-  for (ContactPatch& patch : out.patches) {
-    for (std::size_t i : patch.members) {
-      along[i] = candidates[i].depth * std::clamp(candidates[i].normal.dot(patch.normal), 0.0, 1.0);
-    }
-    for (std::size_t i : patch.members) along_key[i] = order_key(along[i]);
-    std::sort(patch.members.begin(), patch.members.end(), [&](std::size_t a, std::size_t b) {
-      return along_key[a] > along_key[b] || (along_key[a] == along_key[b] && a < b);
-    });
-    patch.depth = along[patch.members.front()];
-    const Vec3& nrm = patch.normal;
-    Vec3 axis = Vec3::Zero();
-    axis[std::abs(nrm[0]) <= std::abs(nrm[1]) ? (std::abs(nrm[0]) <= std::abs(nrm[2]) ? 0 : 2)
-                                              : (std::abs(nrm[1]) <= std::abs(nrm[2]) ? 1 : 2)] = 1;
-    const Vec3 u = nrm.cross(axis).normalized();
-    const Vec3 w = nrm.cross(u);
-    q.clear();
-    for (std::size_t i : patch.members) {
-      q.push_back({candidates[i].pos.dot(u), candidates[i].pos.dot(w)});
-    }
-    choose_patch_points(patch.members.size(), q, per_patch, chosen, hull);
-    patch.selected.reserve(chosen.size());
-    for (std::size_t pos : chosen) patch.selected.push_back(patch.members[pos]);
-    patch.area = polygon_area(hull);
-  }
+  for (ContactPatch& patch : out.patches) choose_points(candidates, per_patch, patch, along);
   small_stable_sort(out.patches.begin(), out.patches.end(),
                     [](const ContactPatch& a, const ContactPatch& b) { return a.depth > b.depth; });
-
-  // 3. The pair's budget: every patch's deepest point, then the further points by patch area.
-  const auto emit = [&](const ContactPatch& patch, std::size_t i) {
-    out.contacts.push_back(TriContact{candidates[i].pos, patch.normal, along[i]});
-  };
-  out.contacts.reserve(std::min(per_pair, n));
-  for (const ContactPatch& patch : out.patches) {
-    if (out.contacts.size() == per_pair) break;
-    emit(patch, patch.selected.front());
-  }
-  thread_local std::vector<const ContactPatch*> by_area;
-  by_area.clear();
-  for (const ContactPatch& patch : out.patches) by_area.push_back(&patch);
-  small_stable_sort(by_area.begin(), by_area.end(),
-                    [](const ContactPatch* a, const ContactPatch* b) { return a->area > b->area; });
-  for (const ContactPatch* patch : by_area) {
-    for (std::size_t k = 1; k < patch->selected.size() && out.contacts.size() < per_pair; ++k) {
-      emit(*patch, patch->selected[k]);
-    }
-  }
+  spend_pair_budget(candidates, out.patches, along, per_pair, out.contacts);
   return out;
 }
 
