@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdint>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -277,6 +279,40 @@ TEST(ContactManifold, IsDeterministic) {
     EXPECT_EQ(m1.contacts[i].depth, m2.contacts[i].depth);
   }
   EXPECT_TRUE(build_contact_manifold({}, {}, {}).contacts.empty());
+}
+
+// Candidates and triangles (or vertex ids) that differ in number are refused with a message that
+// names the counts, not answered with an empty manifold; no candidates and no triangles is the
+// empty manifold.
+TEST(ContactManifold, InputsOfDifferentLengthsAreRefused) {
+  const std::vector<TriContact> cs(2);
+  const Triangle t = tri({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  const std::vector<Triangle> one = {t}, two = {t, t};
+  const std::vector<FaceVertexIds> ids_one = {{0, 1, 2}}, ids_two = {{0, 1, 2}, {0, 1, 2}};
+  const auto refusal = [](const auto& call) -> std::string {
+    try {
+      call();
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "not refused";
+  };
+  EXPECT_EQ(refusal([&] { build_contact_manifold(cs, one, two); }),
+            "build_contact_manifold: 1 faces_a and 2 faces_b for 2 candidates");
+  EXPECT_EQ(refusal([&] { build_contact_manifold(cs, two, one); }),
+            "build_contact_manifold: 2 faces_a and 1 faces_b for 2 candidates");
+  EXPECT_EQ(refusal([&] { build_contact_manifold({}, one, one); }),
+            "build_contact_manifold: 1 faces_a and 1 faces_b for 0 candidates");
+  EXPECT_EQ(refusal([&] { build_contact_manifold_by_ids(cs, ids_two, ids_one); }),
+            "build_contact_manifold_by_ids: 2 vertices_a and 1 vertices_b for 2 candidates");
+  EXPECT_EQ(refusal([&] { build_contact_manifold_by_ids(cs, {}, {}); }),
+            "build_contact_manifold_by_ids: 0 vertices_a and 0 vertices_b for 2 candidates");
+  // Matching lengths: two candidates at one spot sharing their triangles give one patch, one point.
+  const ContactManifold m = build_contact_manifold_by_ids(cs, ids_two, ids_two);
+  EXPECT_EQ(m.patches.size(), 1u);
+  EXPECT_EQ(m.contacts.size(), 1u);
+  EXPECT_EQ(build_contact_manifold(cs, two, two).contacts.size(), 1u);
+  EXPECT_TRUE(build_contact_manifold_by_ids({}, {}, {}).patches.empty());
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "graspcd/core/adjacency_index.h"
@@ -192,6 +193,16 @@ void small_stable_sort(It first, It last, Before before) {
 
 // ---- The steps of build_contact_manifold_by_ids
 
+// Throws std::invalid_argument, naming the lengths, unless `a` and `b` (named `name_a` and
+// `name_b`, arguments of `function`) each hold one entry per candidate.
+void check_one_per_candidate(const char* function, std::size_t candidates, const char* name_a,
+                             std::size_t a, const char* name_b, std::size_t b) {
+  if (a == candidates && b == candidates) return;
+  throw std::invalid_argument(std::string(function) + ": " + std::to_string(a) + " " + name_a +
+                              " and " + std::to_string(b) + " " + name_b + " for " +
+                              std::to_string(candidates) + " candidates");
+}
+
 // Throws std::length_error for a vertex id of 2^31 or more (AdjacencyIndex's precondition).
 void check_vertex_ids(const std::vector<FaceVertexIds>& vertices_a,
                       const std::vector<FaceVertexIds>& vertices_b) {
@@ -369,7 +380,9 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
                                        const std::vector<Triangle>& faces_b,
                                        const ManifoldOptions& options) {
   const std::size_t n = candidates.size();
-  if (n == 0 || faces_a.size() != n || faces_b.size() != n) return {};
+  check_one_per_candidate("build_contact_manifold", n, "faces_a", faces_a.size(), "faces_b",
+                          faces_b.size());
+  if (n == 0) return {};
   return build_contact_manifold_by_ids(candidates, weld_vertex_ids(faces_a),
                                        weld_vertex_ids(faces_b), options);
 }
@@ -379,8 +392,10 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
                                               const std::vector<FaceVertexIds>& vertices_b,
                                               const ManifoldOptions& options) {
   const std::size_t n = candidates.size();
+  check_one_per_candidate("build_contact_manifold_by_ids", n, "vertices_a", vertices_a.size(),
+                          "vertices_b", vertices_b.size());
   ContactManifold out;
-  if (n == 0 || vertices_a.size() != n || vertices_b.size() != n) return out;
+  if (n == 0) return out;
   if (n >> 32) throw std::length_error("build_contact_manifold_by_ids: more than 2^32 candidates");
   check_vertex_ids(vertices_a, vertices_b);
   const auto per_patch = static_cast<std::size_t>(std::max(options.max_per_patch, 1));

@@ -47,7 +47,9 @@ struct ContactManifold {
 // Builds the manifold of one geom pair from its candidates: candidate i is the contact of the
 // intersecting triangles faces_a[i] (geom1) and faces_b[i] (geom2, in any one frame: only equal
 // coordinates matter). Deterministic: the result depends on the candidates' order only through
-// ties, so callers pass them in the sorted order of their triangle pairs.
+// ties, so callers pass them in the sorted order of their triangle pairs. Throws
+// std::invalid_argument, naming the lengths, unless faces_a and faces_b each hold one triangle per
+// candidate; no candidates (and no faces) give the empty manifold.
 //
 // 1. Patches: the deepest unassigned candidate seeds a patch, which grows breadth-first through
 //    candidates whose triangles share a vertex (exactly equal coordinates) with a member's on
@@ -74,8 +76,10 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
 
 // The same manifold from the candidates' triangles given as welded vertex ids (ids of one geom
 // from one weld_vertex_ids call, e.g. kept with the geom's tree): what the MuJoCo seam calls, with
-// no coordinates to compare per candidate. Ids must be below 2^31. (A name of its own: an
-// overload would make build_contact_manifold(c, {}, {}) ambiguous.)
+// no coordinates to compare per candidate. Throws std::invalid_argument, naming the lengths,
+// unless vertices_a and vertices_b each hold one entry per candidate, and std::length_error for an
+// id of 2^31 or more. (A name of its own: an overload would make build_contact_manifold(c, {}, {})
+// ambiguous.)
 ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& candidates,
                                               const std::vector<FaceVertexIds>& vertices_a,
                                               const std::vector<FaceVertexIds>& vertices_b,
