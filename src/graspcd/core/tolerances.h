@@ -94,8 +94,9 @@ inline constexpr double kPerceptronCornerFactor = 16 * kUnitRoundoff;
 inline constexpr int kPerceptronDefaultCap = 1500;
 inline constexpr int kNeuroSatDefaultSwitch = 300;
 
-// --- Contact geometry (contact.h): contacts for the solver, not collision answers. None of these
-// changes whether two meshes intersect; they shape the contacts handed to MuJoCo.
+// --- Contact geometry (contact.h: triangle_contact.h, mesh_features.h, contact_manifold.h):
+// contacts for the solver, not collision answers. None of these changes whether two meshes
+// intersect; they shape the contacts handed to MuJoCo.
 
 // Edges sharper than this dihedral angle (radians between the two faces' normals) are feature
 // edges. 30 degrees: a box's edges (90) are, a sphere or cylinder tessellated with 12 or more
@@ -122,9 +123,9 @@ inline constexpr double kContactSignCosine = 0.1;
 // triangle pair can fling the object; smaller: the solver may not push out a real penetration.
 inline constexpr double kContactMaxDepth = 0.01;
 
-// Contact manifold (contact.h, build_contact_manifold). A patch grows from its deepest contact
-// through contacts whose triangles touch (share a vertex on either geom) and whose normal is
-// within this angle of the seed's: 35 degrees (cosine, dimensionless). Smaller splits one curved
+// Contact manifold (contact_manifold.h, build_contact_manifold). A patch grows from its deepest
+// contact through contacts whose triangles touch (share a vertex on either geom) and whose normal
+// is within this angle of the seed's: 35 degrees (cosine, dimensionless). Smaller splits one curved
 // contact region (a finger on a cup of radius 3.5 cm spans about 16 degrees) into several patches,
 // each spending the pair's budget on its own deepest point; larger merges the two walls of a
 // corner (90 degrees) or the two faces of a pinched wall (180) into one patch with a meaningless

@@ -1,0 +1,88 @@
+// The contact manifold of a geom pair.
+//
+// MuJoCo's solver wants few, well-spread contacts per pair with consistent normals and depths, not
+// one contact per intersecting triangle pair (a fingertip in a cup wall gives dozens). The
+// manifold groups a pair's triangle-pair contacts (triangle_contact.h) into patches and keeps a
+// few points of each. Pure geometry, in geom1's frame.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "graspcd/core/geometry.h"
+#include "graspcd/core/mesh_features.h"
+#include "graspcd/core/tolerances.h"
+#include "graspcd/core/triangle_contact.h"
+
+namespace graspcd {
+
+// Chooses at most `k` of `contacts` (indices, the deepest first): the deepest contact, then
+// farthest-point sampling on positions (Gonzalez 1985: each next contact maximises its distance
+// to the chosen ones; ties go to the deeper one), which keeps a spread over the contact region.
+// Returns all indices, deepest first, when there are at most k.
+std::vector<std::size_t> select_contacts(const std::vector<TriContact>& contacts, std::size_t k);
+
+struct ManifoldOptions {
+  int max_per_patch = tol::kManifoldPatchContacts;  // points kept per patch (>= 1)
+  int max_per_pair = tol::kManifoldPairContacts;    // points kept per geom pair (>= 1)
+  double patch_cosine = tol::kPatchNormalCosine;    // see tolerances.h
+};
+
+struct ContactPatch {
+  Vec3 normal = Vec3::UnitZ();        // the seed's (the deepest candidate's) normal, unit
+  double depth = 0;                   // the deepest member's depth along `normal`
+  double area = 0;                    // area of the kept points' convex hull across `normal`
+  std::vector<std::size_t> members;   // indices into the candidates, deepest first
+  std::vector<std::size_t> selected;  // the patch's chosen points (indices), in choice order
+};
+
+struct ContactManifold {
+  std::vector<ContactPatch> patches;  // the deepest patch first
+  // What the solver gets: at most max_per_pair points, each with its patch's normal and its depth
+  // along it; the deepest point of every patch first (deepest patch first), then the patches'
+  // further points, the patch of largest area first.
+  std::vector<TriContact> contacts;
+};
+
+// Builds the manifold of one geom pair from its candidates: candidate i is the contact of the
+// intersecting triangles faces_a[i] (geom1) and faces_b[i] (geom2, in any one frame: only equal
+// coordinates matter). Deterministic: the result depends on the candidates' order only through
+// ties, so callers pass them in the sorted order of their triangle pairs. Throws
+// std::invalid_argument, naming the lengths, unless faces_a and faces_b each hold one triangle per
+// candidate; no candidates (and no faces) give the empty manifold.
+//
+// 1. Patches: the deepest unassigned candidate seeds a patch, which grows breadth-first through
+//    candidates whose triangles share a vertex (exactly equal coordinates) with a member's on
+//    either geom -- consecutive triangle pairs along one intersection curve share a triangle --
+//    and whose normal lies within acos(patch_cosine) of the seed's. A finger pinching a wall from
+//    both sides, or touching two walls of a corner, gives one patch per side; a flat face on a
+//    flat face gives one.
+// 2. Points of a patch (at most max_per_patch), in the patch plane (positions projected across
+//    the patch normal): the deepest member; then the member farthest from it; then each next the
+//    member that most enlarges the convex hull of those chosen (the support polygon), after the
+//    largest-area reduction of Jolt Physics (PruneContactPoints in ManifoldBetweenTwoFaces.cpp,
+//    which keeps 4); when no member enlarges it (collinear points), the one farthest from the
+//    chosen. Ties go to the deeper, then the earlier candidate.
+// 3. The pair's budget as described at ContactManifold::contacts.
+// Each kept point keeps its position; its normal is the patch's and its depth the candidate's
+// depth times the cosine between its normal and the patch's (its penetration along the patch
+// normal), so the points of a patch push along one direction. What is lost: the other candidates
+// (the full triangle-pair list stays with the caller: validate, meshpair and the study use it),
+// and patches beyond max_per_pair (the shallowest).
+ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates,
+                                       const std::vector<Triangle>& faces_a,
+                                       const std::vector<Triangle>& faces_b,
+                                       const ManifoldOptions& options = {});
+
+// The same manifold from the candidates' triangles given as welded vertex ids (ids of one geom
+// from one weld_vertex_ids call, e.g. kept with the geom's tree): what the MuJoCo seam calls, with
+// no coordinates to compare per candidate. Throws std::invalid_argument, naming the lengths,
+// unless vertices_a and vertices_b each hold one entry per candidate, and std::length_error for an
+// id of 2^31 or more. (A name of its own: an overload would make build_contact_manifold(c, {}, {})
+// ambiguous.)
+ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& candidates,
+                                              const std::vector<FaceVertexIds>& vertices_a,
+                                              const std::vector<FaceVertexIds>& vertices_b,
+                                              const ManifoldOptions& options = {});
+
+}  // namespace graspcd
