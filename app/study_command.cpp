@@ -8,6 +8,7 @@
 #include "command.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/io/text_input.h"
+#include "graspcd/peer/fcl_querier.h"
 #include "graspcd/study/study.h"
 
 namespace graspcd::cli {
@@ -42,6 +43,8 @@ void run_study_command(StudyCliOptions& o, const CLI::App& app) {
   o.study.table = !o.no_table;
   o.study.sweep = !o.no_sweep;
   if (!o.study.table && !o.study.sweep) throw UsageError("--no-table and --no-sweep leave nothing");
+  // FCL's OBB and RSS trees are Table 1's peer rows.
+  o.study.peers = peer::fcl_table_methods();
   try {
     study::run_study(o.study, log);
   } catch (const grasp::GraspInputError& e) {

@@ -16,8 +16,9 @@ the two folders.
 BEFORE and AFTER are folders (every *.json below BEFORE is compared with the file of the same
 relative path below AFTER; a file missing from AFTER is a difference) or two JSON files. Removed
 before comparing, at any depth:
-  - timings: keys ending in _ms, _ns, _us, seconds or _wall_ms, and lists named repeats_ms or
-    step_ns_median; "detection_ns"-style counters of time;
+  - timings: keys ending in _ms, _ns, _us, seconds or _wall_ms, keys starting with ms_per_
+    (grasp's ms_per_physics_step), and lists named repeats_ms or step_ns_median;
+    "detection_ns"-style counters of time;
   - where and when it ran: "created", "machine", "build", "jobs";
   - provenance: the envelope's "graspcd" object and its "warnings" array when empty (docs/design.md,
     "The command line");
@@ -35,7 +36,8 @@ import subprocess
 import sys
 from pathlib import Path
 
-TIMING_KEY = re.compile(r"(_ms|_ns|_us|seconds|_wall_ms|^repeats_ms|^step_ns_median|_ns_.*)$")
+TIMING_KEY = re.compile(
+    r"(_ms|_ns|_us|seconds|_wall_ms|^repeats_ms|^step_ns_median|_ns_.*|^ms_per_.*)$")
 DROPPED_KEYS = {"created", "machine", "build", "jobs", "graspcd"}
 PATH_MARKERS = ("/mjcf/", "/data/")
 

@@ -19,7 +19,7 @@ BASE = {
     "machine": {"cores": 2},
     "scene": "/home/a/graspcd/mjcf/example1.xml",
     "methods": [{"method": "sat", "missed": 0, "median_ms": 1.5, "repeats_ms": [1, 2],
-                 "tester_seconds": 0.1}],
+                 "tester_seconds": 0.1, "ms_per_physics_step": 0.1}],
 }
 
 
@@ -47,7 +47,8 @@ def main():
     same["created"] = "2026-11-25T00:00:00Z"
     same["machine"] = {"cores": 64}
     same["scene"] = "/tmp/clone/mjcf/example1.xml"
-    same["methods"][0].update(median_ms=9.0, repeats_ms=[9, 9, 9], tester_seconds=3.0)
+    same["methods"][0].update(median_ms=9.0, repeats_ms=[9, 9, 9], tester_seconds=3.0,
+                             ms_per_physics_step=0.4)
     check("timings, machine, provenance and checkout path ignored",
           compare({"x.json": BASE}, {"x.json": same})[0], 0)
 

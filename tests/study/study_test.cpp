@@ -46,6 +46,10 @@ TEST_F(StudyTest, QuickStudyWritesTheReportAndEveryMethodAgreesWithCgal) {
   EXPECT_TRUE(rec["held"].get<bool>()) << "the recorded grasp lifts and holds the cup";
   const std::string truth = rec["truth_pairs_hash"];
   ASSERT_GE(study["table1"]["methods"].size(), 3u);
+  // The executable hands FCL's two trees to the study as Table 1's last rows (study.h, peers).
+  const json& methods = study["table1"]["methods"];
+  EXPECT_EQ(methods[methods.size() - 2]["name"], "fcl-obb");
+  EXPECT_EQ(methods.back()["name"], "fcl-rss");
   for (const json& m : study["table1"]["methods"]) {
     const json& x = m["examples"][0];
     EXPECT_EQ(x["pairs_hash"].get<std::string>(), truth) << m["name"];

@@ -1,4 +1,4 @@
-// `graspcd study` (issue 5): the reproduction study of paper sections 9-11 and its data.
+// `graspcd study`: the reproduction study of paper sections 9-11 and its data.
 //
 // 1. Records the grasps once: the three triangle-hand examples (mjcf/example{1,2,3}.xml) with the
 //    bridge (SAT), and the parallelepiped hand (mjcf/hand_boxes.xml) with the bridge's exact
@@ -17,12 +17,25 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace graspcd::study {
+
+class MeshScene;  // recording.h
+class Querier;    // replay.h
+
+// A replay method from outside the study's own detectors: a peer library (FCL, in the graspcd
+// executable: graspcd/peer/fcl_querier.h). It is one more row of Table 1, after the detector
+// methods, replayed and checked against CGAL like them. The study library links no peer; the
+// caller hands these in.
+struct PeerMethod {
+  std::string name;                                                // its row name, "fcl-obb"
+  std::function<std::unique_ptr<Querier>(const MeshScene&)> make;  // its querier on a scene
+};
 
 struct Shard {
   int index = 0;  // 0 .. count-1
@@ -43,7 +56,8 @@ struct StudyOptions {
   // The sweep on all three examples with every knob value (a cluster job, see --shard); by
   // default it runs on example 1 with the standard values.
   bool full_sweep = false;
-  std::optional<Shard> shard;  // only this shard of the sweep (implies table = false)
+  std::optional<Shard> shard;     // only this shard of the sweep (implies table = false)
+  std::vector<PeerMethod> peers;  // Table 1's peer rows, in this order after the detectors
 };
 
 // Runs the study; progress lines go to `log` (stderr in the command). Throws std::runtime_error
