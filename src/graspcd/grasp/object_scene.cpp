@@ -97,7 +97,8 @@ std::string relative_to(const fs::path& target, const fs::path& from) {
 
 ObjectScene write_object_scene(const ObjectPlacement& placement, const std::string& template_path,
                                const std::string& hand, const std::string& dir,
-                               const std::optional<std::array<double, 2>>& default_fit) {
+                               const std::optional<std::array<double, 2>>& default_fit,
+                               const std::vector<TemplatePath>& moved) {
   // The mesh as graspcd reads it (an error names the file): its extent places and fits it.
   io::MeshStats stats;
   const TriangleMesh mesh = io::load_mesh(placement.file, &stats);
@@ -234,6 +235,15 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
   const fs::path target = fs::path(dir);
   fs::create_directories(target);
   const fs::path template_dir = fs::absolute(template_path).parent_path();
+  // A path as the template writes it, made a file: beside the template, or under a moved folder.
+  const auto resolved = [&](const std::string& path) {
+    for (const TemplatePath& m : moved) {
+      if (path.compare(0, m.from.size(), m.from) == 0) {
+        return fs::path(m.to) / path.substr(m.from.size());
+      }
+    }
+    return template_dir / path;
+  };
   std::vector<tinyxml2::XMLElement*> compilers;
   collect(root, "compiler", compilers);
   std::string meshdir;  // the main file's last meshdir (or assetdir), as the template wrote it
@@ -241,14 +251,14 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
     for (const char* a : {"meshdir", "texturedir", "assetdir"}) {
       if (!c->Attribute(a)) continue;
       if (std::string(a) != "texturedir") meshdir = c->Attribute(a);
-      c->SetAttribute(a, relative_to(template_dir / c->Attribute(a), target).c_str());
+      c->SetAttribute(a, relative_to(resolved(c->Attribute(a)), target).c_str());
     }
   }
   std::vector<tinyxml2::XMLElement*> includes;
   collect(root, "include", includes);
   for (tinyxml2::XMLElement* inc : includes) {
     if (inc->Attribute("file")) {
-      inc->SetAttribute("file", relative_to(template_dir / inc->Attribute("file"), target).c_str());
+      inc->SetAttribute("file", relative_to(resolved(inc->Attribute("file")), target).c_str());
     }
   }
   if (meshdir.empty()) {
@@ -257,12 +267,12 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
       collect(root, kind, files);
       for (tinyxml2::XMLElement* f : files) {
         if (f->Attribute("file") && f != asset) {
-          f->SetAttribute("file", relative_to(template_dir / f->Attribute("file"), target).c_str());
+          f->SetAttribute("file", relative_to(resolved(f->Attribute("file")), target).c_str());
         }
       }
     }
   }
-  const fs::path mesh_folder = meshdir.empty() ? target : template_dir / meshdir;
+  const fs::path mesh_folder = meshdir.empty() ? target : resolved(meshdir);
 
   // The object: its mesh, scale, place and turn.
   for (const char* a : {"refpos", "refquat", "scale", "file", "vertex", "face", "normal"}) {

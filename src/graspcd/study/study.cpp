@@ -26,11 +26,8 @@
 #include "graspcd/study/replay.h"
 #include "graspcd/study/trajectory.h"
 #include "graspcd/version.h"
+#include "graspcd/version/data_dirs.h"
 #include "graspcd/version/envelope.h"
-
-#ifndef GRASPCD_MJCF_DIR
-#error "GRASPCD_MJCF_DIR must name the repository's mjcf folder"
-#endif
 
 namespace graspcd::study {
 
@@ -825,7 +822,7 @@ Shard parse_shard(const std::string& text) {
 
 void run_study(const StudyOptions& options, const Log& log) {
   StudyOptions o = options;
-  if (o.mjcf_dir.empty()) o.mjcf_dir = GRASPCD_MJCF_DIR;
+  if (o.mjcf_dir.empty()) o.mjcf_dir = graspcd::mjcf_dir();
   if (o.repeats < 1) throw std::runtime_error("--repeats must be >= 1");
   if (o.jobs < 1) o.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (o.shard) o.table = false;
