@@ -10,7 +10,8 @@
 # to a verdict on a template that its scene's header says came from the moved
 # share/graspcd/mjcf; `--hand robotiq` with GRASPCD_MODELS_DIR set to an empty folder must be one
 # line naming that folder and exit 2; and, when MODELS_DIR holds the Robotiq hand, `--hand robotiq`
-# must run to a verdict with the models folder the build recorded.
+# must run to a verdict with the models folder the build recorded, and with GRASPCD_MODELS_DIR
+# naming a link to it.
 cmake_minimum_required(VERSION 3.25)
 foreach(var BUILD_DIR SOURCE_DIR MODELS_DIR WORK_DIR)
   if(NOT DEFINED ${var})
@@ -103,6 +104,12 @@ if(EXISTS "${MODELS_DIR}/hands/robotiq_2f85/2f85.xml")
   run("grasp --hand robotiq" ${CMAKE_COMMAND} -E env --unset=GRASPCD_MODELS_DIR "${exe}" grasp
       --object "${WORK_DIR}/block.obj" --scale 0.001 --up x --hand robotiq --json)
   expect_verdict("grasp --object block.obj --hand robotiq")
+  # And with the environment naming the models elsewhere (a link to them).
+  file(CREATE_LINK "${MODELS_DIR}" "${WORK_DIR}/models-link" SYMBOLIC)
+  run("grasp --hand robotiq, GRASPCD_MODELS_DIR" ${CMAKE_COMMAND} -E env
+      "GRASPCD_MODELS_DIR=${WORK_DIR}/models-link" "${exe}" grasp --object "${WORK_DIR}/block.obj"
+      --scale 0.001 --up x --hand robotiq --json)
+  expect_verdict("grasp --object block.obj --hand robotiq, GRASPCD_MODELS_DIR")
 else()
   message(STATUS "the Robotiq hand is not in ${MODELS_DIR}: --hand robotiq not run")
 endif()

@@ -291,11 +291,15 @@ ObjectScene place_object(const TriangleMesh& mesh, const ObjectPlacement& placem
 fs::path rewrite_paths(const TemplateParts& t, const std::string& template_path,
                        const fs::path& target, const std::vector<TemplatePath>& moved) {
   const fs::path template_dir = fs::absolute(template_path).parent_path();
-  // A path as the template writes it, made a file: beside the template, or under a moved folder.
+  // A path as the template writes it, made a file: beside the template, or under a moved folder,
+  // that folder's links resolved (the scene names files by relative paths, and a ".." after a
+  // link leaves the link's target, not the link's folder).
   const auto resolved = [&](const std::string& path) {
     for (const TemplatePath& m : moved) {
       if (path.compare(0, m.from.size(), m.from) == 0) {
-        return fs::path(m.to) / path.substr(m.from.size());
+        std::error_code ec;
+        const fs::path to = fs::weakly_canonical(m.to, ec);
+        return (ec ? fs::path(m.to) : to) / path.substr(m.from.size());
       }
     }
     return template_dir / path;

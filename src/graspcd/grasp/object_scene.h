@@ -39,8 +39,8 @@ struct ObjectPlacement {
 };
 
 // A template's file paths that begin with `from` (as the template writes them) name files under
-// the folder `to`, not beside the template: e.g. the real hands' "../../shared/models/" of
-// mjcf/real_*.xml when the templates are installed far from the models.
+// the folder `to` (its links resolved), not beside the template: e.g. the real hands'
+// "../../shared/models/" of mjcf/real_*.xml when the templates are installed far from the models.
 struct TemplatePath {
   std::string from;
   std::string to;
