@@ -300,9 +300,9 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
     if (options.write_scene.empty()) temp.emplace();
     object = ObjectRun{options.object, options.hand, {}};
     try {
-      object->scene =
-          grasp::write_object_scene(placement, hand.scene, options.hand,
-                                    temp ? temp->path().string() : options.write_scene, hand.fit);
+      object->scene = grasp::write_object_scene(placement, hand.scene, options.hand,
+                                                temp ? temp->path().string() : options.write_scene,
+                                                hand.fit, hand.moved);
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("grasp: ") + e.what());
     }

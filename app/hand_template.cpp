@@ -4,26 +4,50 @@
 #include <system_error>
 
 #include "command.h"
-
-#ifndef GRASPCD_MJCF_DIR
-#error "GRASPCD_MJCF_DIR must name the repository's mjcf folder"
-#endif
+#include "graspcd/version/data_dirs.h"
 
 namespace graspcd::cli {
 
-HandTemplate hand_template(const std::string& hand, const std::string& command) {
-  const std::string mjcf = GRASPCD_MJCF_DIR;
-  // Example 1: the project's arm and 4-finger hand over the cup (7 cm wide, 8 cm tall).
-  if (hand == "project") return {mjcf + "/example1.xml", std::array<double, 2>{0.07, 0.08}};
-  if (hand == "robotiq") return {mjcf + "/real_robotiq_mug.xml", std::nullopt};
-  if (hand == "shadow") return {mjcf + "/real_shadow_glass.xml", std::nullopt};
+namespace {
+
+namespace fs = std::filesystem;
+
+// How the real-hand templates of mjcf/ name the models folder (../shared/models beside the
+// checkout, seen from mjcf/).
+constexpr const char* kModelsInTemplates = "../../shared/models/";
+
+// A real hand's template: `file` in mjcf/, its hand `model` below the models folder.
+HandTemplate real_hand(const std::string& file, const std::string& who, const std::string& model) {
+  const std::string models = models_dir();
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(hand, ec)) {
+  if (!fs::is_regular_file(fs::path(models) / model, ec)) {
+    throw UsageError("the " + who + "'s models are not found at " + models +
+                     ": set GRASPCD_MODELS_DIR to the folder that holds " + model);
+  }
+  return {(fs::path(mjcf_dir()) / file).string(), std::nullopt, {{kModelsInTemplates, models}}};
+}
+
+}  // namespace
+
+HandTemplate hand_template(const std::string& hand, const std::string& command) {
+  // Example 1: the project's arm and 4-finger hand over the cup (7 cm wide, 8 cm tall).
+  if (hand == "project") {
+    return {
+        (fs::path(mjcf_dir()) / "example1.xml").string(), std::array<double, 2>{0.07, 0.08}, {}};
+  }
+  if (hand == "robotiq") {
+    return real_hand("real_robotiq_mug.xml", "Robotiq hand", "hands/robotiq_2f85/2f85.xml");
+  }
+  if (hand == "shadow") {
+    return real_hand("real_shadow_glass.xml", "Shadow hand", "hands/shadow_hand/right_hand.xml");
+  }
+  std::error_code ec;
+  if (!fs::is_regular_file(hand, ec)) {
     throw UsageError(command +
                      ": --hand must be project, robotiq, shadow or a template scene file (" + hand +
                      " is none)");
   }
-  return {hand, std::nullopt};
+  return {hand, std::nullopt, {}};
 }
 
 }  // namespace graspcd::cli

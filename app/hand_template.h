@@ -5,16 +5,23 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "graspcd/grasp/object_scene.h"
 
 namespace graspcd::cli {
 
 struct HandTemplate {
   std::string scene;
   std::optional<std::array<double, 2>> fit;  // when the scene has no graspcd_fit
+  // Where the scene's real hand is (robotiq, shadow): its "../../shared/models/" paths name the
+  // models folder (graspcd::models_dir()), wherever the templates were installed.
+  std::vector<grasp::TemplatePath> moved;
 };
 
-// project, robotiq, shadow or a template scene file; throws UsageError naming `command` for
-// anything else.
+// project, robotiq, shadow (found in graspcd::mjcf_dir()) or a template scene file; throws
+// UsageError naming `command` for anything else, and one saying where the models were looked for
+// when robotiq's or shadow's hand is not found.
 HandTemplate hand_template(const std::string& hand, const std::string& command);
 
 }  // namespace graspcd::cli

@@ -74,7 +74,7 @@ Command add_study_command(CLI::App& parent) {
       ->check(positive_number())
       ->capture_default_str();
   app->add_option("--mjcf", o->study.mjcf_dir,
-                  "Folder of the scenes (default: the repository's mjcf/)");
+                  "Folder of the scenes (default: the template scenes, PREFIX/share/graspcd/mjcf)");
   app->add_option("--shard", o->shard,
                   "Run only shard i of n of the sweep (i from 0 to n-1), no tables");
   app->add_flag("--no-table", o->no_table, "Skip Table 1 and Figures 13-15");

@@ -350,6 +350,7 @@ int run_object_set(ValidateCliOptions& o, const CLI::App& app) {
   options.hand = o.hand;
   options.template_path = hand.scene;
   options.default_fit = hand.fit;
+  options.template_moved = hand.moved;
   options.placement.scale = o.scale;
   options.placement.fit = o.fit;
   options.placement.up = o.up;

@@ -11,6 +11,8 @@
 #   PREFIX/lib/libgraspcd_io.a         graspcd::io      the mesh reader and text grammar
 #   PREFIX/lib/libgraspcd_mujoco.a     graspcd::mujoco  the MuJoCo seam: graspcd::core + MuJoCo
 #   PREFIX/lib/cmake/graspcd/          graspcdConfig.cmake, its version file and the targets
+#   PREFIX/share/graspcd/mjcf/         the template scenes and their meshes, which bin/graspcd finds
+#                                      beside itself (src/graspcd/version/data_dirs.h)
 # so that `find_package(graspcd 0.2 REQUIRED)` gives the three targets. graspcd_exact (CGAL), the
 # grasp experiment and the study are not installed as libraries: CGAL stays out of the installed
 # libraries (the executable links it statically, header-only CGAL with GMP and MPFR).
@@ -29,6 +31,7 @@ install(TARGETS graspcd_core graspcd_io graspcd_mujoco EXPORT graspcdTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS graspcd RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/mjcf/ DESTINATION ${GRASPCD_MJCF_INSTALL_DIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/graspcd/core ${PROJECT_SOURCE_DIR}/src/graspcd/io
                   ${PROJECT_SOURCE_DIR}/src/graspcd/mujoco ${PROJECT_SOURCE_DIR}/src/compat/bridge
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/graspcd

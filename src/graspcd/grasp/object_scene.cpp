@@ -93,58 +93,85 @@ std::string relative_to(const fs::path& target, const fs::path& from) {
   return rel.empty() ? fs::absolute(target).lexically_normal().string() : rel.generic_string();
 }
 
-}  // namespace
+// The template scene's error at element `at` (its line; 0 without one).
+io::InputError template_error(const std::string& template_path, const tinyxml2::XMLElement* at,
+                              const std::string& what) {
+  return io::InputError(template_path, at ? static_cast<std::size_t>(at->GetLineNum()) : 0,
+                        "template scene: " + what);
+}
 
-ObjectScene write_object_scene(const ObjectPlacement& placement, const std::string& template_path,
-                               const std::string& hand, const std::string& dir,
-                               const std::optional<std::array<double, 2>>& default_fit) {
-  // The mesh as graspcd reads it (an error names the file): its extent places and fits it.
+// The user's mesh as graspcd reads it (an error names the file), its hygiene warnings added: its
+// extent places and fits it.
+TriangleMesh read_object_mesh(const std::string& file) {
   io::MeshStats stats;
-  const TriangleMesh mesh = io::load_mesh(placement.file, &stats);
-  for (const std::string& w : io::mesh_warnings(placement.file, stats, true)) {
+  TriangleMesh mesh = io::load_mesh(file, &stats);
+  for (const std::string& w : io::mesh_warnings(file, stats, true)) {
     warnings().add("mesh_hygiene", w, "mesh");
   }
+  return mesh;
+}
 
-  // The template, read by tinyxml2.
-  tinyxml2::XMLDocument doc;
+// What of the template the object scene changes, in `doc`.
+struct TemplateParts {
+  tinyxml2::XMLElement* root = nullptr;   // <mujoco>
+  tinyxml2::XMLElement* body = nullptr;   // the <body name="object"> of <worldbody>
+  tinyxml2::XMLElement* geom = nullptr;   // its one mesh geom
+  tinyxml2::XMLElement* asset = nullptr;  // that geom's <mesh>
+};
+
+// The template read into `doc` by tinyxml2 and its parts found; an error names what is missing.
+TemplateParts read_template(tinyxml2::XMLDocument& doc, const std::string& template_path) {
   if (doc.LoadFile(template_path.c_str()) != tinyxml2::XML_SUCCESS) {
     throw io::InputError(template_path, static_cast<std::size_t>(std::max(0, doc.ErrorLineNum())),
                          std::string("cannot read the template scene: ") + doc.ErrorName());
   }
-  tinyxml2::XMLElement* root = doc.RootElement();
-  const auto fail = [&](const tinyxml2::XMLElement* at, const std::string& what) {
-    return io::InputError(template_path, at ? static_cast<std::size_t>(at->GetLineNum()) : 0,
-                          "template scene: " + what);
-  };
-  if (root == nullptr || std::string(root->Name()) != "mujoco") throw fail(root, "no <mujoco>");
-  tinyxml2::XMLElement* world = root->FirstChildElement("worldbody");
-  tinyxml2::XMLElement* body = nullptr;
+  TemplateParts t;
+  t.root = doc.RootElement();
+  if (t.root == nullptr || std::string(t.root->Name()) != "mujoco") {
+    throw template_error(template_path, t.root, "no <mujoco>");
+  }
+  tinyxml2::XMLElement* world = t.root->FirstChildElement("worldbody");
   for (tinyxml2::XMLElement* world_element = world; world_element;
        world_element = world_element->NextSiblingElement("worldbody")) {
     for (tinyxml2::XMLElement* b = world_element->FirstChildElement("body"); b;
          b = b->NextSiblingElement("body")) {
-      if (b->Attribute("name", "object")) body = b;
+      if (b->Attribute("name", "object")) t.body = b;
     }
   }
-  if (body == nullptr) throw fail(world, "no <body name=\"object\"> in <worldbody>");
-  tinyxml2::XMLElement* geom = nullptr;
-  for (tinyxml2::XMLElement* g = body->FirstChildElement("geom"); g;
+  if (t.body == nullptr) {
+    throw template_error(template_path, world, "no <body name=\"object\"> in <worldbody>");
+  }
+  for (tinyxml2::XMLElement* g = t.body->FirstChildElement("geom"); g;
        g = g->NextSiblingElement("geom")) {
     if (g->Attribute("type", "mesh") && g->Attribute("mesh")) {
-      if (geom != nullptr) throw fail(g, "the object body has more than one mesh geom");
-      geom = g;
+      if (t.geom != nullptr) {
+        throw template_error(template_path, g, "the object body has more than one mesh geom");
+      }
+      t.geom = g;
     }
   }
-  if (geom == nullptr) throw fail(body, "the object body has no mesh geom");
+  if (t.geom == nullptr)
+    throw template_error(template_path, t.body, "the object body has no mesh geom");
   std::vector<tinyxml2::XMLElement*> meshes;
-  collect(root, "mesh", meshes);
-  tinyxml2::XMLElement* asset = nullptr;
+  collect(t.root, "mesh", meshes);
   for (tinyxml2::XMLElement* m : meshes) {
-    if (m->Attribute("name", geom->Attribute("mesh"))) asset = m;
+    if (m->Attribute("name", t.geom->Attribute("mesh"))) t.asset = m;
   }
-  if (asset == nullptr) throw fail(geom, "no <mesh> asset for the object's geom");
+  if (t.asset == nullptr) {
+    throw template_error(template_path, t.geom, "no <mesh> asset for the object's geom");
+  }
+  return t;
+}
 
-  // Gravity (the main file's <option>, else MuJoCo's default) and the placement's frame.
+// The placement's frame: up against gravity (the main file's <option>, else MuJoCo's default),
+// e1 and e2 across it.
+struct GravityFrame {
+  Vec3 up;
+  Vec3 e1;
+  Vec3 e2;
+};
+
+GravityFrame gravity_frame(tinyxml2::XMLElement* root, const std::string& template_path) {
   Vec3 gravity(0, 0, -9.81);
   for (tinyxml2::XMLElement* o = root->FirstChildElement("option"); o;
        o = o->NextSiblingElement("option")) {
@@ -153,33 +180,49 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
       gravity = Vec3(g[0], g[1], g[2]);
     }
   }
-  if (gravity.norm() == 0) throw fail(root, "gravity is zero: no up to place the object by");
-  const Vec3 up = -gravity.normalized();
-  // Across gravity: the world x axis made perpendicular to up (y when up is near x), then up x e1.
-  const Vec3 across = std::abs(up.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  const Vec3 e1 = (across - across.dot(up) * up).normalized();
-  const Vec3 e2 = up.cross(e1);
-
-  // The template's support point and room for the object.
-  Vec3 support = Vec3::Zero();
-  if (body->Attribute("pos")) {
-    const std::vector<double> p = read_numbers(body, "pos", 3, template_path);
-    support = Vec3(p[0], p[1], p[2]);
+  if (gravity.norm() == 0) {
+    throw template_error(template_path, root, "gravity is zero: no up to place the object by");
   }
-  std::optional<std::array<double, 2>> fit_room = default_fit;
+  GravityFrame f;
+  f.up = -gravity.normalized();
+  // Across gravity: the world x axis made perpendicular to up (y when up is near x), then up x e1.
+  const Vec3 across = std::abs(f.up.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  f.e1 = (across - across.dot(f.up) * f.up).normalized();
+  f.e2 = f.up.cross(f.e1);
+  return f;
+}
+
+// The template's support point and room for the object (graspcd_support, graspcd_fit).
+struct TemplateRoom {
+  Vec3 support = Vec3::Zero();
+  std::optional<std::array<double, 2>> fit;
+};
+
+TemplateRoom template_room(const TemplateParts& t,
+                           const std::optional<std::array<double, 2>>& default_fit,
+                           const std::string& template_path) {
+  TemplateRoom room;
+  if (t.body->Attribute("pos")) {
+    const std::vector<double> p = read_numbers(t.body, "pos", 3, template_path);
+    room.support = Vec3(p[0], p[1], p[2]);
+  }
+  room.fit = default_fit;
   std::vector<tinyxml2::XMLElement*> numerics;
-  collect(root, "numeric", numerics);
+  collect(t.root, "numeric", numerics);
   for (tinyxml2::XMLElement* n : numerics) {
     if (n->Attribute("name", "graspcd_support")) {
       const std::vector<double> p = read_numbers(n, "data", 3, template_path);
-      support = Vec3(p[0], p[1], p[2]);
+      room.support = Vec3(p[0], p[1], p[2]);
     } else if (n->Attribute("name", "graspcd_fit")) {
       const std::vector<double> p = read_numbers(n, "data", 2, template_path);
-      fit_room = std::array<double, 2>{p[0], p[1]};
+      room.fit = std::array<double, 2>{p[0], p[1]};
     }
   }
+  return room;
+}
 
-  // The rotation: the file's up axis along `up`, then the yaw about it; or the given quaternion.
+// The rotation: the file's up axis along `up`, then the yaw about it; or the given quaternion.
+Eigen::Quaterniond object_rotation(const ObjectPlacement& placement, const Vec3& up) {
   Eigen::Quaterniond q;
   if (placement.pose) {
     const auto& w = *placement.pose;
@@ -191,14 +234,23 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
     const Eigen::Quaterniond yaw(Eigen::AngleAxisd(placement.yaw_degrees * M_PI / 180.0, up));
     q = yaw * tilt;
   }
-  const Mat3 R = q.toRotationMatrix();
+  return q;
+}
 
+// The object turned, scaled (given or fitted to the room) and placed: its lowest point
+// kSupportGap above the support point, centred on it across gravity. Warns when it comes out
+// larger than kLargeObject. The scene and pairs paths are left empty.
+ObjectScene place_object(const TriangleMesh& mesh, const ObjectPlacement& placement,
+                         const GravityFrame& f, const TemplateRoom& room, const TemplateParts& t,
+                         const std::string& template_path) {
+  const Eigen::Quaterniond q = object_rotation(placement, f.up);
+  const Mat3 R = q.toRotationMatrix();
   // The turned mesh's extent in (e1, e2, up), unscaled.
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 hi = -lo;
   for (const Vec3& v : mesh.vertices) {
     const Vec3 w = R * v;
-    const Vec3 c(w.dot(e1), w.dot(e2), w.dot(up));
+    const Vec3 c(w.dot(f.e1), w.dot(f.e2), w.dot(f.up));
     lo = lo.cwiseMin(c);
     hi = hi.cwiseMax(c);
   }
@@ -207,13 +259,14 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
   out.fitted = placement.fit;
   out.scale = placement.scale;
   if (placement.fit) {
-    if (!fit_room) {
-      throw fail(root, "no <numeric name=\"graspcd_fit\" data=\"WIDTH HEIGHT\"/> for --fit");
+    if (!room.fit) {
+      throw template_error(template_path, t.root,
+                           "no <numeric name=\"graspcd_fit\" data=\"WIDTH HEIGHT\"/> for --fit");
     }
     const double width = std::max(extent[0], extent[1]);
     out.scale = std::numeric_limits<double>::infinity();
-    if (width > 0) out.scale = (*fit_room)[0] / width;
-    if (extent[2] > 0) out.scale = std::min(out.scale, (*fit_room)[1] / extent[2]);
+    if (width > 0) out.scale = (*room.fit)[0] / width;
+    if (extent[2] > 0) out.scale = std::min(out.scale, (*room.fit)[1] / extent[2]);
   }
   const double s = out.scale;
   out.size = {s * extent[0], s * extent[1], s * extent[2]};
@@ -224,66 +277,90 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
       << " m across: if the file is not in metres, give --scale (0.001 for millimetres)";
     warnings().add("mesh_units", w.str(), "mesh");
   }
-  // Lowest point kSupportGap above the support point, centred on it across gravity.
   const Vec3 centre = 0.5 * s * (lo + hi);
-  const Vec3 pos = support + (kSupportGap - s * lo[2]) * up - centre[0] * e1 - centre[1] * e2;
+  const Vec3 pos =
+      room.support + (kSupportGap - s * lo[2]) * f.up - centre[0] * f.e1 - centre[1] * f.e2;
   out.pos = {pos.x(), pos.y(), pos.z()};
   out.quat = {q.w(), q.x(), q.y(), q.z()};
+  return out;
+}
 
-  // The new scene's folder and the paths, relative to it.
-  const fs::path target = fs::path(dir);
-  fs::create_directories(target);
+// Every file path of the template made relative to `target` (the new scene's folder): <include
+// file>, <compiler meshdir/texturedir/assetdir>, and, when no meshdir is set, the asset files but
+// the object's. Returns the folder the object's mesh file is named relative to.
+fs::path rewrite_paths(const TemplateParts& t, const std::string& template_path,
+                       const fs::path& target, const std::vector<TemplatePath>& moved) {
   const fs::path template_dir = fs::absolute(template_path).parent_path();
+  // A path as the template writes it, made a file: beside the template, or under a moved folder,
+  // that folder's links resolved (the scene names files by relative paths, and a ".." after a
+  // link leaves the link's target, not the link's folder).
+  const auto resolved = [&](const std::string& path) {
+    for (const TemplatePath& m : moved) {
+      if (path.compare(0, m.from.size(), m.from) == 0) {
+        std::error_code ec;
+        const fs::path to = fs::weakly_canonical(m.to, ec);
+        return (ec ? fs::path(m.to) : to) / path.substr(m.from.size());
+      }
+    }
+    return template_dir / path;
+  };
   std::vector<tinyxml2::XMLElement*> compilers;
-  collect(root, "compiler", compilers);
+  collect(t.root, "compiler", compilers);
   std::string meshdir;  // the main file's last meshdir (or assetdir), as the template wrote it
   for (tinyxml2::XMLElement* c : compilers) {
     for (const char* a : {"meshdir", "texturedir", "assetdir"}) {
       if (!c->Attribute(a)) continue;
       if (std::string(a) != "texturedir") meshdir = c->Attribute(a);
-      c->SetAttribute(a, relative_to(template_dir / c->Attribute(a), target).c_str());
+      c->SetAttribute(a, relative_to(resolved(c->Attribute(a)), target).c_str());
     }
   }
   std::vector<tinyxml2::XMLElement*> includes;
-  collect(root, "include", includes);
+  collect(t.root, "include", includes);
   for (tinyxml2::XMLElement* inc : includes) {
     if (inc->Attribute("file")) {
-      inc->SetAttribute("file", relative_to(template_dir / inc->Attribute("file"), target).c_str());
+      inc->SetAttribute("file", relative_to(resolved(inc->Attribute("file")), target).c_str());
     }
   }
   if (meshdir.empty()) {
     for (const char* kind : {"mesh", "texture", "hfield", "skin"}) {
       std::vector<tinyxml2::XMLElement*> files;
-      collect(root, kind, files);
+      collect(t.root, kind, files);
       for (tinyxml2::XMLElement* f : files) {
-        if (f->Attribute("file") && f != asset) {
-          f->SetAttribute("file", relative_to(template_dir / f->Attribute("file"), target).c_str());
+        if (f->Attribute("file") && f != t.asset) {
+          f->SetAttribute("file", relative_to(resolved(f->Attribute("file")), target).c_str());
         }
       }
     }
   }
-  const fs::path mesh_folder = meshdir.empty() ? target : template_dir / meshdir;
+  return meshdir.empty() ? target : resolved(meshdir);
+}
 
-  // The object: its mesh, scale, place and turn.
+// The object in the template: its mesh (`file`, named relative to `mesh_folder`), scale, place
+// and turn; the template's names (the cup, the mug, the glass) would mislead, so the object's geom
+// and mesh are named after what they are.
+void set_object(const TemplateParts& t, const std::string& file, const fs::path& mesh_folder,
+                const ObjectScene& out) {
   for (const char* a : {"refpos", "refquat", "scale", "file", "vertex", "face", "normal"}) {
-    asset->DeleteAttribute(a);
+    t.asset->DeleteAttribute(a);
   }
-  // The template's names (the cup, the mug, the glass) would mislead: the object's geom and mesh
-  // are named after what they are.
-  asset->SetAttribute("name", "object_mesh");
-  geom->SetAttribute("mesh", "object_mesh");
-  geom->SetAttribute("name", "object");
-  asset->SetAttribute("file", relative_to(placement.file, mesh_folder).c_str());
-  const double scale3[3] = {s, s, s};
-  asset->SetAttribute("scale", numbers(scale3, 3).c_str());
-  for (const char* a : {"quat", "axisangle", "xyaxes", "zaxis", "euler"}) body->DeleteAttribute(a);
-  body->SetAttribute("pos", numbers(out.pos.data(), 3).c_str());
-  body->SetAttribute("quat", numbers(out.quat.data(), 4).c_str());
+  t.asset->SetAttribute("name", "object_mesh");
+  t.geom->SetAttribute("mesh", "object_mesh");
+  t.geom->SetAttribute("name", "object");
+  t.asset->SetAttribute("file", relative_to(file, mesh_folder).c_str());
+  const double scale3[3] = {out.scale, out.scale, out.scale};
+  t.asset->SetAttribute("scale", numbers(scale3, 3).c_str());
+  for (const char* a : {"quat", "axisangle", "xyaxes", "zaxis", "euler"}) {
+    t.body->DeleteAttribute(a);
+  }
+  t.body->SetAttribute("pos", numbers(out.pos.data(), 3).c_str());
+  t.body->SetAttribute("quat", numbers(out.quat.data(), 4).c_str());
   for (const char* a : {"pos", "quat", "axisangle", "xyaxes", "zaxis", "euler"}) {
-    geom->DeleteAttribute(a);
+    t.geom->DeleteAttribute(a);
   }
+}
 
-  // Room for the contacts of a fine mesh.
+// Room for the contacts of a fine mesh: <size nconmax njmax> at least kMinNconmax, kMinNjmax.
+void raise_size(tinyxml2::XMLDocument& doc, tinyxml2::XMLElement* root) {
   tinyxml2::XMLElement* size = root->FirstChildElement("size");
   if (size == nullptr) {
     size = doc.NewElement("size");
@@ -291,23 +368,17 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
   }
   size->SetAttribute("nconmax", std::max(kMinNconmax, size->IntAttribute("nconmax")));
   size->SetAttribute("njmax", std::max(kMinNjmax, size->IntAttribute("njmax")));
+}
 
-  // The template's comments (its own header) go; ours says what this scene is.
-  for (tinyxml2::XMLNode* n = doc.FirstChild(); n;) {
-    tinyxml2::XMLNode* next = n->NextSibling();
-    if (n->ToComment()) doc.DeleteNode(n);
-    n = next;
-  }
-  for (tinyxml2::XMLNode* n = root->FirstChild(); n;) {
-    tinyxml2::XMLNode* next = n->NextSibling();
-    if (n->ToComment()) root->DeleteChild(n);
-    n = next;
-  }
+// The header of the new scene: what it is and how it was made.
+std::string scene_header(const std::string& template_path, const std::string& hand,
+                         const ObjectPlacement& placement, const ObjectScene& out,
+                         const Vec3& support) {
   std::ostringstream header;
   header << "\n  Generated by graspcd (the grasp command given an object file) from the template "
          << fs::absolute(template_path).lexically_normal().string() << " (hand: " << hand
          << ").\n  Object: " << fs::absolute(placement.file).lexically_normal().string()
-         << "\n    scale " << short_number(s)
+         << "\n    scale " << short_number(out.scale)
          << (out.fitted ? " (fitted to the hand's room)" : " (given)") << "; size "
          << short_number(out.size[0]) << " x " << short_number(out.size[1]) << " m across, "
          << short_number(out.size[2]) << " m tall;\n    ";
@@ -323,19 +394,62 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
          << "  Every path is relative to this file's folder. Pairs and the drive: "
          << fs::path(placement.file).stem().string()
          << ".pairs.json beside it.\n  Edit freely: graspcd grasp on this file reruns the grasp.\n";
-  root->InsertFirstChild(doc.NewComment(header.str().c_str()));
+  return header.str();
+}
 
-  const std::string stem = fs::path(placement.file).stem().string();
-  out.scene = (target / (stem + ".xml")).string();
-  out.pairs = (target / (stem + ".pairs.json")).string();
+// The template's comments (its own header) replaced by `header`.
+void replace_comments(tinyxml2::XMLDocument& doc, tinyxml2::XMLElement* root,
+                      const std::string& header) {
+  for (tinyxml2::XMLNode* n = doc.FirstChild(); n;) {
+    tinyxml2::XMLNode* next = n->NextSibling();
+    if (n->ToComment()) doc.DeleteNode(n);
+    n = next;
+  }
+  for (tinyxml2::XMLNode* n = root->FirstChild(); n;) {
+    tinyxml2::XMLNode* next = n->NextSibling();
+    if (n->ToComment()) root->DeleteChild(n);
+    n = next;
+  }
+  root->InsertFirstChild(doc.NewComment(header.c_str()));
+}
+
+// The scene written as out.scene and the template's pair config, unchanged (it names
+// body:object), copied to out.pairs.
+void save_scene(tinyxml2::XMLDocument& doc, const std::string& template_path,
+                const ObjectScene& out) {
   if (doc.SaveFile(out.scene.c_str()) != tinyxml2::XML_SUCCESS) {
     throw io::InputError(out.scene, 0, "cannot write the scene");
   }
-  // The template's pair config, unchanged: it names body:object.
   const std::string pairs = fs::path(template_path).replace_extension(".pairs.json").string();
   std::ifstream in(pairs, std::ios::binary);
   if (!in) throw io::InputError(pairs, 0, "cannot read the template's pair config");
   std::ofstream(out.pairs, std::ios::binary) << in.rdbuf();
+}
+
+}  // namespace
+
+ObjectScene write_object_scene(const ObjectPlacement& placement, const std::string& template_path,
+                               const std::string& hand, const std::string& dir,
+                               const std::optional<std::array<double, 2>>& default_fit,
+                               const std::vector<TemplatePath>& moved) {
+  const TriangleMesh mesh = read_object_mesh(placement.file);
+  tinyxml2::XMLDocument doc;
+  const TemplateParts t = read_template(doc, template_path);
+  const GravityFrame frame = gravity_frame(t.root, template_path);
+  const TemplateRoom room = template_room(t, default_fit, template_path);
+  ObjectScene out = place_object(mesh, placement, frame, room, t, template_path);
+
+  const fs::path target = fs::path(dir);
+  fs::create_directories(target);
+  const fs::path mesh_folder = rewrite_paths(t, template_path, target, moved);
+  set_object(t, placement.file, mesh_folder, out);
+  raise_size(doc, t.root);
+  replace_comments(doc, t.root, scene_header(template_path, hand, placement, out, room.support));
+
+  const std::string stem = fs::path(placement.file).stem().string();
+  out.scene = (target / (stem + ".xml")).string();
+  out.pairs = (target / (stem + ".pairs.json")).string();
+  save_scene(doc, template_path, out);
   return out;
 }
 

@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace graspcd::grasp {
 
@@ -37,6 +38,14 @@ struct ObjectPlacement {
   std::optional<std::array<double, 4>> pose;  // w x y z: the object's rotation, instead of up/yaw
 };
 
+// A template's file paths that begin with `from` (as the template writes them) name files under
+// the folder `to` (its links resolved), not beside the template: e.g. the real hands'
+// "../../shared/models/" of mjcf/real_*.xml when the templates are installed far from the models.
+struct TemplatePath {
+  std::string from;
+  std::string to;
+};
+
 struct ObjectScene {
   std::string scene;  // DIR/STEM.xml
   std::string pairs;  // DIR/STEM.pairs.json
@@ -48,12 +57,14 @@ struct ObjectScene {
 };
 
 // Writes the scene into `dir` (created). `hand` names the template in the header (e.g.
-// "robotiq"). `default_fit` is used when the template has no graspcd_fit. Throws
+// "robotiq"). `default_fit` is used when the template has no graspcd_fit; `moved` says where the
+// template's paths that begin with a TemplatePath's `from` are (first match). Throws
 // io::InputError naming the mesh file for a bad mesh, naming the template (and its line) for a
 // template that breaks the contract above; std::invalid_argument for a bad `up`.
 ObjectScene write_object_scene(const ObjectPlacement& placement, const std::string& template_path,
                                const std::string& hand, const std::string& dir,
-                               const std::optional<std::array<double, 2>>& default_fit = {});
+                               const std::optional<std::array<double, 2>>& default_fit = {},
+                               const std::vector<TemplatePath>& moved = {});
 
 // A temporary folder for a scene that the user keeps not (grasp --object without --write-scene,
 // validate --objects): created under the system's temporary folder, removed with everything in

@@ -149,7 +149,8 @@ json validate_object_set(const ObjectSetOptions& options, const std::vector<Test
     // A bad object is its row and a warning; a bad --up (std::invalid_argument) stops the set.
     try {
       scene = grasp::write_object_scene(placement, options.template_path, options.hand,
-                                        folder.path().string(), options.default_fit);
+                                        folder.path().string(), options.default_fit,
+                                        options.template_moved);
       ValidateOptions validate;
       validate.max_steps = options.max_steps;
       if (!options.out_dir.empty()) {

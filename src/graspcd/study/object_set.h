@@ -35,6 +35,7 @@ struct ObjectSetOptions {
   std::string hand;           // the template's name in the output (project, robotiq, ...)
   std::string template_path;  // the template scene (object_scene.h)
   std::optional<std::array<double, 2>> default_fit;  // when the template has no graspcd_fit
+  std::vector<grasp::TemplatePath> template_moved;   // where its hand's models are, if moved
   // scale, fit, up, yaw_degrees, pose: the same for every object (file is ignored).
   grasp::ObjectPlacement placement;
   int max_steps = 400;  // most closing grasp steps per object

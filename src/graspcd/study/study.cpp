@@ -15,12 +15,9 @@
 #include "graspcd/study/sweep.h"
 #include "graspcd/study/table1.h"
 #include "graspcd/study/trajectory.h"
+#include "graspcd/version/data_dirs.h"
 #include "graspcd/version/envelope.h"
 #include "graspcd/version/machine.h"
-
-#ifndef GRASPCD_MJCF_DIR
-#error "GRASPCD_MJCF_DIR must name the repository's mjcf folder"
-#endif
 
 namespace graspcd::study {
 
@@ -164,7 +161,7 @@ void write_sweep(const StudyOptions& o, const std::vector<Example>& ex, const Gr
 
 void run_study(const StudyOptions& options, const Log& log) {
   StudyOptions o = options;
-  if (o.mjcf_dir.empty()) o.mjcf_dir = GRASPCD_MJCF_DIR;
+  if (o.mjcf_dir.empty()) o.mjcf_dir = graspcd::mjcf_dir();
   if (o.repeats < 1) throw std::runtime_error("--repeats must be >= 1");
   if (o.jobs < 1) o.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (o.shard) o.table = false;

@@ -44,7 +44,7 @@ struct Shard {
 
 struct StudyOptions {
   std::string out_dir = "report/out";
-  std::string mjcf_dir;  // the scenes (default: the repository's mjcf/)
+  std::string mjcf_dir;  // the scenes (default: graspcd::mjcf_dir())
   bool quick = false;    // example 1, fewer methods and sweep points: the smoke test
   int repeats = 5;       // timed replays per method (medians of these)
   int max_steps = 400;   // closing grasp steps at most
