@@ -130,7 +130,7 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
   }
 
   // The manifold: a few points per patch, the pair's budget in all; the triangles' shared
-  // vertices by the ids welded once per tree (registry.cpp), as build_contact_manifold would weld
+  // vertices by the ids welded once per tree (geom_trees.cpp), as build_contact_manifold would weld
   // geom1's faces and geom2's in its own frame.
   const ContactManifold manifold =
       build_contact_manifold_by_ids(candidates, vertices_a, vertices_b, served.manifold);
