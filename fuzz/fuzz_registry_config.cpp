@@ -73,7 +73,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const graspcd::mujoco::RegistryConfig config =
         graspcd::mujoco::parse_registry_config(text, source);
     graspcd::mujoco::Registry registry(scene.model.get(), config, source);
-    graspcd::mujoco::attach(registry);
+    const graspcd::mujoco::Attachment attached = graspcd::mujoco::attach(registry);
     mj_resetData(scene.model.get(), scene.data.get());
     mj_forward(scene.model.get(), scene.data.get());
   } catch (const std::runtime_error& e) {

@@ -10,7 +10,6 @@
 #include "graspcd/core/clock.h"
 #include "graspcd/core/contact.h"
 #include "graspcd/mujoco/collision_pose.h"
-#include "graspcd/mujoco/collision_table.h"
 
 namespace graspcd::mujoco {
 namespace {
@@ -152,7 +151,7 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
 // box-box routine (mjc_BoxBox of engine_collision_box.c, the saved original entry) makes the
 // contacts with margin 0, and only touching or penetrating ones (dist <= 0) are kept.
 int collide_box_box(Registry& registry, ServedPair& served, const mjData* d, mjContact* con, int g1,
-                    int g2) {
+                    int g2, mjfCollision box_box) {
   const mjModel* m = registry.model();
   BridgeStats& stats = registry.stats();
   ++stats.box_box_calls;
@@ -167,9 +166,7 @@ int collide_box_box(Registry& registry, ServedPair& served, const mjData* d, mjC
   stats.detection_ns += elapsed_ns(start, tested);
   if (disjoint) return 0;
 
-  mjfCollision box_box = original_collision(mjGEOM_BOX, mjGEOM_BOX);
-  if (!box_box) box_box = mjCOLLISIONFUNC[mjGEOM_BOX][mjGEOM_BOX];  // not installed
-  if (!box_box || box_box == &collide_geoms) return 0;
+  if (!box_box) return 0;
   const int found = box_box(m, d, con, g1, g2, 0);
   int n = 0;
   for (int i = 0; i < found && n < mjMAXCONPAIR; ++i) {
@@ -192,7 +189,7 @@ int collide_box_box(Registry& registry, ServedPair& served, const mjData* d, mjC
 }  // namespace
 
 int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
-                        int g2) {
+                        int g2, mjfCollision box_box) {
   ServedPair& served = registry.pair(pair_index);
   BridgeStats& stats = registry.stats();
   ++stats.calls;
@@ -202,8 +199,9 @@ int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjC
     served.contained = false;
     return 0;
   }
-  return served.path == PairPath::kBoxBox ? collide_box_box(registry, served, d, con, g1, g2)
-                                          : collide_trees(registry, pair_index, d, con, g1, g2);
+  return served.path == PairPath::kBoxBox
+             ? collide_box_box(registry, served, d, con, g1, g2, box_box)
+             : collide_trees(registry, pair_index, d, con, g1, g2);
 }
 
 }  // namespace graspcd::mujoco

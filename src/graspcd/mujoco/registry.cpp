@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "graspcd/core/warnings.h"
-#include "graspcd/mujoco/collision.h"
 #include "graspcd/mujoco/model_check.h"
 
 namespace graspcd::mujoco {
@@ -127,8 +126,6 @@ void Registry::warn_open_meshes(const std::string& source) {
     }
   }
 }
-
-Registry::~Registry() { detach(*this); }
 
 void Registry::add_pair(int g1, int g2, const ManifoldOptions& manifold) {
   const std::uint64_t k = key(g1, g2);

@@ -2,7 +2,7 @@
 // served geom pairs of a pair config (pair_config.h) resolved against the model, how each is
 // served, the geoms' trees (geom_trees.h), the state each pair carries from step to step on each
 // mjData, the statistics and the construction's warnings. Attaching a registry to its model is
-// collision_table.h's.
+// collision_table.h's (attach returns the handle that detaches it).
 //
 // A pair is served by one of two paths (PairPath):
 // - kBoxBox, both geoms boxes: exact and without triangles. The pair's Detector tests the two
@@ -89,8 +89,8 @@ struct ServedPair {
 };
 
 // The registry of one model. Build it after mj_loadXML (e.g. Registry r(m,
-// load_registry_config(path), path); attach(r); see collision.h), keep it alive while the model
-// steps with the bridge attached, and destroy it before the model (it detaches itself).
+// load_registry_config(path), path); Attachment a = attach(r); see collision.h), keep it alive
+// while the model steps with it attached, and destroy it (after its Attachment) before the model.
 // Not thread-safe: one thread steps a model at a time (the detectors and statistics mutate).
 class Registry {
  public:
@@ -98,7 +98,6 @@ class Registry {
   // error messages (e.g. its file name, or "<program>"). Throws std::runtime_error for the errors
   // listed at the top of this file (a pattern that matches nothing, an unserved geom type, ...).
   Registry(const mjModel* m, const RegistryConfig& config, const std::string& source = "<program>");
-  ~Registry();
   Registry(const Registry&) = delete;
   Registry& operator=(const Registry&) = delete;
 
