@@ -679,7 +679,7 @@ TEST(Containment, ASegmentWhollyInsideIsReportedNotContacted) {
     mj_forward(m.get(), d.get());
     ASSERT_EQ(registry.stats().calls, 1u) << c.x;
     EXPECT_EQ(!contacts_between(d.get(), gb, gs).empty(), c.contacts) << c.x;
-    EXPECT_EQ(registry.pair(0).contained, c.contained) << c.x;
+    EXPECT_EQ(registry.find_pair_state(d.get(), 0)->contained, c.contained) << c.x;
     EXPECT_EQ(registry.stats().contained, c.contained ? 1u : 0u) << c.x;
   }
 }
@@ -716,7 +716,7 @@ TEST(Containment, InsideAnOpenMeshIsNotCheckedAndTheRegistryWarns) {
     mj_forward(m.get(), d.get());
     ASSERT_EQ(registry.stats().calls, 1u) << x;
     EXPECT_EQ(!contacts_between(d.get(), gb, gs).empty(), x > 0) << x;
-    EXPECT_FALSE(registry.pair(0).contained) << x;
+    EXPECT_FALSE(registry.find_pair_state(d.get(), 0)->contained) << x;
     EXPECT_EQ(registry.stats().contained, 0u) << x;
   }
 }

@@ -10,12 +10,11 @@ namespace graspcd::mujoco {
 // Runs a served pair by its path (registry.h); a pair whose placement in `d` holds a bad number
 // is skipped and counted (collision.h, "Non-finite state"). Trees: the tree query with the pair's
 // detector in all-contacts mode, the contact manifold of the intersecting triangle pairs
-// (graspcd/core/contact.h). Box-box: the detector's box test, then MuJoCo's box-box function
-// `box_box` with margin 0 unless the boxes were
-// proven disjoint. At most the pair's max_contacts (<= mjMAXCONPAIR) written to `con`. Returns the
-// count. Updates the registry's statistics.
-// `box_box` is MuJoCo's own box-box function, which the table passes (its saved original); a
-// box-box pair gets no contacts when it is null.
+// (graspcd/core/contact.h). Box-box: the detector's box test, then `box_box`, MuJoCo's own box-box
+// function (the table passes its saved original), with margin 0 unless the boxes were proven
+// disjoint; none when it is null. At most the pair's max_contacts (<= mjMAXCONPAIR) written to
+// `con`. Returns the count. Updates the pair's state on `d` (Registry::pair_state) and the
+// registry's statistics.
 int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
                         int g2, mjfCollision box_box);
 

@@ -130,30 +130,34 @@ void Registry::warn_open_meshes(const std::string& source) {
 void Registry::add_pair(int g1, int g2, const ManifoldOptions& manifold) {
   const std::uint64_t k = key(g1, g2);
   if (pair_index_.count(k)) return;
+  // Detector options out of range throw std::invalid_argument when the first pair is registered,
+  // as they always have, not at a pair's first call inside mj_step.
+  if (pairs_.empty()) (void)make_detector();
   ServedPair p;
   p.geom_lo = g1 < g2 ? g1 : g2;
   p.geom_hi = g1 < g2 ? g2 : g1;
-  p.detector = std::make_unique<Detector>(config_.method, config_.detector);
   p.manifold = manifold;
   pair_index_.emplace(k, static_cast<int>(pairs_.size()));
-  pairs_.push_back(std::move(p));
+  pairs_.push_back(p);
 }
 
-void Registry::reset_detectors() {
-  for (ServedPair& p : pairs_) p.detector->reset();
-  states_.clear();
-}
+void Registry::reset_detectors() { states_.clear(); }
 
 Registry::DataPairState& Registry::pair_state(const mjData* d, int pair_index) {
   auto it = states_.find(d);
   if (it == states_.end()) {
-    // Bounded: past kMaxFrontData mjData, forget them all (a speed matter only: any front, even
-    // one left by a freed mjData whose address was reused, gives the same answers, and kept
-    // contacts hold for the pose they were kept at).
     if (states_.size() >= kMaxFrontData) states_.clear();
-    it = states_.emplace(d, std::vector<DataPairState>(pairs_.size())).first;
+    std::vector<DataPairState> fresh;
+    fresh.reserve(pairs_.size());
+    for (std::size_t i = 0; i < pairs_.size(); ++i) fresh.emplace_back(make_detector());
+    it = states_.emplace(d, std::move(fresh)).first;
   }
   return it->second[static_cast<std::size_t>(pair_index)];
+}
+
+const Registry::DataPairState* Registry::find_pair_state(const mjData* d, int pair_index) const {
+  const auto it = states_.find(d);
+  return it == states_.end() ? nullptr : &it->second[static_cast<std::size_t>(pair_index)];
 }
 
 void Registry::forget_fronts(const mjData* d) { states_.erase(d); }

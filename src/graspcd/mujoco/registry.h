@@ -15,6 +15,12 @@
 //   triangle-pair list is what validate and the study check). Trees: geom_trees.h.
 // Planes and height fields are not served (MuJoCo keeps them).
 //
+// State: everything a served pair carries from call to call (its detector's warm state, its query
+// front, its reused contacts, whether its geoms were last found one inside the other) lives in one
+// DataPairState per (mjData, pair), in one map (pair_state). What is kept per pair (ServedPair:
+// geoms, path, contact budget) and per model (the trees, the config) is immutable after
+// construction; the statistics are per registry.
+//
 // Errors of the construction, each a std::runtime_error with a one-line message that starts with
 // the config's name: a pattern that matches no collidable geom, a matched collidable geom of a
 // type that is not served (naming the pattern, the geom and its type), a pair with no geom pair
@@ -25,7 +31,6 @@
 #include <mujoco/mujoco.h>
 
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -76,27 +81,25 @@ enum class PairPath {
   kBoxBox,  // two boxes: the detector's box test, then MuJoCo's box-box contacts
 };
 
-// A served geom pair: its detector carries the method's state from step to step.
+// A served geom pair, immutable after the registry's construction (its state from step to step is
+// a DataPairState per mjData, Registry::pair_state).
 struct ServedPair {
   int geom_lo = 0;  // smaller geom id
   int geom_hi = 0;  // larger geom id
   PairPath path = PairPath::kTrees;
-  std::unique_ptr<Detector> detector;
   ManifoldOptions manifold;  // the pair's contact budget (RegistryConfig, PairPattern)
-  // After the pair's last call: the surfaces did not intersect and one geom lay wholly inside the
-  // other's closed solid (the containment check; the pair then gets no contacts).
-  bool contained = false;
 };
 
 // The registry of one model. Build it after mj_loadXML (e.g. Registry r(m,
 // load_registry_config(path), path); Attachment a = attach(r); see collision.h), keep it alive
 // while the model steps with it attached, and destroy it (after its Attachment) before the model.
-// Not thread-safe: one thread steps a model at a time (the detectors and statistics mutate).
+// Not thread-safe: one thread steps a model at a time (the pair states and statistics mutate).
 class Registry {
  public:
   // Resolves patterns and geom pairs against `m`, builds the trees. `source` names the config in
   // error messages (e.g. its file name, or "<program>"). Throws std::runtime_error for the errors
-  // listed at the top of this file (a pattern that matches nothing, an unserved geom type, ...).
+  // listed at the top of this file (a pattern that matches nothing, an unserved geom type, ...),
+  // std::invalid_argument for detector options out of range (core/separators.h).
   Registry(const mjModel* m, const RegistryConfig& config, const std::string& source = "<program>");
   Registry(const Registry&) = delete;
   Registry& operator=(const Registry&) = delete;
@@ -110,7 +113,7 @@ class Registry {
     return it == pair_index_.end() ? -1 : it->second;
   }
   const std::vector<ServedPair>& pairs() const { return pairs_; }
-  ServedPair& pair(int index) { return pairs_[static_cast<std::size_t>(index)]; }
+  const ServedPair& pair(int index) const { return pairs_[static_cast<std::size_t>(index)]; }
 
   // The tree of a mesh id (in the mesh frame, which is the geom frame), or nullptr when the mesh
   // is in no pair served by trees.
@@ -145,24 +148,36 @@ class Registry {
     return s;
   }
 
-  // Forgets every detector's cached state (warm planes, cached axes, switches), every front and
-  // every pair's reused contacts.
-  void reset_detectors();
-  // The query front of a tree-path pair on one mjData (RegistryConfig::front_list): the state of
-  // the tree query's temporal coherence is kept per (mjData, pair), so that two mjData stepping
-  // the same model (the study's threads, a planner's rollouts) never follow each other's fronts.
-  // Created empty on first use; at most kMaxFrontData mjData are remembered.
-  QueryFront& front(const mjData* d, int pair_index) { return pair_state(d, pair_index).front; }
-  // What a tree-path pair carries from step to step on one mjData: its front, and the contacts it
-  // keeps (RegistryConfig::contact_reuse), forgotten with the front. One lookup for both.
+  // What a served pair carries from call to call on one mjData, the only state that changes while
+  // the model steps: kept per (mjData, pair) so that two mjData stepping the same model (the
+  // study's threads, a planner's rollouts) never follow each other's detectors, fronts or kept
+  // contacts.
   struct DataPairState {
+    explicit DataPairState(Detector fresh) : detector(std::move(fresh)) {}
+    // The box separator with its state (warm planes, cached axes, switches), core/separators.h.
+    Detector detector;
+    // The tree query's front (RegistryConfig::front_list, core/tree_query.h).
     QueryFront front;
+    // The contacts kept for reuse (RegistryConfig::contact_reuse, contact.h).
     ReusedContacts reused;
+    // After the pair's last call: the surfaces did not intersect and one geom lay wholly inside
+    // the other's closed solid (the containment check; the pair then gets no contacts).
+    bool contained = false;
   };
+  // The state of a pair on `d`, created fresh on first use (one lookup per served call). At most
+  // kMaxFrontData mjData are remembered: past that, every state is forgotten (a speed matter
+  // only: any state, even one left by a freed mjData whose address was reused, gives the same
+  // contacts).
   DataPairState& pair_state(const mjData* d, int pair_index);
-  // Forgets the fronts and reused contacts of `d` (e.g. before mj_deleteData; not needed for
-  // correctness: both depend on the pose alone).
+  // The state of a pair on `d`, or nullptr when `d` has none yet.
+  const DataPairState* find_pair_state(const mjData* d, int pair_index) const;
+  // The query front of a tree-path pair on one mjData (pair_state(d, pair_index).front).
+  QueryFront& front(const mjData* d, int pair_index) { return pair_state(d, pair_index).front; }
+  // Forgets every pair's state on `d` (e.g. before mj_deleteData; not needed for correctness:
+  // every answer depends on the pose alone).
   void forget_fronts(const mjData* d);
+  // Forgets every pair's state on every mjData: detectors, fronts, reused contacts.
+  void reset_detectors();
   static constexpr std::size_t kMaxFrontData = 64;
 
   // The mesh's faces in the mesh frame (geom_trees.h, mesh_triangles): for tests and the exact
@@ -185,6 +200,7 @@ class Registry {
   void choose_paths_and_build_trees(const std::string& source);
   void warn_open_meshes(const std::string& source);
   void add_pair(int g1, int g2, const ManifoldOptions& manifold);
+  Detector make_detector() const { return Detector(config_.method, config_.detector); }
   // Adds a warning to warnings_ and to the process's sink under `code`.
   void warn(const std::string& code, const std::string& message);
 
@@ -195,6 +211,7 @@ class Registry {
   GeomTrees trees_;
   BridgeStats stats_;
   std::vector<std::string> warnings_;
+  // Every pair's state on every mjData: by mjData, then by pair index.
   std::unordered_map<const mjData*, std::vector<DataPairState>> states_;
 };
 
