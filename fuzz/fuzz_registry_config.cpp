@@ -1,4 +1,4 @@
-// libFuzzer target: the scene config (bridge/registry.h: JSON parsed by parse_registry_config,
+// libFuzzer target: the scene config (mujoco/pair_config.h: JSON parsed by parse_registry_config,
 // then resolved against a model by the Registry). A small fixed model (a mesh, boxes, primitives,
 // a plane, a visual-only geom), loaded once; every config that resolves is attached and the
 // model's collision run once through graspcd's callback (mj_forward). Bad input must end in the

@@ -92,8 +92,8 @@ void collect_candidates(std::vector<TrianglePair>& tri_pairs, const MeshTree& t1
 // contact per intersecting triangle pair (contact.h, after Bullet's GImpact clip method), in the
 // sorted order of the pairs, reduced to the pair's manifold (contact.h: patches, at most
 // max_patch_contacts points each and max_contacts in all), written in the world frame. With
-// "contact_reuse" (registry.h), the pair's last contacts on this mjData, refreshed, while it moved
-// less than that (contact.h, ReusedContacts).
+// "contact_reuse" (pair_config.h), the pair's last contacts on this mjData, refreshed, while it
+// moved less than that (contact.h, ReusedContacts).
 int collide_trees(Registry& registry, const ServedPair& served, Registry::DataPairState& state,
                   const mjData* d, mjContact* con, int g1, int g2) {
   thread_local std::vector<TrianglePair> tri_pairs;
