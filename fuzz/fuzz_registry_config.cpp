@@ -1,4 +1,4 @@
-// libFuzzer target: the scene config (bridge/registry.h: JSON parsed by parse_registry_config,
+// libFuzzer target: the scene config (mujoco/pair_config.h: JSON parsed by parse_registry_config,
 // then resolved against a model by the Registry). A small fixed model (a mesh, boxes, primitives,
 // a plane, a visual-only geom), loaded once; every config that resolves is attached and the
 // model's collision run once through graspcd's callback (mj_forward). Bad input must end in the
@@ -73,7 +73,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const graspcd::mujoco::RegistryConfig config =
         graspcd::mujoco::parse_registry_config(text, source);
     graspcd::mujoco::Registry registry(scene.model.get(), config, source);
-    graspcd::mujoco::attach(registry);
+    const graspcd::mujoco::Attachment attached = graspcd::mujoco::attach(registry);
     mj_resetData(scene.model.get(), scene.data.get());
     mj_forward(scene.model.get(), scene.data.get());
   } catch (const std::runtime_error& e) {

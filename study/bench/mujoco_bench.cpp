@@ -105,7 +105,7 @@ struct Bench {
     {
       graspcd::mujoco::ScopedInstall install;
       Registry registry(m, graspcd::mujoco::load_registry_config(config_path), config_path);
-      graspcd::mujoco::attach(registry);
+      const graspcd::mujoco::Attachment attached = graspcd::mujoco::attach(registry);
       for (int k = 0; k <= 160 && finger_contacts == 0; ++k) {
         angle = 0.01 * k + 0.01;
         set_fingers(d.get(), 0.01 * k);
@@ -190,7 +190,7 @@ void BM_StepInstalledOtherModel(benchmark::State& state) {
   const std::string other_config = kMjcf + "/hand_boxes.pairs.json";
   graspcd::mujoco::ScopedInstall install;
   Registry other(b.other.get(), graspcd::mujoco::load_registry_config(other_config), other_config);
-  graspcd::mujoco::attach(other);
+  const graspcd::mujoco::Attachment attached = graspcd::mujoco::attach(other);
   step_loop(state, &other);
 }
 
@@ -199,7 +199,7 @@ void BM_StepServed(benchmark::State& state) {
   graspcd::mujoco::ScopedInstall install;
   Registry registry(b.model.get(), graspcd::mujoco::load_registry_config(b.config_path),
                     b.config_path);
-  graspcd::mujoco::attach(registry);
+  const graspcd::mujoco::Attachment attached = graspcd::mujoco::attach(registry);
   step_loop(state, &registry);
 }
 

@@ -126,7 +126,7 @@ TEST_F(StackScene, ServedPairsGetOurContactsOthersAreUntouched) {
     RegistryConfig config;
     config.patterns = {{"cube_a", "cube_b"}};
     Registry registry(model_.get(), config);
-    attach(registry);
+    const Attachment attached = attach(registry);
     ours = forward();
     stats = registry.stats();
   }
@@ -167,7 +167,7 @@ TEST_F(StackScene, AttachedRegistryWithoutThisPairDelegates) {
   RegistryConfig config;
   config.patterns = {{"cube_a", "cube_c"}};  // 11 cm apart: no contact either way
   Registry registry(model_.get(), config);
-  attach(registry);
+  const Attachment attached = attach(registry);
   const DataPtr ours = forward();
   ASSERT_EQ(ours->ncon, native->ncon);
   for (int i = 0; i < ours->ncon; ++i) expect_same_contact(ours->contact[i], native->contact[i]);
@@ -181,7 +181,7 @@ TEST_F(StackScene, NonFinitePlacementIsSkippedAndCounted) {
   RegistryConfig config;
   config.patterns = {{"cube_a", "cube_b"}};
   Registry registry(model_.get(), config);
-  attach(registry);
+  const Attachment attached = attach(registry);
   const DataPtr d = forward();
   ASSERT_FALSE(contacts_between(d.get(), a_, b_).empty());
   ASSERT_EQ(registry.stats().nonfinite_skips, 0u);
@@ -349,7 +349,7 @@ TEST(Install, UnservedPairsGoToTheOriginalOfTheirOwnTypePair) {
     RegistryConfig config;
     config.patterns = {{"cube", "cube2"}};
     Registry registry(m.get(), config);
-    attach(registry);
+    const Attachment attached = attach(registry);
     ours = DataPtr(mj_makeData(m.get()));
     mj_forward(m.get(), ours.get());
     EXPECT_EQ(registry.stats().calls, 1u);
@@ -393,7 +393,7 @@ TEST(Install, UnservedPairsGoToTheOriginalOfTheirOwnTypePair) {
               TypedLog::calls.size(), logged_types.size(), compared);
 }
 
-// Many models come and go: each registry detaches itself, and a model without one collides
+// Many models come and go: each attachment detaches its registry, and a model without one collides
 // natively.
 TEST(Install, ManyModelsAttachAndDetach) {
   ScopedInstall bridge;
@@ -405,7 +405,7 @@ TEST(Install, ManyModelsAttachAndDetach) {
       RegistryConfig config;
       config.patterns = {{"cube_a", "cube_b"}};
       Registry registry(m.get(), config);
-      attach(registry);
+      const Attachment attached = attach(registry);
       EXPECT_EQ(find_registry(m.get()), &registry);
       DataPtr d(mj_makeData(m.get()));
       mj_forward(m.get(), d.get());
@@ -444,7 +444,7 @@ TEST(Contacts, TheManifoldBudgetWithUnitNormalsFromGeom1ToGeom2) {
   const DataPtr d(mj_makeData(m.get()));
   {
     Registry registry(m.get(), config);
-    attach(registry);
+    const Attachment attached = attach(registry);
     mj_forward(m.get(), d.get());
     EXPECT_EQ(contacts_between(d.get(), 0, 1).size(), 8u) << "the default budget";
     EXPECT_GT(registry.stats().patches, 1u) << "a ring of contact: several patches";
@@ -452,7 +452,7 @@ TEST(Contacts, TheManifoldBudgetWithUnitNormalsFromGeom1ToGeom2) {
   config.manifold.max_per_pair = mjMAXCONPAIR;
   config.manifold.max_per_patch = mjMAXCONPAIR;
   Registry registry(m.get(), config);
-  attach(registry);
+  const Attachment attached = attach(registry);
   mj_forward(m.get(), d.get());
   const auto cs = contacts_between(d.get(), 0, 1);
   EXPECT_GT(registry.stats().counters.tri_pairs, 50u);
@@ -507,7 +507,7 @@ TEST_P(CgalAgreement, AnswerAgreesWithCgalOnTheSamePosedVertices) {
   config.detector.switch_passes = 20;
   config.patterns = {{"torus", "ball"}};
   Registry registry(m.get(), config);
-  attach(registry);
+  const Attachment attached = attach(registry);
   const int g_lo = registry.pairs()[0].geom_lo, g_hi = registry.pairs()[0].geom_hi;
   const std::vector<Triangle> lo = Registry::mesh_triangles(m.get(), m->geom_dataid[g_lo]);
   const std::vector<Triangle> hi = Registry::mesh_triangles(m.get(), m->geom_dataid[g_hi]);
@@ -603,7 +603,7 @@ TEST(Contacts, BodyInsideANonConvexCavityGetsNoContactFromUs) {
   RegistryConfig config;
   config.patterns = {{"u", "cube"}};
   Registry registry(m.get(), config);
-  attach(registry);
+  const Attachment attached = attach(registry);
   const DataPtr d(mj_makeData(m.get()));
   mj_forward(m.get(), d.get());
   EXPECT_EQ(registry.stats().calls, 1u);
@@ -655,7 +655,7 @@ TEST(Containment, ASegmentWhollyInsideIsReportedNotContacted) {
   RegistryConfig config;
   config.patterns = {{"small", "big"}};
   Registry registry(m.get(), config);
-  attach(registry);
+  const Attachment attached = attach(registry);
   ASSERT_EQ(registry.pairs().size(), 1u);
   for (const auto& [mesh, tree] :
        std::vector<std::pair<int, const MeshTree*>>{{m->geom_dataid[gb], registry.geom_tree(gb)},
@@ -679,7 +679,7 @@ TEST(Containment, ASegmentWhollyInsideIsReportedNotContacted) {
     mj_forward(m.get(), d.get());
     ASSERT_EQ(registry.stats().calls, 1u) << c.x;
     EXPECT_EQ(!contacts_between(d.get(), gb, gs).empty(), c.contacts) << c.x;
-    EXPECT_EQ(registry.pair(0).contained, c.contained) << c.x;
+    EXPECT_EQ(registry.find_pair_state(d.get(), 0)->contained, c.contained) << c.x;
     EXPECT_EQ(registry.stats().contained, c.contained ? 1u : 0u) << c.x;
   }
 }
@@ -701,7 +701,7 @@ TEST(Containment, InsideAnOpenMeshIsNotCheckedAndTheRegistryWarns) {
   RegistryConfig config;
   config.patterns = {{"small", "big"}};
   Registry registry(m.get(), config, "nested.json");
-  attach(registry);
+  const Attachment attached = attach(registry);
   ASSERT_FALSE(registry.geom_tree(gb)->closedness.closed());
   ASSERT_EQ(registry.warnings().size(), 1u);
   EXPECT_EQ(registry.warnings()[0],
@@ -716,7 +716,7 @@ TEST(Containment, InsideAnOpenMeshIsNotCheckedAndTheRegistryWarns) {
     mj_forward(m.get(), d.get());
     ASSERT_EQ(registry.stats().calls, 1u) << x;
     EXPECT_EQ(!contacts_between(d.get(), gb, gs).empty(), x > 0) << x;
-    EXPECT_FALSE(registry.pair(0).contained) << x;
+    EXPECT_FALSE(registry.find_pair_state(d.get(), 0)->contained) << x;
     EXPECT_EQ(registry.stats().contained, 0u) << x;
   }
 }
@@ -746,12 +746,13 @@ TEST(Dynamics, CubeFallsIntoTheCavityAndRestsOnItsFloor) {
     DataPtr d(mj_makeData(m.get()));
     std::unique_ptr<ScopedInstall> install;
     std::unique_ptr<Registry> registry;
+    Attachment attached;
     if (bridge) {
       install = std::make_unique<ScopedInstall>();
       RegistryConfig config;
       config.patterns = {{"u", "cube"}};
       registry = std::make_unique<Registry>(m.get(), config);
-      attach(*registry);
+      attached = attach(*registry);
     }
     while (d->time < seconds) mj_step(m.get(), d.get());
     return d;
@@ -792,7 +793,7 @@ TEST(Dynamics, CubeStacksOnACube) {
   RegistryConfig config;
   config.patterns = {{"base", "top"}};
   Registry registry(m.get(), config);
-  attach(registry);
+  const Attachment attached = attach(registry);
   const DataPtr d(mj_makeData(m.get()));
   std::uint64_t steps = 0;
   while (d->time < 1.5) {
@@ -838,12 +839,13 @@ TEST(Dynamics, BallRestsInsideARealBowl) {
   const auto final_z = [&](bool bridge) {
     std::unique_ptr<ScopedInstall> install;
     std::unique_ptr<Registry> registry;
+    Attachment attached;
     if (bridge) {
       install = std::make_unique<ScopedInstall>();
       RegistryConfig config;
       config.patterns = {{"bowl", "ball"}};
       registry = std::make_unique<Registry>(m.get(), config);
-      attach(*registry);
+      attached = attach(*registry);
     }
     DataPtr d(mj_makeData(m.get()));
     while (d->time < 2.0) mj_step(m.get(), d.get());

@@ -49,9 +49,15 @@ TEST(NonconvexContacts, MethodOverridesTheConfig) {
   Scene s("example1");
   NonconvexContacts contacts(s.model.get(), s.config("example1"), Method::kNeuroSat);
   EXPECT_EQ(contacts.method(), Method::kNeuroSat);
-  for (const ServedPair& p : contacts.registry().pairs()) {
-    ASSERT_TRUE(p.detector);
-    EXPECT_EQ(p.detector->method(), Method::kNeuroSat);
+  // Each pair's detector lives in its state on an mjData, made at the first served call there.
+  for (int step = 0; step < 500 && contacts.stats().calls == 0; ++step) {
+    mj_step(s.model.get(), s.data.get());
+  }
+  ASSERT_GT(contacts.stats().calls, 0u);
+  for (int i = 0; i < static_cast<int>(contacts.served_pairs()); ++i) {
+    const Registry::DataPairState* state = contacts.registry().find_pair_state(s.data.get(), i);
+    ASSERT_NE(state, nullptr);
+    EXPECT_EQ(state->detector.method(), Method::kNeuroSat);
   }
 }
 

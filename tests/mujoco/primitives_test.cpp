@@ -349,7 +349,7 @@ TEST(ServedPrimitives, TessellatedPairsNeverMissAContactAndAddNoneBeyondTheToler
   RegistryConfig config;
   config.patterns = {{"ball", "cube"}, {"ball2", "capsule"}};
   Registry registry(m.get(), config);
-  attach(registry);
+  const Attachment attached = attach(registry);
   EXPECT_EQ(registry.tree_count(), 4u);  // cube mesh, two sphere sizes, the capsule
   EXPECT_EQ(registry.primitive_tree_count(), 3u);
   const double tol_ball = tessellation_tolerance(mjGEOM_SPHERE, m->geom_size + 3 * ball);
@@ -427,7 +427,7 @@ TEST(ServedPrimitives, CapsuleAndCylinderRestOnAMeshSlab) {
   RegistryConfig config;
   config.patterns = {{"slab", "cap"}, {"slab", "cyl"}};
   Registry registry(m.get(), config);
-  attach(registry);
+  const Attachment attached = attach(registry);
   const DataPtr d(mj_makeData(m.get()));
   while (d->time < 1.0) mj_step(m.get(), d.get());
   const int cap = mj_name2id(m.get(), mjOBJ_BODY, "cap");
@@ -514,7 +514,7 @@ TEST(ServedPrimitives, BoxBoxPairsAreExactWithoutTriangles) {
     RegistryConfig config;
     config.patterns = {{"a", "b"}};
     Registry registry(m.get(), config);
-    attach(registry);
+    const Attachment attached = attach(registry);
     ASSERT_EQ(registry.pairs().size(), 1u);
     EXPECT_EQ(registry.pairs()[0].path, PairPath::kBoxBox);
     EXPECT_EQ(registry.tree_count(), 0u);
@@ -597,9 +597,9 @@ TEST(BoxHand, ClosingTouchesWithoutTrianglesOrTrees) {
   int contacts = 0;
   for (; angle < 1.6 && contacts == 0; angle += 0.02) {
     close_to(native.get(), angle);  // natively (registry not attached yet)
-    attach(registry);
+    Attachment attached = attach(registry);
     close_to(ours.get(), angle);
-    detach(registry);
+    attached.release();
     SCOPED_TRACE("angle " + std::to_string(angle));
     expect_same_contacts(std::vector<mjContact>(ours->contact, ours->contact + ours->ncon),
                          std::vector<mjContact>(native->contact, native->contact + native->ncon));

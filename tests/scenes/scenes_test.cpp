@@ -431,7 +431,7 @@ TEST(SceneGrasp, ClosingTheTriangleHandTouchesTheObjectThroughTheBridge) {
     ASSERT_TRUE(m);
     mujoco::Registry registry(m.get(),
                               mujoco::load_registry_config(kMjcf + "/" + scene + ".pairs.json"));
-    mujoco::attach(registry);
+    const mujoco::Attachment attached = mujoco::attach(registry);
     const mujoco::DataPtr d(mj_makeData(m.get()));
     const int step = first_contact_step(m.get(), d.get());
     std::printf("%s: first finger-object contact at grasp step %d\n", scene.c_str(), step);
@@ -453,7 +453,7 @@ TEST(SceneGrasp, InExample3TheBridgeLetsFinger2IntoTheSlotWhereTheHullIsSolid) {
     mujoco::ScopedInstall bridge;
     mujoco::Registry registry(m.get(),
                               mujoco::load_registry_config(kMjcf + "/example3.pairs.json"));
-    mujoco::attach(registry);
+    const mujoco::Attachment attached = mujoco::attach(registry);
     ours = first_contact_step(m.get(), d.get(), "finger2_");
   }
   std::printf("example3, finger 2: first contact at grasp step %d natively, %d with the bridge\n",

@@ -1,5 +1,5 @@
 // The "grasp" section of a pair config (the rest of the file belongs to the MuJoCo seam,
-// graspcd/mujoco/registry.h): how the grasp experiment drives a hand through its own actuators.
+// graspcd/mujoco/pair_config.h): how the grasp experiment drives a hand through its own actuators.
 #pragma once
 
 #include <optional>

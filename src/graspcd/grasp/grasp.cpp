@@ -833,6 +833,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
 
   std::unique_ptr<mujoco::ScopedInstall> install_guard;
   std::unique_ptr<mujoco::Registry> registry;
+  mujoco::Attachment attached;  // of registry, released before it
   mujoco::RegistryConfig config;
   const std::string config_path =
       options.config_path.empty() ? mujoco::pair_config_path(scene_path) : options.config_path;
@@ -866,7 +867,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
       throw config_error(config_path, e);
     }
     install_guard = std::make_unique<mujoco::ScopedInstall>();
-    mujoco::attach(*registry);
+    attached = mujoco::attach(*registry);
   }
   GraspResult result;
   if (registry) result.warnings = registry->warnings();
@@ -884,7 +885,8 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
     throw_if_bad_start(m, d, run.object_, scene_path);
     if (registry) registry->reset_stats();
     run_driven_grasp(run, options, result);
-    registry.reset();  // detaches before the model goes
+    attached.release();
+    registry.reset();  // before the model goes
     return result;
   }
   GraspRun run(m, d, registry.get(), options, scene_path);
@@ -975,7 +977,8 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   bool ever_touched = false;
   for (int step : result.first_contact) ever_touched = ever_touched || step > 0;
   judge(ever_touched, grip, result);
-  registry.reset();  // detaches before the model goes
+  attached.release();
+  registry.reset();  // before the model goes
   return result;
 }
 

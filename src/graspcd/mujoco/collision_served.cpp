@@ -10,7 +10,6 @@
 #include "graspcd/core/clock.h"
 #include "graspcd/core/contact.h"
 #include "graspcd/mujoco/collision_pose.h"
-#include "graspcd/mujoco/collision_table.h"
 
 namespace graspcd::mujoco {
 namespace {
@@ -49,15 +48,54 @@ int write_contacts(const std::vector<TriContact>& contacts, const mjData* d, int
   return n;
 }
 
+// The separate containment check of a tree-path pair whose surfaces did not intersect: only closed
+// solids contain, and only when the root boxes overlap can one lie inside the other. Sets the
+// state's flag and counts it (the time from `queried`).
+void check_containment(const MeshTree& t1, const MeshTree& t2, const Pose& pose,
+                       Clock::time_point queried, Registry::DataPairState& state,
+                       BridgeStats& stats) {
+  if (!t1.closedness.closed() && !t2.closedness.closed()) return;
+  if (sat_separating_axis(t1.tree.root().box, transform(pose, t2.tree.root().box)) != kSatNoAxis) {
+    return;
+  }
+  const MeshContainment c = mesh_containment(t1.tree, t1.closedness, pose, t2.tree, t2.closedness,
+                                             /*surfaces_intersect=*/false);
+  state.contained = c.a_inside_b || c.b_inside_a;
+  stats.contained += state.contained;
+  stats.containment_ns += elapsed_ns(queried, Clock::now());
+}
+
+// One candidate per intersecting triangle pair, in geom1's frame, in sorted pair order (the
+// manifold is then the same whatever order the query found them in), and the welded vertex ids
+// of both faces of each.
+void collect_candidates(std::vector<TrianglePair>& tri_pairs, const MeshTree& t1,
+                        const MeshTree& t2, const Pose& pose, double max_depth,
+                        std::vector<TriContact>& candidates, std::vector<FaceVertexIds>& vertices_a,
+                        std::vector<FaceVertexIds>& vertices_b) {
+  std::sort(tri_pairs.begin(), tri_pairs.end());
+  const double tn = pose.t.norm();
+  const Vec3 fallback = tn > 0 ? Vec3(pose.t / tn) : Vec3(Vec3::UnitZ());
+  candidates.clear();
+  vertices_a.clear();
+  vertices_b.clear();
+  for (const TrianglePair& tp : tri_pairs) {
+    const Triangle& a = t1.face(tp.a);
+    const Triangle b = apply_pose(pose, t2.face(tp.b));
+    candidates.push_back(
+        triangle_pair_contact(a, b, max_depth, fallback, t1.sharp(tp.a), t2.sharp(tp.b)));
+    vertices_a.push_back(t1.vertices(tp.a));
+    vertices_b.push_back(t2.vertices(tp.b));
+  }
+}
+
 // Tree path: tree query (paper sections 2-6 through core's Detector, all contacts), one candidate
 // contact per intersecting triangle pair (contact.h, after Bullet's GImpact clip method), in the
 // sorted order of the pairs, reduced to the pair's manifold (contact.h: patches, at most
 // max_patch_contacts points each and max_contacts in all), written in the world frame. With
-// "contact_reuse" (registry.h), the pair's last contacts on this mjData, refreshed, while it moved
-// less than that (contact.h, ReusedContacts).
-int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
-                  int g2) {
-  ServedPair& served = registry.pair(pair_index);
+// "contact_reuse" (pair_config.h), the pair's last contacts on this mjData, refreshed, while it
+// moved less than that (contact.h, ReusedContacts).
+int collide_trees(Registry& registry, const ServedPair& served, Registry::DataPairState& state,
+                  const mjData* d, mjContact* con, int g1, int g2) {
   thread_local std::vector<TrianglePair> tri_pairs;
   thread_local std::vector<TriContact> candidates;
   thread_local std::vector<FaceVertexIds> vertices_a, vertices_b;
@@ -71,14 +109,12 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
   const Clock::time_point start = Clock::now();
   const double reuse = registry.config().contact_reuse;
   const bool front_list = registry.config().front_list;
-  Registry::DataPairState* carried =
-      reuse > 0 || front_list ? &registry.pair_state(d, pair_index) : nullptr;
-  ReusedContacts* kept = reuse > 0 ? &carried->reused : nullptr;
+  ReusedContacts* kept = reuse > 0 ? &state.reused : nullptr;
   if (kept && kept->refresh(pose, t1->radius, t2->radius, reuse, candidates)) {
     const double max_depth = registry.config().max_depth;
     for (TriContact& c : candidates) c.depth = std::min(c.depth, max_depth);
     const int n = write_contacts(candidates, d, g1, con);
-    served.contained = false;
+    state.contained = false;
     ++stats.reused;
     stats.contacts += static_cast<std::uint64_t>(n);
     stats.contact_ns += elapsed_ns(start, Clock::now());
@@ -86,51 +122,27 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
   }
   tri_pairs.clear();
   if (front_list) {
-    QueryFront& front = carried->front;
-    served.detector->collide_coherent(t1->tree, t2->tree, pose, stats.counters, &tri_pairs, front);
+    QueryFront& front = state.front;
+    state.detector.collide_coherent(t1->tree, t2->tree, pose, stats.counters, &tri_pairs, front);
     stats.front_restarts += front.restarted;
   } else {
-    served.detector->collide(t1->tree, t2->tree, pose, QueryMode::kAllContacts, stats.counters,
-                             &tri_pairs);
+    state.detector.collide(t1->tree, t2->tree, pose, QueryMode::kAllContacts, stats.counters,
+                           &tri_pairs);
   }
   const Clock::time_point queried = Clock::now();
   stats.detection_ns += elapsed_ns(start, queried);
-  served.contained = false;
+  state.contained = false;
   if (tri_pairs.empty()) {
     if (kept) kept->clear();
-    // The separate containment check: only closed solids contain, and only when the root boxes
-    // overlap can one lie inside the other.
-    if ((t1->closedness.closed() || t2->closedness.closed()) &&
-        sat_separating_axis(t1->tree.root().box, transform(pose, t2->tree.root().box)) ==
-            kSatNoAxis) {
-      const MeshContainment c = mesh_containment(t1->tree, t1->closedness, pose, t2->tree,
-                                                 t2->closedness, /*surfaces_intersect=*/false);
-      served.contained = c.a_inside_b || c.b_inside_a;
-      stats.contained += served.contained;
-      stats.containment_ns += elapsed_ns(queried, Clock::now());
-    }
+    check_containment(*t1, *t2, pose, queried, state, stats);
     return 0;
   }
 
-  // One candidate per intersecting triangle pair, in geom1's frame, in sorted pair order (the
-  // manifold is then the same whatever order the query found them in).
-  std::sort(tri_pairs.begin(), tri_pairs.end());
-  const double tn = pose.t.norm();
-  const Vec3 fallback = tn > 0 ? Vec3(pose.t / tn) : Vec3(Vec3::UnitZ());
-  candidates.clear();
-  vertices_a.clear();
-  vertices_b.clear();
-  for (const TrianglePair& tp : tri_pairs) {
-    const Triangle& a = t1->face(tp.a);
-    const Triangle b = apply_pose(pose, t2->face(tp.b));
-    candidates.push_back(triangle_pair_contact(a, b, registry.config().max_depth, fallback,
-                                               t1->sharp(tp.a), t2->sharp(tp.b)));
-    vertices_a.push_back(t1->vertices(tp.a));
-    vertices_b.push_back(t2->vertices(tp.b));
-  }
+  collect_candidates(tri_pairs, *t1, *t2, pose, registry.config().max_depth, candidates, vertices_a,
+                     vertices_b);
 
   // The manifold: a few points per patch, the pair's budget in all; the triangles' shared
-  // vertices by the ids welded once per tree (registry.cpp), as build_contact_manifold would weld
+  // vertices by the ids welded once per tree (geom_trees.cpp), as build_contact_manifold would weld
   // geom1's faces and geom2's in its own frame.
   const ContactManifold manifold =
       build_contact_manifold_by_ids(candidates, vertices_a, vertices_b, served.manifold);
@@ -151,8 +163,8 @@ int collide_trees(Registry& registry, int pair_index, const mjData* d, mjContact
 // geoms' boxes, geom2 placed in geom1's frame; when it cannot prove them disjoint, MuJoCo's own
 // box-box routine (mjc_BoxBox of engine_collision_box.c, the saved original entry) makes the
 // contacts with margin 0, and only touching or penetrating ones (dist <= 0) are kept.
-int collide_box_box(Registry& registry, ServedPair& served, const mjData* d, mjContact* con, int g1,
-                    int g2) {
+int collide_box_box(Registry& registry, const ServedPair& served, Registry::DataPairState& state,
+                    const mjData* d, mjContact* con, int g1, int g2, mjfCollision box_box) {
   const mjModel* m = registry.model();
   BridgeStats& stats = registry.stats();
   ++stats.box_box_calls;
@@ -162,14 +174,12 @@ int collide_box_box(Registry& registry, ServedPair& served, const mjData* d, mjC
   Obb b_local;
   b_local.half = Vec3(m->geom_size[3 * g2], m->geom_size[3 * g2 + 1], m->geom_size[3 * g2 + 2]);
   const Clock::time_point start = Clock::now();
-  const bool disjoint = served.detector->box_disjoint(a, transform(pose, b_local), stats.counters);
+  const bool disjoint = state.detector.box_disjoint(a, transform(pose, b_local), stats.counters);
   const Clock::time_point tested = Clock::now();
   stats.detection_ns += elapsed_ns(start, tested);
   if (disjoint) return 0;
 
-  mjfCollision box_box = original_collision(mjGEOM_BOX, mjGEOM_BOX);
-  if (!box_box) box_box = mjCOLLISIONFUNC[mjGEOM_BOX][mjGEOM_BOX];  // not installed
-  if (!box_box || box_box == &collide_geoms) return 0;
+  if (!box_box) return 0;
   const int found = box_box(m, d, con, g1, g2, 0);
   int n = 0;
   for (int i = 0; i < found && n < mjMAXCONPAIR; ++i) {
@@ -192,18 +202,20 @@ int collide_box_box(Registry& registry, ServedPair& served, const mjData* d, mjC
 }  // namespace
 
 int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
-                        int g2) {
-  ServedPair& served = registry.pair(pair_index);
+                        int g2, mjfCollision box_box) {
+  const ServedPair& served = registry.pair(pair_index);
+  Registry::DataPairState& state = registry.pair_state(d, pair_index);
   BridgeStats& stats = registry.stats();
   ++stats.calls;
   // A NaN or infinite placement: no query on a meaningless pose, no contacts, counted.
   if (bad_geom_placement(d, g1) || bad_geom_placement(d, g2)) {
     ++stats.nonfinite_skips;
-    served.contained = false;
+    state.contained = false;
     return 0;
   }
-  return served.path == PairPath::kBoxBox ? collide_box_box(registry, served, d, con, g1, g2)
-                                          : collide_trees(registry, pair_index, d, con, g1, g2);
+  return served.path == PairPath::kBoxBox
+             ? collide_box_box(registry, served, state, d, con, g1, g2, box_box)
+             : collide_trees(registry, served, state, d, con, g1, g2);
 }
 
 }  // namespace graspcd::mujoco

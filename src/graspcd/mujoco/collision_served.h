@@ -10,11 +10,12 @@ namespace graspcd::mujoco {
 // Runs a served pair by its path (registry.h); a pair whose placement in `d` holds a bad number
 // is skipped and counted (collision.h, "Non-finite state"). Trees: the tree query with the pair's
 // detector in all-contacts mode, the contact manifold of the intersecting triangle pairs
-// (graspcd/core/contact.h). Box-box: the detector's box test, then MuJoCo's box-box function with
-// margin 0 (the saved original; the current table entry when not installed) unless the boxes were
-// proven disjoint. At most the pair's max_contacts (<= mjMAXCONPAIR) written to `con`. Returns the
-// count. Updates the registry's statistics.
+// (graspcd/core/contact.h). Box-box: the detector's box test, then `box_box`, MuJoCo's own box-box
+// function (the table passes its saved original), with margin 0 unless the boxes were proven
+// disjoint; none when it is null. At most the pair's max_contacts (<= mjMAXCONPAIR) written to
+// `con`. Returns the count. Updates the pair's state on `d` (Registry::pair_state) and the
+// registry's statistics.
 int collide_served_pair(Registry& registry, int pair_index, const mjData* d, mjContact* con, int g1,
-                        int g2);
+                        int g2, mjfCollision box_box);
 
 }  // namespace graspcd::mujoco

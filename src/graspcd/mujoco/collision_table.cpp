@@ -33,6 +33,9 @@ std::mutex g_mutex;
 std::array<std::array<std::atomic<mjfCollision>, mjNGEOMTYPES>, mjNGEOMTYPES> g_originals;
 bool g_replaced[mjNGEOMTYPES][mjNGEOMTYPES] = {};
 bool g_installed = false;
+// The live ScopedInstalls, and whether the first of them installed the table (under g_mutex).
+int g_scoped = 0;
+bool g_scoped_installed = false;
 
 // The saved original of a type pair, either order.
 mjfCollision saved_original(int t1, int t2) {
@@ -42,12 +45,8 @@ mjfCollision saved_original(int t1, int t2) {
       std::memory_order_acquire);
 }
 
-}  // namespace
-
-bool installable_type(int geom_type) { return geom_type == mjGEOM_MESH || is_primitive(geom_type); }
-
-bool install() {
-  std::lock_guard<std::mutex> lock(g_mutex);
+// install() and uninstall() with g_mutex held.
+bool install_locked() {
   if (g_installed) return false;
   for (int t1 = 0; t1 < mjNGEOMTYPES; ++t1) {
     for (int t2 = t1; t2 < mjNGEOMTYPES; ++t2) {
@@ -62,8 +61,7 @@ bool install() {
   return true;
 }
 
-bool uninstall() {
-  std::lock_guard<std::mutex> lock(g_mutex);
+bool uninstall_locked() {
   if (!g_installed) return false;
   for (int t1 = 0; t1 < mjNGEOMTYPES; ++t1) {
     for (int t2 = t1; t2 < mjNGEOMTYPES; ++t2) {
@@ -78,6 +76,41 @@ bool uninstall() {
   return true;
 }
 
+// MuJoCo's box-box function for the served box-box path: the saved original, or the table's entry
+// when not installed (never graspcd's own).
+mjfCollision mujoco_box_box() {
+  mjfCollision box_box = saved_original(mjGEOM_BOX, mjGEOM_BOX);
+  if (!box_box) box_box = mjCOLLISIONFUNC[mjGEOM_BOX][mjGEOM_BOX];
+  return box_box == &collide_geoms ? nullptr : box_box;
+}
+
+}  // namespace
+
+bool installable_type(int geom_type) { return geom_type == mjGEOM_MESH || is_primitive(geom_type); }
+
+bool install() {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  return install_locked();
+}
+
+bool uninstall() {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  return uninstall_locked();
+}
+
+ScopedInstall::ScopedInstall() {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  if (g_scoped++ == 0) g_scoped_installed = install_locked();
+}
+
+ScopedInstall::~ScopedInstall() {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  if (--g_scoped == 0 && g_scoped_installed) {
+    uninstall_locked();
+    g_scoped_installed = false;
+  }
+}
+
 bool installed() {
   std::lock_guard<std::mutex> lock(g_mutex);
   return g_installed;
@@ -85,7 +118,7 @@ bool installed() {
 
 mjfCollision original_collision(int type1, int type2) { return saved_original(type1, type2); }
 
-void attach(Registry& registry) {
+Attachment attach(Registry& registry) {
   std::lock_guard<std::mutex> lock(g_mutex);
   const mjModel* m = registry.model();
   int free_slot = -1;
@@ -95,7 +128,7 @@ void attach(Registry& registry) {
     const mjModel* sm = s.model.load(std::memory_order_relaxed);
     if (sm == m) {
       s.registry.store(&registry, std::memory_order_release);
-      return;
+      return Attachment(&registry);
     }
     if (!sm && free_slot < 0) free_slot = i;
   }
@@ -110,9 +143,13 @@ void attach(Registry& registry) {
   Slot& s = g_slots[static_cast<std::size_t>(free_slot)];
   s.registry.store(&registry, std::memory_order_release);
   s.model.store(m, std::memory_order_release);
+  return Attachment(&registry);
 }
 
-void detach(const Registry& registry) {
+void Attachment::release() {
+  if (!registry_) return;
+  const Registry& registry = *registry_;
+  registry_ = nullptr;
   std::lock_guard<std::mutex> lock(g_mutex);
   const int used = g_used.load(std::memory_order_relaxed);
   for (int i = 0; i < used; ++i) {
@@ -142,7 +179,7 @@ int collide_geoms(const mjModel* m, const mjData* d, mjContact* con, int g1, int
                   mjtNum margin) {
   if (Registry* r = find_registry(m)) {
     const int index = r->find_pair(g1, g2);
-    if (index >= 0) return collide_served_pair(*r, index, d, con, g1, g2);
+    if (index >= 0) return collide_served_pair(*r, index, d, con, g1, g2, mujoco_box_box());
   }
   const mjfCollision original = saved_original(m->geom_type[g1], m->geom_type[g2]);
   return original ? original(m, d, con, g1, g2, margin) : 0;

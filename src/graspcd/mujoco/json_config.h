@@ -1,4 +1,4 @@
-// The JSON of graspcd's config files (the pair config, registry.h, and its "grasp" section,
+// The JSON of graspcd's config files (the pair config, pair_config.h, and its "grasp" section,
 // graspcd/grasp/drive_config.h), parsed in one place so that every syntax error reads the same:
 // one line "SOURCE:LINE: bad JSON: MESSAGE" (docs/bad-input.md). Needs nlohmann-json
 // (nlohmann-json3-dev), which is not part of the installed interface otherwise.

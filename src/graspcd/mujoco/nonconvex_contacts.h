@@ -10,14 +10,16 @@
 //
 // Construction builds the pair registry (the OBB trees of the meshes and primitives in served
 // pairs), attaches it to the model and installs graspcd's function in mjCOLLISIONFUNC; destruction
-// undoes both. Lifetime: construct after loading the model, keep it alive while the model steps,
-// destroy it before mj_deleteModel (the registry refers to the model).
+// undoes both (it owns the Attachment and the ScopedInstall). Lifetime: construct after loading the
+// model, keep it alive while the model steps, destroy it before mj_deleteModel (the registry refers
+// to the model).
 //
-// Several NonconvexContacts (one per model) may live at once: the function table is installed
-// when the first is constructed and restored when the last is destroyed (unless the program had
-// installed it already, e.g. with ScopedInstall, in which case the program's owner restores it).
+// Several NonconvexContacts (one per model) may live at once: each holds a ScopedInstall
+// (collision_table.h), so the function table is installed when the first is constructed and
+// restored when the last is destroyed (a program's own ScopedInstall keeps it installed for as
+// long as it lives; a table installed by install() is left to the program).
 // Construction and destruction are thread-safe; stepping one model from two threads at once is
-// not (the registry's detectors and statistics mutate, registry.h).
+// not (the registry's pair states and statistics mutate, registry.h).
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -35,8 +37,8 @@ namespace graspcd::mujoco {
 
 class NonconvexContacts {
  public:
-  // Reads the JSON pair config at `config_path` (format: registry.h) and serves its pairs in `m`.
-  // `method`, when given, replaces the config's "method" (the box separator of the OBB-tree
+  // Reads the JSON pair config at `config_path` (format: pair_config.h) and serves its pairs in
+  // `m`. `method`, when given, replaces the config's "method" (the box separator of the OBB-tree
   // query; core/separators.h, e.g. parse_method("sat")). Every detector answers exactly; the method
   // changes the cost, never the contacts.
   // Errors: std::runtime_error with a one-line message starting with `config_path` for a missing
@@ -45,7 +47,7 @@ class NonconvexContacts {
   // kMaxAttachedModels models use the bridge already. Nothing is installed when it throws.
   NonconvexContacts(const mjModel* m, const std::string& config_path,
                     std::optional<Method> method = std::nullopt);
-  // The same from a config built in code (patterns and/or geom id pairs, registry.h); `source`
+  // The same from a config built in code (patterns and/or geom id pairs, pair_config.h); `source`
   // starts the error messages.
   NonconvexContacts(const mjModel* m, const RegistryConfig& config,
                     const std::string& source = "<program>");
@@ -79,6 +81,8 @@ class NonconvexContacts {
 
  private:
   Registry registry_;
+  Attachment attachment_;  // detaches registry_ before it goes
+  ScopedInstall install_;  // counted: the table stays installed while any ScopedInstall lives
 };
 
 }  // namespace graspcd::mujoco
