@@ -9,7 +9,7 @@
 
 #include "graspcd/study/experiment.h"
 #include "graspcd/study/recording.h"
-#include "graspcd/study/study.h"
+#include "graspcd/study/study_options.h"
 
 namespace graspcd::study {
 

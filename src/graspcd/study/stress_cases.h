@@ -2,7 +2,7 @@
 // seeded pair of boxes or triangles of a class per call, every draw from the class's stream.
 #pragma once
 
-#include "graspcd/study/stress.h"
+#include "graspcd/study/stress_pairs.h"
 #include "graspcd/support/seeded.h"
 
 namespace graspcd::study::stress_cases {

@@ -12,7 +12,7 @@
 #include "graspcd/study/experiment.h"
 #include "graspcd/study/recording.h"
 #include "graspcd/study/replay.h"
-#include "graspcd/study/study.h"
+#include "graspcd/study/study_options.h"
 
 namespace graspcd::study {
 
