@@ -1,24 +1,18 @@
 #include "graspcd/grasp/grasp.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iostream>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <utility>
 
 #include "graspcd/core/clock.h"
 #include "graspcd/grasp/controllers.h"
 #include "graspcd/grasp/drive_config.h"
-#include "graspcd/grasp/scene_check.h"
 #include "graspcd/grasp/start_check.h"
 #include "graspcd/mujoco/collision.h"
 #include "graspcd/mujoco/model_check.h"
@@ -672,86 +666,6 @@ const std::array<std::string, kFingerSegments>& finger_segment_names() {
   return names;
 }
 
-std::string join_lines(const std::string& text) {
-  std::string out;
-  std::size_t pos = 0;
-  while (pos <= text.size()) {
-    std::size_t end = text.find_first_of("\r\n", pos);
-    if (end == std::string::npos) end = text.size();
-    std::string line = text.substr(pos, end - pos);
-    const auto first = line.find_first_not_of(" \t");
-    const auto last = line.find_last_not_of(" \t");
-    if (first != std::string::npos) {
-      if (!out.empty()) out += "; ";
-      out += line.substr(first, last - first + 1);
-    }
-    pos = end + 1;
-  }
-  return out;
-}
-
-namespace {
-
-// MuJoCo's mesh compiler runs qhull with stderr as qhull's error file: a mesh without a 3D hull
-// (e.g. one scaled to 1e-21 m) prints a page of qhull's diagnostics there before mj_loadXML
-// returns its own one-line error. While a model loads, file descriptor 2 goes to a temporary file
-// (serialised: the descriptor is the process's); what was written is passed on to stderr after a
-// load that succeeded, and the first qhull line ("QH6154 Qhull precision error: ...") joins the
-// error of one that failed.
-class CapturedStderr {
- public:
-  CapturedStderr() : lock_(mutex()), file_(std::tmpfile()) {
-    std::fflush(stderr);
-    if (file_ != nullptr) saved_ = ::dup(STDERR_FILENO);
-    if (saved_ >= 0) ::dup2(::fileno(file_), STDERR_FILENO);
-  }
-  ~CapturedStderr() {
-    restore();
-    if (file_ != nullptr) std::fclose(file_);
-  }
-  CapturedStderr(const CapturedStderr&) = delete;
-  CapturedStderr& operator=(const CapturedStderr&) = delete;
-
-  // Restores stderr and returns what was written meanwhile.
-  std::string release() {
-    restore();
-    std::string text;
-    if (file_ == nullptr) return text;
-    std::rewind(file_);
-    char chunk[4096];
-    for (std::size_t n; (n = std::fread(chunk, 1, sizeof(chunk), file_)) > 0;)
-      text.append(chunk, n);
-    return text;
-  }
-
- private:
-  static std::mutex& mutex() {
-    static std::mutex m;
-    return m;
-  }
-  void restore() {
-    if (saved_ < 0) return;
-    std::fflush(stderr);
-    ::dup2(saved_, STDERR_FILENO);
-    ::close(saved_);
-    saved_ = -1;
-  }
-
-  std::lock_guard<std::mutex> lock_;
-  std::FILE* file_ = nullptr;
-  int saved_ = -1;
-};
-
-// The first line of `text` that starts with "QH" (a qhull message code), or "".
-std::string qhull_line(const std::string& text) {
-  std::size_t at = text.rfind("QH", 0) == 0 ? 0 : text.find("\nQH");
-  if (at == std::string::npos) return "";
-  if (at > 0) ++at;
-  return text.substr(at, text.find('\n', at) - at);
-}
-
-}  // namespace
-
 double kinetic_energy(const mjModel* m, const mjData* d) {
   thread_local std::vector<mjtNum> mv;
   mv.resize(static_cast<std::size_t>(m->nv));
@@ -759,42 +673,15 @@ double kinetic_energy(const mjModel* m, const mjData* d) {
   return 0.5 * mju_dot(d->qvel, mv.data(), m->nv);
 }
 
-mujoco::ModelPtr load_model(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec) || !std::ifstream(path).good())
-    throw GraspInputError(path, "cannot open the scene file");
-  // What MuJoCo would accept with a warning or misread (scene_check.h), then MuJoCo's own checks,
-  // then the compiled numbers (model_check.h: the same rule for what the checks cannot see).
-  check_scene_file(path);
-  char error[2048] = "";
-  mujoco::ModelPtr m;
-  std::string qhull;
-  {
-    CapturedStderr captured;
-    m.reset(mj_loadXML(path.c_str(), nullptr, error, sizeof(error)));
-    const std::string text = captured.release();
-    if (m) {
-      std::cerr << text;
-    } else {
-      qhull = qhull_line(text);
-    }
-  }
-  if (!m) {
-    std::string message = join_lines(error);
-    if (message.empty()) message = "MuJoCo could not load it";
-    if (!qhull.empty()) message += "; " + qhull;
-    throw GraspInputError(path, message);
-  }
-  const std::string non_finite = mujoco::find_non_finite(m.get());
-  if (!non_finite.empty()) throw GraspInputError(path, non_finite);
-  return m;
-}
-
-// A config's error as a GraspInputError: the registry's messages start with the config's name
-// (registry.h), which the GraspInputError carries apart.
-// A message "CONFIG:LINE: ..." (json_config.h) keeps its line apart too.
+// A config's error as a GraspInputError. One that already is (drive_config.h) keeps its file and
+// line; the registry's messages start with the config's name (registry.h), which the
+// GraspInputError carries apart, and a message "CONFIG:LINE: ..." (json_config.h) keeps its line
+// apart too.
 GraspInputError config_error(const std::string& config_path, const std::runtime_error& e) {
-  std::string message = join_lines(e.what());
+  if (const auto* input = dynamic_cast<const GraspInputError*>(&e)) {
+    return GraspInputError(input->file(), mujoco::join_lines(input->message()), input->line());
+  }
+  std::string message = mujoco::join_lines(e.what());
   std::size_t line = 0;
   if (message.rfind(config_path + ":", 0) == 0) {
     std::size_t at = config_path.size() + 1;
@@ -828,7 +715,7 @@ void throw_if_bad_start(const mjModel* m, const mjData* d, int object, const std
 // Paper section 9 (the grasp) with the computed-torque law of section 7, eq. (12)-(16); the
 // phases are described in grasp.h.
 GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options) {
-  const auto model = load_model(scene_path);
+  const auto model = mujoco::load_model(scene_path);
   const mjModel* m = model.get();
 
   std::unique_ptr<mujoco::ScopedInstall> install_guard;
