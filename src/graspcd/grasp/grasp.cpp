@@ -81,6 +81,50 @@ void throw_if_bad_start(const mjModel* m, const mjData* d, int object, const std
   }
 }
 
+// The pair config of a grasp: its "grasp" section (drive_config.h) when it has one and, unless
+// the collision is native, the registry built on it with the options' overrides. Errors name the
+// config (config_error).
+struct GraspConfig {
+  mujoco::RegistryConfig registry_config;
+  std::unique_ptr<mujoco::Registry> registry;
+  std::optional<DriveConfig> drive;
+};
+
+GraspConfig load_grasp_config(const mjModel* m, const std::string& config_path,
+                              const GraspOptions& options) {
+  GraspConfig out;
+  // How to drive the hand (the config's "grasp" section, drive_config.h); with native collision
+  // that is all the config says.
+  std::error_code exists_ec;
+  if (std::filesystem::is_regular_file(config_path, exists_ec)) {
+    try {
+      if (options.native) out.registry_config = mujoco::load_registry_config(config_path);
+      out.drive = load_drive_config(config_path);
+    } catch (const std::runtime_error& e) {
+      throw config_error(config_path, e);
+    }
+  }
+  if (options.native) return out;
+  try {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(config_path, ec))
+      throw GraspInputError(config_path, "cannot open the pair config");
+    mujoco::RegistryConfig& config = out.registry_config;
+    config = mujoco::load_registry_config(config_path);
+    if (options.method) config.method = *options.method;
+    if (options.cap) config.detector.cap = *options.cap;
+    if (options.switch_passes) config.detector.switch_passes = *options.switch_passes;
+    if (options.front_list) config.front_list = *options.front_list;
+    if (options.contact_reuse) config.contact_reuse = *options.contact_reuse;
+    out.registry = std::make_unique<mujoco::Registry>(m, config, config_path);
+  } catch (const GraspInputError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw config_error(config_path, e);
+  }
+  return out;
+}
+
 }  // namespace
 
 // Paper section 9 (the grasp) with the computed-torque law of section 7, eq. (12)-(16); the
@@ -89,40 +133,14 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   const auto model = mujoco::load_model(scene_path);
   const mjModel* m = model.get();
 
-  std::unique_ptr<mujoco::ScopedInstall> install_guard;
-  std::unique_ptr<mujoco::Registry> registry;
-  mujoco::RegistryConfig config;
   const std::string config_path =
       options.config_path.empty() ? mujoco::pair_config_path(scene_path) : options.config_path;
-  // How to drive the hand (the config's "grasp" section, drive_config.h); with native collision
-  // that is all the config says.
-  std::optional<DriveConfig> drive;
-  std::error_code exists_ec;
-  if (std::filesystem::is_regular_file(config_path, exists_ec)) {
-    try {
-      if (options.native) config = mujoco::load_registry_config(config_path);
-      drive = load_drive_config(config_path);
-    } catch (const std::runtime_error& e) {
-      throw config_error(config_path, e);
-    }
-  }
-  if (!options.native) {
-    try {
-      std::error_code ec;
-      if (!std::filesystem::is_regular_file(config_path, ec))
-        throw GraspInputError(config_path, "cannot open the pair config");
-      config = mujoco::load_registry_config(config_path);
-      if (options.method) config.method = *options.method;
-      if (options.cap) config.detector.cap = *options.cap;
-      if (options.switch_passes) config.detector.switch_passes = *options.switch_passes;
-      if (options.front_list) config.front_list = *options.front_list;
-      if (options.contact_reuse) config.contact_reuse = *options.contact_reuse;
-      registry = std::make_unique<mujoco::Registry>(m, config, config_path);
-    } catch (const GraspInputError&) {
-      throw;
-    } catch (const std::runtime_error& e) {
-      throw config_error(config_path, e);
-    }
+  std::unique_ptr<mujoco::ScopedInstall> install_guard;
+  GraspConfig loaded = load_grasp_config(m, config_path, options);
+  std::unique_ptr<mujoco::Registry>& registry = loaded.registry;
+  const mujoco::RegistryConfig& config = loaded.registry_config;
+  const std::optional<DriveConfig>& drive = loaded.drive;
+  if (registry) {
     install_guard = std::make_unique<mujoco::ScopedInstall>();
     mujoco::attach(*registry);
   }
