@@ -336,21 +336,21 @@ Command add_grasp_command(CLI::App& parent) {
   app->add_option("--object", options->object,
                   "A mesh (OBJ or binary STL) grasped in a template scene instead of SCENE")
       ->excludes(scene);
-  PlacementHelp placement;
-  placement.scale = "--object: file units to metres (default 1: the file is in metres)";
-  placement.fit =
-      "--object: scale the object to the template's room instead (said on the first line)";
-  placement.hand =
-      "--object: the template: project (the arm and 4-finger hand), robotiq (the Robotiq "
-      "2F-85), shadow (the Shadow hand), or a template scene file";
-  placement.up = "--object: the file axis that points up: x, y, z, -x, -y, -z";
-  placement.yaw = "--object: then a turn about the up direction, degrees";
-  placement.pose =
-      "--object: the object's rotation as a quaternion W X Y Z (instead of --up, --yaw)";
-  placement.write_scene =
-      "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder and keep "
-      "it (default: a temporary folder, removed)";
-  add_placement_options(*app, options->placement, placement);
+  add_placement_options(
+      *app, options->placement,
+      {{Placement::kScale, "--object: file units to metres (default 1: the file is in metres)"},
+       {Placement::kFit,
+        "--object: scale the object to the template's room instead (said on the first line)"},
+       {Placement::kHand,
+        "--object: the template: project (the arm and 4-finger hand), robotiq (the Robotiq "
+        "2F-85), shadow (the Shadow hand), or a template scene file"},
+       {Placement::kUp, "--object: the file axis that points up: x, y, z, -x, -y, -z"},
+       {Placement::kYaw, "--object: then a turn about the up direction, degrees"},
+       {Placement::kPose,
+        "--object: the object's rotation as a quaternion W X Y Z (instead of --up, --yaw)"},
+       {Placement::kWriteScene,
+        "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder and keep "
+        "it (default: a temporary folder, removed)"}});
   app->add_flag("--require-held", options->require_held,
                 "Exit with code 1 when the object was not held");
   add_method_options(*app, options->method, MethodDefaults::kSceneConfig);

@@ -8,20 +8,64 @@ namespace graspcd::cli {
 
 namespace {
 
-constexpr const char* kPlacementOptions[] = {"--scale", "--fit",  "--hand",       "--up",
-                                             "--yaw",   "--pose", "--write-scene"};
+const char* name_of(Placement p) {
+  switch (p) {
+    case Placement::kScale:
+      return "--scale";
+    case Placement::kFit:
+      return "--fit";
+    case Placement::kHand:
+      return "--hand";
+    case Placement::kUp:
+      return "--up";
+    case Placement::kYaw:
+      return "--yaw";
+    case Placement::kPose:
+      return "--pose";
+    case Placement::kWriteScene:
+      return "--write-scene";
+  }
+  return "";
+}
+
+bool is_placement(const std::string& name) {
+  for (Placement p : {Placement::kScale, Placement::kFit, Placement::kHand, Placement::kUp,
+                      Placement::kYaw, Placement::kPose, Placement::kWriteScene}) {
+    if (name == name_of(p)) return true;
+  }
+  return false;
+}
 
 }  // namespace
 
-void add_placement_options(CLI::App& app, PlacementOptions& options, const PlacementHelp& help) {
-  app.add_option("--scale", options.scale, help.scale)->check(positive_number());
-  app.add_flag("--fit", options.fit, help.fit);
-  app.add_option("--hand", options.hand, help.hand)->capture_default_str();
-  app.add_option("--up", options.up, help.up)->capture_default_str();
-  app.add_option("--yaw", options.yaw, help.yaw)->check(CLI::Range(-360.0, 360.0));
-  if (!help.pose.empty()) app.add_option("--pose", options.pose, help.pose)->expected(4);
-  if (!help.write_scene.empty())
-    app.add_option("--write-scene", options.write_scene, help.write_scene);
+void add_placement_options(CLI::App& app, PlacementOptions& options,
+                           const std::vector<PlacementOption>& added) {
+  for (const PlacementOption& a : added) {
+    const char* name = name_of(a.option);
+    switch (a.option) {
+      case Placement::kScale:
+        app.add_option(name, options.scale, a.help)->check(positive_number());
+        break;
+      case Placement::kFit:
+        app.add_flag(name, options.fit, a.help);
+        break;
+      case Placement::kHand:
+        app.add_option(name, options.hand, a.help)->capture_default_str();
+        break;
+      case Placement::kUp:
+        app.add_option(name, options.up, a.help)->capture_default_str();
+        break;
+      case Placement::kYaw:
+        app.add_option(name, options.yaw, a.help)->check(CLI::Range(-360.0, 360.0));
+        break;
+      case Placement::kPose:
+        app.add_option(name, options.pose, a.help)->expected(4);
+        break;
+      case Placement::kWriteScene:
+        app.add_option(name, options.write_scene, a.help);
+        break;
+    }
+  }
 }
 
 void check_placement_options(const CLI::App& app, const std::string& command,
@@ -29,9 +73,10 @@ void check_placement_options(const CLI::App& app, const std::string& command,
   const auto given = [&](const char* name) {
     return app.get_option_no_throw(name) != nullptr && app.count(name) > 0;
   };
-  for (const char* o : kPlacementOptions) {
-    if (!owner_given && given(o)) {
-      throw UsageError(command + ": " + o + " goes with " + owner);
+  for (const CLI::Option* o : app.get_options()) {
+    const std::string name = o->get_name();
+    if (!owner_given && is_placement(name) && o->count() > 0) {
+      throw UsageError(command + ": " + name + " goes with " + owner);
     }
   }
   if (given("--fit") && given("--scale")) {

@@ -22,19 +22,22 @@ struct PlacementOptions {
   std::string write_scene;   // --write-scene DIR: keep the generated scene there
 };
 
-// The help of each option. An empty `pose` or `write_scene` leaves that option out.
-struct PlacementHelp {
-  std::string scale, fit, hand, up, yaw;
-  std::string pose, write_scene;
+// One of the options, with its help text (the command's own).
+enum class Placement { kScale, kFit, kHand, kUp, kYaw, kPose, kWriteScene };
+struct PlacementOption {
+  Placement option;
+  std::string help;
 };
 
-// Adds the options to `app` in the order --scale, --fit, --hand, --up, --yaw, --pose,
-// --write-scene, with their checks: --scale > 0, --yaw in [-360, 360], --pose four numbers.
-void add_placement_options(CLI::App& app, PlacementOptions& options, const PlacementHelp& help);
+// Adds the given options to `app` in the given order (a command's --help lists them so), with
+// their checks: --scale > 0, --yaw in [-360, 360], --pose four numbers.
+void add_placement_options(CLI::App& app, PlacementOptions& options,
+                           const std::vector<PlacementOption>& added);
 
 // The rules between them, after the parse: each goes with `owner` (the option naming the mesh or
-// meshes; `owner_given`: whether it was given), --scale and --fit exclude each other, and so do
-// --pose and --up/--yaw. Throws UsageError "COMMAND: ...".
+// meshes; `owner_given`: whether it was given; the first given, in the order they were added, is
+// named), --scale and --fit exclude each other, and so do --pose and --up/--yaw. Throws
+// UsageError "COMMAND: ...".
 void check_placement_options(const CLI::App& app, const std::string& command,
                              const std::string& owner, bool owner_given);
 

@@ -441,13 +441,14 @@ Command add_validate_command(CLI::App& parent) {
   app->add_option("--merge", o->merge,
                   "Join --objects shard files (OUT/objects.shard-i-of-N.json) into one table")
       ->expected(1, -1);
-  PlacementHelp placement;
-  placement.hand = "--objects: the template: project, robotiq, shadow or a template scene file";
-  placement.fit = "--objects: scale each object into the template's room";
-  placement.scale = "--objects: file units to metres for every object";
-  placement.up = "--objects: the file axis that points up: x, y, z, -x, -y, -z";
-  placement.yaw = "--objects: then a turn about the up direction, degrees";
-  add_placement_options(*app, o->placement, placement);
+  add_placement_options(
+      *app, o->placement,
+      {{Placement::kHand,
+        "--objects: the template: project, robotiq, shadow or a template scene file"},
+       {Placement::kFit, "--objects: scale each object into the template's room"},
+       {Placement::kScale, "--objects: file units to metres for every object"},
+       {Placement::kUp, "--objects: the file axis that points up: x, y, z, -x, -y, -z"},
+       {Placement::kYaw, "--objects: then a turn about the up direction, degrees"}});
   add_method_options(*app, o->method, MethodDefaults::kSceneConfig);
   app->add_flag("--all-methods", o->all_methods,
                 "Check every method but perceptron-nodisp (default: the config's method)")
