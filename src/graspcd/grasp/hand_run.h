@@ -70,11 +70,14 @@ class HandRun {
   int hand_ = -1;  // the body the object's drift in the hand is measured against
 
  private:
+  // Counts the longest run of one geom pair among the counted contacts of a step (MuJoCo writes
+  // each geom pair's contacts consecutively): the most contacts one pair handed the solver.
   struct PairRun {
     int last = -2, g1 = -1, g2 = -1, run = 0, most = 0;
     void start() { last = -2; }
     void add(int i, int geom1, int geom2);
   };
+  // The bridge's counters summed over a whole grasp (every phase), as GraspResult reports them.
   struct BridgeTotals {
     std::uint64_t detection_ns = 0, contained = 0, nonfinite_skips = 0, reused = 0;
     void add(const mujoco::BridgeStats& s);
