@@ -240,16 +240,8 @@ void print_json(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
   std::cout << doc.dump(2) << '\n';
 }
 
-void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_code) {
-  finish_method_options(options.method);
-  grasp::GraspOptions grasp;
-  grasp.config_path = options.config;
-  grasp.native = options.native;
-  grasp.max_steps = options.max_steps;
-  if (app.count("--contact-reuse") > 0) grasp.contact_reuse = options.contact_reuse;
-  if (app.count("--method") > 0) grasp.method = options.method.method;
-  if (app.count("--cap") > 0) grasp.cap = options.method.cap;
-  if (app.count("--switch") > 0) grasp.switch_passes = options.method.switch_passes;
+// The rules between the options that CLI11 does not check.
+void check_usage(const GraspCliOptions& options, const CLI::App& app) {
   if (options.object.empty() == options.scene.empty()) {
     throw UsageError("grasp: give either SCENE or --object FILE");
   }
@@ -262,6 +254,19 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
         "grasp: --decomposed goes with SCENE (write the --object scene with "
         "--write-scene first)");
   }
+}
+
+void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_code) {
+  finish_method_options(options.method);
+  check_usage(options, app);
+  grasp::GraspOptions grasp;
+  grasp.config_path = options.config;
+  grasp.native = options.native;
+  grasp.max_steps = options.max_steps;
+  if (app.count("--contact-reuse") > 0) grasp.contact_reuse = options.contact_reuse;
+  if (app.count("--method") > 0) grasp.method = options.method.method;
+  if (app.count("--cap") > 0) grasp.cap = options.method.cap;
+  if (app.count("--switch") > 0) grasp.switch_passes = options.method.switch_passes;
   std::optional<grasp::TempFolder> temp;
   std::optional<ObjectRun> object;
   std::string scene = options.scene;
