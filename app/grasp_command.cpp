@@ -35,6 +35,7 @@
 #include "graspcd/version/envelope.h"
 #include "hand_template.h"
 #include "method.h"
+#include "object_placement.h"
 
 namespace graspcd::cli {
 
@@ -48,17 +49,11 @@ struct GraspCliOptions {
   bool json = false;
   bool require_held = false;
   int max_steps = 400;
-  double contact_reuse = 0;  // --contact-reuse M: the config's "contact_reuse" overridden
-  std::string object;        // --object FILE: a user's mesh in a template scene
-  double scale = 1;          // --scale S (> 0): file units -> m; default 1 (metres)
-  bool fit = false;          // --fit: scale to the template's room instead
-  std::string hand = "project";
-  std::string up = "z";
-  double yaw = 0;
-  std::vector<double> pose;  // --pose W X Y Z
-  std::string write_scene;   // --write-scene DIR: keep the generated scene there
-  std::string decomposed;    // --decomposed DIR: the object's collision by its convex pieces
-  bool judge = false;        // --judge: every closing step's contacts against CGAL (the race)
+  double contact_reuse = 0;    // --contact-reuse M: the config's "contact_reuse" overridden
+  std::string object;          // --object FILE: a user's mesh in a template scene
+  PlacementOptions placement;  // its placement (object_placement.h)
+  std::string decomposed;      // --decomposed DIR: the object's collision by its convex pieces
+  bool judge = false;          // --judge: every closing step's contacts against CGAL (the race)
 };
 
 namespace fs = std::filesystem;
@@ -245,30 +240,12 @@ void print_json(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
   std::cout << doc.dump(2) << '\n';
 }
 
-void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_code) {
-  finish_method_options(options.method);
-  grasp::GraspOptions grasp;
-  grasp.config_path = options.config;
-  grasp.native = options.native;
-  grasp.max_steps = options.max_steps;
-  if (app.count("--contact-reuse") > 0) grasp.contact_reuse = options.contact_reuse;
-  if (app.count("--method") > 0) grasp.method = options.method.method;
-  if (app.count("--cap") > 0) grasp.cap = options.method.cap;
-  if (app.count("--switch") > 0) grasp.switch_passes = options.method.switch_passes;
+// The rules between the options that CLI11 does not check.
+void check_usage(const GraspCliOptions& options, const CLI::App& app) {
   if (options.object.empty() == options.scene.empty()) {
     throw UsageError("grasp: give either SCENE or --object FILE");
   }
-  for (const char* o : {"--scale", "--fit", "--hand", "--up", "--yaw", "--pose", "--write-scene"}) {
-    if (options.object.empty() && app.count(o) > 0) {
-      throw UsageError(std::string("grasp: ") + o + " goes with --object");
-    }
-  }
-  if (app.count("--fit") > 0 && app.count("--scale") > 0) {
-    throw UsageError("grasp: --scale and --fit exclude each other");
-  }
-  if (app.count("--pose") > 0 && (app.count("--up") > 0 || app.count("--yaw") > 0)) {
-    throw UsageError("grasp: --pose and --up/--yaw exclude each other");
-  }
+  check_placement_options(app, "grasp", "--object", !options.object.empty());
   if (app.count("--contact-reuse") > 0 && (options.native || !options.decomposed.empty())) {
     throw UsageError("grasp: --contact-reuse goes with graspcd's contacts, not --native");
   }
@@ -277,6 +254,19 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
         "grasp: --decomposed goes with SCENE (write the --object scene with "
         "--write-scene first)");
   }
+}
+
+void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_code) {
+  finish_method_options(options.method);
+  check_usage(options, app);
+  grasp::GraspOptions grasp;
+  grasp.config_path = options.config;
+  grasp.native = options.native;
+  grasp.max_steps = options.max_steps;
+  if (app.count("--contact-reuse") > 0) grasp.contact_reuse = options.contact_reuse;
+  if (app.count("--method") > 0) grasp.method = options.method.method;
+  if (app.count("--cap") > 0) grasp.cap = options.method.cap;
+  if (app.count("--switch") > 0) grasp.switch_passes = options.method.switch_passes;
   std::optional<grasp::TempFolder> temp;
   std::optional<ObjectRun> object;
   std::string scene = options.scene;
@@ -286,23 +276,14 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   std::optional<grasp::DecomposedScene> decomposed;
   if (!options.decomposed.empty()) decomposed.emplace();
   if (!options.object.empty()) {
-    const HandTemplate hand = hand_template(options.hand, "grasp");
-    grasp::ObjectPlacement placement;
-    placement.file = options.object;
-    placement.scale = options.scale;
-    placement.fit = options.fit;
-    placement.up = options.up;
-    placement.yaw_degrees = options.yaw;
-    if (!options.pose.empty()) {
-      placement.pose =
-          std::array<double, 4>{options.pose[0], options.pose[1], options.pose[2], options.pose[3]};
-    }
-    if (options.write_scene.empty()) temp.emplace();
-    object = ObjectRun{options.object, options.hand, {}};
+    const PlacementOptions& p = options.placement;
+    const HandTemplate hand = hand_template(p.hand, "grasp");
+    if (p.write_scene.empty()) temp.emplace();
+    object = ObjectRun{options.object, p.hand, {}};
     try {
-      object->scene = grasp::write_object_scene(placement, hand.scene, options.hand,
-                                                temp ? temp->path().string() : options.write_scene,
-                                                hand.fit, hand.moved);
+      object->scene = grasp::write_object_scene(
+          object_placement(p, options.object), hand.scene, p.hand,
+          temp ? temp->path().string() : p.write_scene, hand.fit, hand.moved);
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("grasp: ") + e.what());
     }
@@ -360,28 +341,21 @@ Command add_grasp_command(CLI::App& parent) {
   app->add_option("--object", options->object,
                   "A mesh (OBJ or binary STL) grasped in a template scene instead of SCENE")
       ->excludes(scene);
-  app->add_option("--scale", options->scale,
-                  "--object: file units to metres (default 1: the file is in metres)")
-      ->check(positive_number());
-  app->add_flag("--fit", options->fit,
-                "--object: scale the object to the template's room instead (said on the first "
-                "line)");
-  app->add_option("--hand", options->hand,
-                  "--object: the template: project (the arm and 4-finger hand), robotiq (the "
-                  "Robotiq 2F-85), shadow (the Shadow hand), or a template scene file")
-      ->capture_default_str();
-  app->add_option("--up", options->up,
-                  "--object: the file axis that points up: x, y, z, -x, -y, -z")
-      ->capture_default_str();
-  app->add_option("--yaw", options->yaw, "--object: then a turn about the up direction, degrees")
-      ->check(CLI::Range(-360.0, 360.0));
-  app->add_option(
-         "--pose", options->pose,
-         "--object: the object's rotation as a quaternion W X Y Z (instead of --up, --yaw)")
-      ->expected(4);
-  app->add_option("--write-scene", options->write_scene,
-                  "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder "
-                  "and keep it (default: a temporary folder, removed)");
+  add_placement_options(
+      *app, options->placement,
+      {{Placement::kScale, "--object: file units to metres (default 1: the file is in metres)"},
+       {Placement::kFit,
+        "--object: scale the object to the template's room instead (said on the first line)"},
+       {Placement::kHand,
+        "--object: the template: project (the arm and 4-finger hand), robotiq (the Robotiq "
+        "2F-85), shadow (the Shadow hand), or a template scene file"},
+       {Placement::kUp, "--object: the file axis that points up: x, y, z, -x, -y, -z"},
+       {Placement::kYaw, "--object: then a turn about the up direction, degrees"},
+       {Placement::kPose,
+        "--object: the object's rotation as a quaternion W X Y Z (instead of --up, --yaw)"},
+       {Placement::kWriteScene,
+        "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder and keep "
+        "it (default: a temporary folder, removed)"}});
   app->add_flag("--require-held", options->require_held,
                 "Exit with code 1 when the object was not held");
   add_method_options(*app, options->method, MethodDefaults::kSceneConfig);

@@ -30,6 +30,7 @@
 #include "graspcd/version/envelope.h"
 #include "hand_template.h"
 #include "method.h"
+#include "object_placement.h"
 
 namespace graspcd::cli {
 
@@ -48,11 +49,7 @@ struct ValidateCliOptions {
   std::string objects;
   std::string shard;               // --shard i/N of the set
   std::vector<std::string> merge;  // --merge FILE...: join the shards
-  std::string hand = "project";
-  double scale = 1;
-  bool fit = false;
-  std::string up = "z";
-  double yaw = 0;
+  PlacementOptions placement;      // of each object (object_placement.h)
 };
 
 // The exit code when a method missed a collision (the output is complete).
@@ -340,21 +337,19 @@ void print_object_set(const nlohmann::json& doc, bool json) {
 int run_object_set(ValidateCliOptions& o, const CLI::App& app) {
   // A bad --up is a usage error before any object is read (the message of object_scene.h).
   const std::vector<std::string> axes = {"x", "y", "z", "-x", "-y", "-z"};
-  if (std::find(axes.begin(), axes.end(), o.up) == axes.end()) {
-    throw UsageError("validate: --up must be one of x, y, z, -x, -y, -z (not '" + o.up + "')");
+  if (std::find(axes.begin(), axes.end(), o.placement.up) == axes.end()) {
+    throw UsageError("validate: --up must be one of x, y, z, -x, -y, -z (not '" + o.placement.up +
+                     "')");
   }
-  const HandTemplate hand = hand_template(o.hand, "validate");
+  const HandTemplate hand = hand_template(o.placement.hand, "validate");
   const std::vector<study::TesterSpec> testers = testers_of(o, app, hand.scene);
   study::ObjectSetOptions options;
   options.dir = o.objects;
-  options.hand = o.hand;
+  options.hand = o.placement.hand;
   options.template_path = hand.scene;
   options.default_fit = hand.fit;
   options.template_moved = hand.moved;
-  options.placement.scale = o.scale;
-  options.placement.fit = o.fit;
-  options.placement.up = o.up;
-  options.placement.yaw_degrees = o.yaw;
+  options.placement = object_placement(o.placement, "");
   options.max_steps = o.steps;
   options.out_dir = o.out_dir;
   if (!o.shard.empty()) {
@@ -394,13 +389,9 @@ int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
   const int modes =
       (o.scene.empty() ? 0 : 1) + (o.objects.empty() ? 0 : 1) + (o.merge.empty() ? 0 : 1);
   if (modes != 1) throw UsageError("validate: give one of SCENE, --objects DIR or --merge FILE...");
-  for (const char* opt : {"--hand", "--fit", "--scale", "--up", "--yaw", "--shard"}) {
-    if (o.objects.empty() && app.count(opt) > 0) {
-      throw UsageError(std::string("validate: ") + opt + " goes with --objects");
-    }
-  }
-  if (app.count("--fit") > 0 && app.count("--scale") > 0) {
-    throw UsageError("validate: --scale and --fit exclude each other");
+  check_placement_options(app, "validate", "--objects", !o.objects.empty());
+  if (o.objects.empty() && app.count("--shard") > 0) {
+    throw UsageError("validate: --shard goes with --objects");
   }
   if (!o.merge.empty()) return run_object_merge(o);
   if (!o.objects.empty()) return run_object_set(o, app);
@@ -451,16 +442,14 @@ Command add_validate_command(CLI::App& parent) {
   app->add_option("--merge", o->merge,
                   "Join --objects shard files (OUT/objects.shard-i-of-N.json) into one table")
       ->expected(1, -1);
-  app->add_option("--hand", o->hand,
-                  "--objects: the template: project, robotiq, shadow or a template scene file")
-      ->capture_default_str();
-  app->add_flag("--fit", o->fit, "--objects: scale each object into the template's room");
-  app->add_option("--scale", o->scale, "--objects: file units to metres for every object")
-      ->check(positive_number());
-  app->add_option("--up", o->up, "--objects: the file axis that points up: x, y, z, -x, -y, -z")
-      ->capture_default_str();
-  app->add_option("--yaw", o->yaw, "--objects: then a turn about the up direction, degrees")
-      ->check(CLI::Range(-360.0, 360.0));
+  add_placement_options(
+      *app, o->placement,
+      {{Placement::kHand,
+        "--objects: the template: project, robotiq, shadow or a template scene file"},
+       {Placement::kFit, "--objects: scale each object into the template's room"},
+       {Placement::kScale, "--objects: file units to metres for every object"},
+       {Placement::kUp, "--objects: the file axis that points up: x, y, z, -x, -y, -z"},
+       {Placement::kYaw, "--objects: then a turn about the up direction, degrees"}});
   add_method_options(*app, o->method, MethodDefaults::kSceneConfig);
   app->add_flag("--all-methods", o->all_methods,
                 "Check every method but perceptron-nodisp (default: the config's method)")

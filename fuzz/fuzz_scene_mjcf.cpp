@@ -2,11 +2,11 @@
 // plane, a pair config) whose numeric attributes take their values from the input: line k of the
 // input replaces attribute k of kAttributes (quotes and markup characters dropped, so the XML
 // stays well formed); the lines after them are prepended to the finger's OBJ (a byte-order mark,
-// a NaN vertex, a bad face...). The scene then goes through grasp::load_model (graspcd's checks,
+// a NaN vertex, a bad face...). The scene then goes through mujoco::load_model (graspcd's checks,
 // MuJoCo's compiler, the model check), NonconvexContacts and a few mj_step.
 // MuJoCo's errors (mju_error exits the process by default) are routed to exceptions and its
-// warnings to the sink, as the command line does. Bad input must end in a GraspInputError that is
-// one line naming a file of the scene, or a one-line MujocoError; a model that loads holds no
+// warnings to the sink, as the command line does. Bad input must end in a mujoco::InputError that
+// is one line naming a file of the scene, or a one-line MujocoError; a model that loads holds no
 // non-finite number.
 #include <mujoco/mujoco.h>
 
@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "fuzz_support.h"
-#include "graspcd/grasp/grasp.h"
 #include "graspcd/mujoco/model_check.h"
+#include "graspcd/mujoco/model_loading.h"
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/nonconvex_contacts.h"
 
@@ -95,14 +95,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string scene = file.path();
   const std::string mesh = file.dir() + "/tet.obj";
   try {
-    const graspcd::mujoco::ModelPtr model = graspcd::grasp::load_model(scene);
+    const graspcd::mujoco::ModelPtr model = graspcd::mujoco::load_model(scene);
     if (!graspcd::mujoco::find_non_finite(model.get()).empty()) {
       graspcd::fuzz::disagreement("load_model returned a model holding a non-finite number");
     }
     graspcd::mujoco::NonconvexContacts contacts(model.get(), file.dir() + "/scene.pairs.json");
     const graspcd::mujoco::DataPtr d(mj_makeData(model.get()));
     for (int step = 0; step < 5; ++step) mj_step(model.get(), d.get());
-  } catch (const graspcd::grasp::GraspInputError& e) {
+  } catch (const graspcd::mujoco::InputError& e) {
     one_line(e.what(), "a scene error");
     if (e.file() != scene && e.file() != mesh) {
       graspcd::fuzz::disagreement(("a scene error naming another file: " + e.file()).c_str());

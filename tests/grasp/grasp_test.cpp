@@ -17,6 +17,7 @@
 #include <map>
 #include <string>
 
+#include "graspcd/mujoco/model_loading.h"
 #include "support/test_scale.h"
 
 namespace graspcd::grasp {
@@ -233,9 +234,9 @@ TEST(GraspErrors, FiniteGraspsSkipNothing) {
 }
 
 TEST(GraspErrors, JoinLinesMakesOneLine) {
-  EXPECT_EQ(join_lines("XML Error: bad\nElement 'x', line 3\n"),
+  EXPECT_EQ(mujoco::join_lines("XML Error: bad\nElement 'x', line 3\n"),
             "XML Error: bad; Element 'x', line 3");
-  EXPECT_EQ(join_lines(""), "");
+  EXPECT_EQ(mujoco::join_lines(""), "");
 }
 
 }  // namespace

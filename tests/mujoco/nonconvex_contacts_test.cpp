@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "graspcd/grasp/grasp.h"
+#include "graspcd/mujoco/model_loading.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
 
 namespace graspcd::mujoco {
@@ -27,7 +28,7 @@ struct Scene {
   ModelPtr model;
   DataPtr data;
   explicit Scene(const std::string& name)
-      : model(grasp::load_model(kMjcf + "/" + name + ".xml")), data(mj_makeData(model.get())) {}
+      : model(mujoco::load_model(kMjcf + "/" + name + ".xml")), data(mj_makeData(model.get())) {}
   std::string config(const std::string& name) const { return kMjcf + "/" + name + ".pairs.json"; }
 };
 

@@ -32,6 +32,7 @@
 
 #include "graspcd/core/warnings.h"
 #include "graspcd/grasp/grasp.h"
+#include "graspcd/mujoco/model_loading.h"
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/nonconvex_contacts.h"
 
@@ -72,7 +73,7 @@ using Control = std::function<void(const mjModel*, mjData*)>;
 // natively), its "contact_reuse" set to `reuse`, the body "object" watched.
 Outcome simulate(const std::string& scene, const std::string& config, double seconds,
                  const Control& control = {}, double reuse = 0) {
-  const mujoco::ModelPtr model = load_model(scene);
+  const mujoco::ModelPtr model = mujoco::load_model(scene);
   const mjModel* m = model.get();
   mujoco::DataPtr data(mj_makeData(m));
   mjData* d = data.get();
@@ -207,7 +208,7 @@ TEST(HardScenes, BoxDroppedIntoTheBowlAndTheCupSettles) {
 TEST(HardScenes, ObjectRestsInTheClosedHandForFiveSeconds) {
   for (const std::string name : {"hold_example1", "hold_example3"}) {
     const std::string scene = kMjcf + "/hard/" + name + ".xml";
-    const double mass = load_model(scene)->body_subtreemass[0];
+    const double mass = mujoco::load_model(scene)->body_subtreemass[0];
     const auto outcome = [mass](const GraspResult& r) {
       Outcome o;
       o.mass = mass;

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "graspcd/mujoco/model_loading.h"
 #include "graspcd/study/recording.h"
 #include "graspcd/study/replay.h"
 #include "support/command_test.h"
@@ -234,7 +235,7 @@ TEST(CompareAnswers, CountsWhatDiffersFromTheTruth) {
   using namespace graspcd::study;
   const std::string scene = std::string(GRASPCD_SOURCE_DIR) + "/mjcf/example1.xml";
   const MeshScene ms(scene);
-  const mujoco::ModelPtr model = grasp::load_model(scene);
+  const mujoco::ModelPtr model = mujoco::load_model(scene);
   mjData* d = mj_makeData(model.get());
   mj_forward(model.get(), d);
   Recording rec;

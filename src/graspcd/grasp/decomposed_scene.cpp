@@ -15,7 +15,9 @@
 #include <utility>
 #include <vector>
 
+#include "graspcd/decompose/manifest.h"
 #include "graspcd/grasp/grasp.h"
+#include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/registry.h"
 
 namespace graspcd::grasp {
@@ -24,27 +26,24 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The decomposition's manifest (graspcd/decompose/manifest.h) and its pieces by absolute path.
 struct Manifest {
   std::string source;
-  std::vector<std::string> pieces;  // absolute paths
+  std::vector<std::string> pieces;
 };
 
 Manifest read_manifest(const std::string& dir) {
-  const fs::path path = fs::path(dir) / "decomposition.json";
-  std::ifstream in(path);
-  if (!in) throw GraspInputError(dir, "no decomposition.json (made by graspcd decompose)");
-  Manifest m;
+  decompose::Manifest manifest;
   try {
-    const nlohmann::json doc = nlohmann::json::parse(in);
-    m.source = doc.at("source").get<std::string>();
-    for (const auto& p : doc.at("pieces")) {
-      m.pieces.push_back(
-          fs::absolute(fs::path(dir) / p.at("file").get<std::string>()).lexically_normal());
-    }
-  } catch (const nlohmann::json::exception& e) {
-    throw GraspInputError(path.string(), std::string("not a decomposition: ") + e.what());
+    manifest = decompose::read_manifest(dir);
+  } catch (const io::InputError& e) {
+    throw GraspInputError(e.file(), e.message(), e.line());
   }
-  if (m.pieces.empty()) throw GraspInputError(path.string(), "a decomposition without pieces");
+  Manifest m;
+  m.source = manifest.source;
+  for (const decompose::Manifest::Piece& p : manifest.pieces) {
+    m.pieces.push_back(fs::absolute(fs::path(dir) / p.file).lexically_normal());
+  }
   return m;
 }
 

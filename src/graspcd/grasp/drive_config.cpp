@@ -6,12 +6,13 @@
 #include <stdexcept>
 
 #include "graspcd/mujoco/json_config.h"
+#include "graspcd/mujoco/model_loading.h"
 
 namespace graspcd::grasp {
 namespace {
 
 [[noreturn]] void fail(const std::string& source, const std::string& message) {
-  throw std::runtime_error(source + ": " + message);
+  throw mujoco::InputError(source, message);
 }
 
 DriveConfig parse_drive(const nlohmann::json& j, const std::string& source) {

@@ -38,8 +38,8 @@ struct DriveConfig {
 };
 
 // The "grasp" section of the config text, when it has one. `source` (a file name) starts every
-// error message; throws std::runtime_error for bad JSON or a bad section (the rest of the config is
-// checked by parse_registry_config).
+// error message; throws a mujoco::InputError naming `source` for a bad section, std::runtime_error
+// for bad JSON (the rest of the config is checked by parse_registry_config).
 std::optional<DriveConfig> parse_drive_config(const std::string& json_text,
                                               const std::string& source);
 // The same, from a file. Throws std::runtime_error naming the file when it cannot be read.

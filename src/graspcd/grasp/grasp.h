@@ -63,6 +63,7 @@
 #include <vector>
 
 #include "graspcd/core/separators.h"
+#include "graspcd/mujoco/model_loading.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
 
 namespace graspcd::grasp {
@@ -74,24 +75,9 @@ inline constexpr int kFingerSegments = 12;      // finger{1..4}_{A,B,C}
 inline constexpr double kHeldRiseShare = 0.8;
 inline constexpr double kHeldSlip = 0.01;
 
-// A scene or config that cannot be used: what() is one line, "FILE: MESSAGE", or
-// "FILE:LINE: MESSAGE" when the line is known (line() > 0).
-class GraspInputError : public std::runtime_error {
- public:
-  GraspInputError(const std::string& file, const std::string& message, std::size_t line = 0)
-      : std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : "") + ": " + message),
-        file_(file),
-        message_(message),
-        line_(line) {}
-  const std::string& file() const { return file_; }
-  const std::string& message() const { return message_; }
-  std::size_t line() const { return line_; }
-
- private:
-  std::string file_;
-  std::string message_;
-  std::size_t line_ = 0;
-};
+// A scene or config that cannot be used (model_loading.h): the file, the line and the message
+// apart, printed as one line "FILE: MESSAGE" or "FILE:LINE: MESSAGE".
+using GraspInputError = mujoco::InputError;
 
 struct GraspOptions {
   std::string config_path;  // pair config; empty: SCENE.pairs.json beside the scene
@@ -191,19 +177,13 @@ const std::array<std::string, kFingerSegments>& finger_segment_names();
 // breaks the scene contract, and for a simulation that goes non-finite (see above).
 GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options = {});
 
-// Loads an MJCF file. A missing file or MuJoCo's error become a GraspInputError whose message is
-// "FILE: <MuJoCo's message on one line>" (mujoco-2.2-notes.md "Errors").
-mujoco::ModelPtr load_model(const std::string& path);
-
 // The system's kinetic energy, 0.5 qvel^T M qvel with the joint-space inertia of the last step
 // (mj_energyVel's formula; MuJoCo 2.2 fills d->energy only with the energy flag enabled), J.
 double kinetic_energy(const mjModel* m, const mjData* d);
 
-// A pair config's error (a std::runtime_error of registry.h or drive_config.h, whose message starts
-// "CONFIG: " or "CONFIG:LINE: ") as a GraspInputError with the file, line and message apart.
+// A pair config's error as a GraspInputError with the file, line and message apart: a
+// GraspInputError of drive_config.h as it is, a std::runtime_error of registry.h or json_config.h
+// (whose message starts "CONFIG: " or "CONFIG:LINE: ") taken apart.
 GraspInputError config_error(const std::string& config_path, const std::runtime_error& e);
-
-// Joins MuJoCo's multi-line error text into one line (line breaks become "; ", blanks trimmed).
-std::string join_lines(const std::string& text);
 
 }  // namespace graspcd::grasp

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "graspcd/mujoco/collision.h"
+#include "graspcd/mujoco/model_loading.h"
 
 namespace graspcd::study {
 
@@ -93,7 +94,7 @@ void restore(const Recording& r, int step, const mjModel* m, mjData* d) {
 }  // namespace
 
 MeshScene::MeshScene(const std::string& scene, const ObbTreeOptions& tree_options)
-    : model_(grasp::load_model(scene)), data_(mj_makeData(model_.get())) {
+    : model_(mujoco::load_model(scene)), data_(mj_makeData(model_.get())) {
   const std::string config_path = mujoco::pair_config_path(scene);
   const mujoco::Registry registry(model_.get(), mujoco::load_registry_config(config_path),
                                   config_path);
@@ -131,7 +132,7 @@ Pose MeshScene::pose(const Recording& r, int step, const MeshPair& pair) const {
 }
 
 BoxScene::BoxScene(const std::string& scene, const std::string& kinds)
-    : model_(grasp::load_model(scene)), data_(mj_makeData(model_.get())) {
+    : model_(mujoco::load_model(scene)), data_(mj_makeData(model_.get())) {
   const mjModel* m = model_.get();
   const int object = mj_name2id(m, mjOBJ_BODY, "object");
   if (object < 0) throw std::runtime_error(scene + ": no body named object");

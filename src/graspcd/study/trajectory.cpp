@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "graspcd/grasp/grasp.h"
+#include "graspcd/mujoco/model_loading.h"
 #include "graspcd/study/replay.h"
 #include "graspcd/version/envelope.h"
 
@@ -112,7 +113,7 @@ std::vector<double> step_medians(const std::vector<std::vector<double>>& step_ns
 
 void write_trajectory(const std::string& path, const Recording& r, const MeshScene* scene,
                       const StepTimes& times) {
-  const mujoco::ModelPtr model = grasp::load_model(r.scene);
+  const mujoco::ModelPtr model = mujoco::load_model(r.scene);
   const mjModel* m = model.get();
   if (r.ngeom != m->ngeom || r.qpos.size() != r.xpos.size() || r.contacts.size() != r.xpos.size())
     throw std::runtime_error(r.scene + ": the recording does not match the scene");
@@ -218,7 +219,7 @@ void export_grasp(const std::string& scene, const std::string& path,
                   const TrajectoryOptions& options) {
   const Recording r =
       record_grasp(std::filesystem::path(scene).stem().string(), scene, false, options.max_steps);
-  const mujoco::ModelPtr model = grasp::load_model(scene);
+  const mujoco::ModelPtr model = mujoco::load_model(scene);
   const int finger = mj_name2id(model.get(), mjOBJ_GEOM, "finger1_A");
   if (finger < 0 || model->geom_type[finger] != mjGEOM_MESH) {
     write_trajectory(path, r, nullptr, {});

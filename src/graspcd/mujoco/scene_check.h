@@ -6,10 +6,10 @@
 
 #include <string>
 
-namespace graspcd::grasp {
+namespace graspcd::mujoco {
 
 // Reads the MJCF file `path` with tinyxml2 (MuJoCo's own XML parser) and the files it includes,
-// and refuses, with a GraspInputError naming the file and the attribute's line:
+// and refuses, with an InputError (model_loading.h) naming the file and the attribute's line:
 //  - an attribute that holds numbers one of which is not finite (nan, inf, or a literal that
 //    overflows a double), except the attributes that name things (name, class, mesh, ...);
 //  - a mesh file the scene names (resolved as MuJoCo does: meshdir or assetdir of <compiler>,
@@ -19,4 +19,4 @@ namespace graspcd::grasp {
 // the caller reports.
 void check_scene_file(const std::string& path);
 
-}  // namespace graspcd::grasp
+}  // namespace graspcd::mujoco

@@ -1,4 +1,4 @@
-#include "graspcd/grasp/scene_check.h"
+#include "graspcd/mujoco/scene_check.h"
 
 #include <tinyxml2.h>
 
@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "graspcd/grasp/grasp.h"
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/text_input.h"
+#include "graspcd/mujoco/model_loading.h"
 
-namespace graspcd::grasp {
+namespace graspcd::mujoco {
 namespace {
 
 namespace fs = std::filesystem;
@@ -71,10 +71,10 @@ void scan_element(const std::string& path, const tinyxml2::XMLElement* e, Scan& 
     const std::string bad = non_finite_word(value);
     if (bad.empty()) continue;
     const char* label = e->Attribute("name");
-    throw GraspInputError(path,
-                          "<" + element + (label ? std::string(" name=\"") + label + "\"" : "") +
-                              "> " + name + "=\"" + value + "\": non-finite number \"" + bad + "\"",
-                          static_cast<std::size_t>(a->GetLineNum()));
+    throw InputError(path,
+                     "<" + element + (label ? std::string(" name=\"") + label + "\"" : "") + "> " +
+                         name + "=\"" + value + "\": non-finite number \"" + bad + "\"",
+                     static_cast<std::size_t>(a->GetLineNum()));
   }
   if (element == "compiler") {
     if (const char* dir = e->Attribute("assetdir")) scan.meshdir = dir;
@@ -117,9 +117,9 @@ void check_scene_file(const std::string& path) {
     try {
       io::check_mesh_file(file.lexically_normal().string());
     } catch (const io::InputError& e) {
-      throw GraspInputError(e.file(), e.message(), e.line());
+      throw InputError(e.file(), e.message(), e.line());
     }
   }
 }
 
-}  // namespace graspcd::grasp
+}  // namespace graspcd::mujoco

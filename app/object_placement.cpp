@@ -1,0 +1,104 @@
+#include "object_placement.h"
+
+#include <array>
+
+#include "command.h"
+
+namespace graspcd::cli {
+
+namespace {
+
+const char* name_of(Placement p) {
+  switch (p) {
+    case Placement::kScale:
+      return "--scale";
+    case Placement::kFit:
+      return "--fit";
+    case Placement::kHand:
+      return "--hand";
+    case Placement::kUp:
+      return "--up";
+    case Placement::kYaw:
+      return "--yaw";
+    case Placement::kPose:
+      return "--pose";
+    case Placement::kWriteScene:
+      return "--write-scene";
+  }
+  return "";
+}
+
+bool is_placement(const std::string& name) {
+  for (Placement p : {Placement::kScale, Placement::kFit, Placement::kHand, Placement::kUp,
+                      Placement::kYaw, Placement::kPose, Placement::kWriteScene}) {
+    if (name == name_of(p)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void add_placement_options(CLI::App& app, PlacementOptions& options,
+                           const std::vector<PlacementOption>& added) {
+  for (const PlacementOption& a : added) {
+    const char* name = name_of(a.option);
+    switch (a.option) {
+      case Placement::kScale:
+        app.add_option(name, options.scale, a.help)->check(positive_number());
+        break;
+      case Placement::kFit:
+        app.add_flag(name, options.fit, a.help);
+        break;
+      case Placement::kHand:
+        app.add_option(name, options.hand, a.help)->capture_default_str();
+        break;
+      case Placement::kUp:
+        app.add_option(name, options.up, a.help)->capture_default_str();
+        break;
+      case Placement::kYaw:
+        app.add_option(name, options.yaw, a.help)->check(CLI::Range(-360.0, 360.0));
+        break;
+      case Placement::kPose:
+        app.add_option(name, options.pose, a.help)->expected(4);
+        break;
+      case Placement::kWriteScene:
+        app.add_option(name, options.write_scene, a.help);
+        break;
+    }
+  }
+}
+
+void check_placement_options(const CLI::App& app, const std::string& command,
+                             const std::string& owner, bool owner_given) {
+  const auto given = [&](const char* name) {
+    return app.get_option_no_throw(name) != nullptr && app.count(name) > 0;
+  };
+  for (const CLI::Option* o : app.get_options()) {
+    const std::string name = o->get_name();
+    if (!owner_given && is_placement(name) && o->count() > 0) {
+      throw UsageError(command + ": " + name + " goes with " + owner);
+    }
+  }
+  if (given("--fit") && given("--scale")) {
+    throw UsageError(command + ": --scale and --fit exclude each other");
+  }
+  if (given("--pose") && (given("--up") || given("--yaw"))) {
+    throw UsageError(command + ": --pose and --up/--yaw exclude each other");
+  }
+}
+
+grasp::ObjectPlacement object_placement(const PlacementOptions& options, const std::string& file) {
+  grasp::ObjectPlacement placement;
+  placement.file = file;
+  placement.scale = options.scale;
+  placement.fit = options.fit;
+  placement.up = options.up;
+  placement.yaw_degrees = options.yaw;
+  if (!options.pose.empty()) {
+    placement.pose =
+        std::array<double, 4>{options.pose[0], options.pose[1], options.pose[2], options.pose[3]};
+  }
+  return placement;
+}
+
+}  // namespace graspcd::cli

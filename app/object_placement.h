@@ -1,0 +1,47 @@
+// The options that place a user's mesh in a template scene (grasp/object_scene.h): --scale, --fit,
+// --hand, --up, --yaw and, for one object, --pose and --write-scene. `graspcd grasp --object` and
+// `graspcd validate --objects` add them with add_placement_options and check them with
+// check_placement_options; each command keeps its own help texts.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "graspcd/grasp/object_scene.h"
+
+namespace graspcd::cli {
+
+struct PlacementOptions {
+  double scale = 1;  // --scale S (> 0): file units -> m; default 1 (metres)
+  bool fit = false;  // --fit: scale to the template's room instead
+  std::string hand = "project";
+  std::string up = "z";
+  double yaw = 0;
+  std::vector<double> pose;  // --pose W X Y Z
+  std::string write_scene;   // --write-scene DIR: keep the generated scene there
+};
+
+// One of the options, with its help text (the command's own).
+enum class Placement { kScale, kFit, kHand, kUp, kYaw, kPose, kWriteScene };
+struct PlacementOption {
+  Placement option;
+  std::string help;
+};
+
+// Adds the given options to `app` in the given order (a command's --help lists them so), with
+// their checks: --scale > 0, --yaw in [-360, 360], --pose four numbers.
+void add_placement_options(CLI::App& app, PlacementOptions& options,
+                           const std::vector<PlacementOption>& added);
+
+// The rules between them, after the parse: each goes with `owner` (the option naming the mesh or
+// meshes; `owner_given`: whether it was given; the first given, in the order they were added, is
+// named), --scale and --fit exclude each other, and so do --pose and --up/--yaw. Throws
+// UsageError "COMMAND: ...".
+void check_placement_options(const CLI::App& app, const std::string& command,
+                             const std::string& owner, bool owner_given);
+
+// The placement of `file` (empty for an object set, whose files are found later).
+grasp::ObjectPlacement object_placement(const PlacementOptions& options, const std::string& file);
+
+}  // namespace graspcd::cli

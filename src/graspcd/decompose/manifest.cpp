@@ -1,0 +1,137 @@
+#include "graspcd/decompose/manifest.h"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+
+#include "graspcd/io/text_input.h"
+#include "graspcd/version/envelope.h"
+
+namespace graspcd::decompose {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json to_json(const Manifest& m) {
+  nlohmann::json simplify = nullptr;
+  if (m.simplify) {
+    simplify = {{"max_faces", m.simplify->max_faces},
+                {"faces_before", m.simplify->faces_before},
+                {"faces_after", m.simplify->faces_after},
+                {"decimated", m.simplify->decimated},
+                {"seconds", m.simplify->seconds}};
+  }
+  nlohmann::json volume = nullptr;
+  if (m.volume) {
+    volume = {{"original", m.volume->original},
+              {"pieces", m.volume->pieces},
+              {"added", m.volume->added},
+              {"added_fraction", m.volume->added_fraction}};
+  }
+  nlohmann::json pieces = nlohmann::json::array();
+  for (const Manifest::Piece& p : m.pieces) {
+    pieces.push_back({{"file", p.file}, {"vertices", p.vertices}, {"faces", p.faces}});
+  }
+  return {{"source", m.source},
+          {"source_faces", m.source_faces},
+          {"closed", m.closed},
+          {"max_pieces", m.max_pieces},
+          {"simplify", simplify},
+          {"piece_count", m.piece_count},
+          {"slabs", m.slabs},
+          {"flat_clusters", m.flat_clusters},
+          {"seconds", m.seconds},
+          {"hausdorff",
+           {{"distance", m.hausdorff.distance},
+            {"error_bound", m.hausdorff.error_bound},
+            {"seconds", m.hausdorff.seconds}}},
+          {"volume", volume},
+          {"fragment", m.fragment},
+          {"pieces", pieces}};
+}
+
+// A field of a manifest that is read when present: `fallback` when it is missing or of another
+// type.
+template <class T>
+T field(const nlohmann::json& j, const char* key, T fallback) {
+  const auto it = j.find(key);
+  if (it == j.end()) return fallback;
+  try {
+    return it->template get<T>();
+  } catch (const nlohmann::json::exception&) {
+    return fallback;
+  }
+}
+
+// The manifest's fields; "source" and every piece's "file" are required (a missing one, or one
+// that is not a string, throws nlohmann's exception).
+Manifest from_json(const nlohmann::json& doc) {
+  Manifest m;
+  m.source = doc.at("source").get<std::string>();
+  for (const auto& p : doc.at("pieces")) {
+    Manifest::Piece piece;
+    piece.file = p.at("file").get<std::string>();
+    piece.vertices = field(p, "vertices", std::size_t{0});
+    piece.faces = field(p, "faces", std::size_t{0});
+    m.pieces.push_back(std::move(piece));
+  }
+  m.source_faces = field(doc, "source_faces", std::size_t{0});
+  m.closed = field(doc, "closed", false);
+  m.max_pieces = field(doc, "max_pieces", 0);
+  const auto object = [&](const char* key) -> const nlohmann::json* {
+    const auto it = doc.find(key);
+    return it != doc.end() && it->is_object() ? &*it : nullptr;
+  };
+  if (const nlohmann::json* s = object("simplify")) {
+    m.simplify =
+        Manifest::Simplify{field(*s, "max_faces", 0), field(*s, "faces_before", std::size_t{0}),
+                           field(*s, "faces_after", std::size_t{0}), field(*s, "decimated", false),
+                           field(*s, "seconds", 0.0)};
+  }
+  m.piece_count = field(doc, "piece_count", m.pieces.size());
+  m.slabs = field(doc, "slabs", std::size_t{0});
+  m.flat_clusters = field(doc, "flat_clusters", std::size_t{0});
+  m.seconds = field(doc, "seconds", 0.0);
+  if (const nlohmann::json* h = object("hausdorff")) {
+    m.hausdorff = {field(*h, "distance", 0.0), field(*h, "error_bound", 0.0),
+                   field(*h, "seconds", 0.0)};
+  }
+  if (const nlohmann::json* v = object("volume")) {
+    m.volume = Manifest::Volume{field(*v, "original", 0.0), field(*v, "pieces", 0.0),
+                                field(*v, "added", 0.0), field(*v, "added_fraction", 0.0)};
+  }
+  m.fragment = field(doc, "fragment", std::string());
+  return m;
+}
+
+}  // namespace
+
+std::string write_manifest(const std::string& dir, const Manifest& manifest) {
+  nlohmann::json doc = to_json(manifest);
+  add_envelope(doc);
+  std::string document = doc.dump(2);
+  std::ofstream((fs::path(dir) / kManifestFile).string(), std::ios::binary) << document << '\n';
+  return document;
+}
+
+Manifest read_manifest(const std::string& dir) {
+  const fs::path path = fs::path(dir) / kManifestFile;
+  std::ifstream in(path);
+  if (!in) {
+    throw io::InputError(dir, 0,
+                         std::string("no ") + kManifestFile + " (made by graspcd decompose)");
+  }
+  Manifest m;
+  try {
+    m = from_json(nlohmann::json::parse(in));
+  } catch (const nlohmann::json::exception& e) {
+    throw io::InputError(path.string(), 0, std::string("not a decomposition: ") + e.what());
+  }
+  if (m.pieces.empty()) throw io::InputError(path.string(), 0, "a decomposition without pieces");
+  return m;
+}
+
+}  // namespace graspcd::decompose

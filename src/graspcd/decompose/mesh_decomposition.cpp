@@ -1,0 +1,181 @@
+#include "graspcd/decompose/mesh_decomposition.h"
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "graspcd/core/clock.h"
+#include "graspcd/core/geometry.h"
+#include "graspcd/core/warnings.h"
+#include "graspcd/decompose/decomposition_files.h"
+#include "graspcd/decompose/hacd.h"
+#include "graspcd/exact/hausdorff.h"
+#include "graspcd/exact/simplify.h"
+#include "graspcd/exact/surface_distance.h"
+#include "graspcd/io/mesh_io.h"
+#include "graspcd/io/text_input.h"
+
+namespace graspcd::decompose {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+double bounding_diagonal(const TriangleMesh& mesh) {
+  Vec3 lo = mesh.vertices.front(), hi = lo;
+  for (const Vec3& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  return (hi - lo).norm();
+}
+
+// HACD's partition of `coarse` (the decimated copy) carried over to `mesh`: every face of `mesh`
+// joins the cluster of the face of `coarse` nearest its centroid (CGAL's AABB tree).
+Partition transfer_partition(const Partition& coarse_partition, const TriangleMesh& coarse,
+                             const TriangleMesh& mesh) {
+  const exact::SurfaceDistance nearest(coarse);
+  Partition out;
+  out.clusters = coarse_partition.clusters;
+  out.cluster_of_face.reserve(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Triangle t = mesh.triangle(f);
+    const Vec3 centroid = (t.v[0] + t.v[1] + t.v[2]) / 3.0;
+    out.cluster_of_face.push_back(coarse_partition.cluster_of_face[nearest.nearest_face(centroid)]);
+  }
+  return out;
+}
+
+// --simplify F: the copy HACD partitions, decimated by CGAL's edge collapse when the mesh has more
+// than F faces, timed alone. `coarse` gets the copy when it was decimated.
+std::optional<Manifest::Simplify> simplify_copy(const DecomposeOptions& o, const TriangleMesh& mesh,
+                                                TriangleMesh& coarse) {
+  if (o.simplify <= 0) return std::nullopt;
+  const bool decimate = mesh.faces.size() > static_cast<std::size_t>(o.simplify);
+  const Clock::time_point start = Clock::now();
+  if (decimate) {
+    try {
+      coarse = exact::simplify_edge_collapse(mesh, static_cast<std::size_t>(o.simplify));
+    } catch (const std::invalid_argument& e) {
+      throw io::InputError(o.mesh, 0, e.what());
+    }
+  }
+  Manifest::Simplify s;
+  s.max_faces = o.simplify;
+  s.faces_before = mesh.faces.size();
+  s.faces_after = decimate ? coarse.faces.size() : mesh.faces.size();
+  s.decimated = decimate;
+  s.seconds = seconds_since(start);
+  return s;
+}
+
+// HACD, timed with the pieces' hulls (and with --simplify, the transfer of the decimated copy's
+// partition to the mesh's faces).
+Decomposition run_hacd(const DecomposeOptions& o, const TriangleMesh& mesh, bool decimated,
+                       const TriangleMesh& coarse, double& seconds) {
+  HacdOptions hacd;
+  hacd.max_pieces = static_cast<std::size_t>(o.pieces);
+  const Clock::time_point start = Clock::now();
+  Decomposition d;
+  try {
+    if (decimated) {
+      const Partition partition = transfer_partition(hacd_partition(coarse, hacd), coarse, mesh);
+      d = pieces_of_partition(mesh, partition);
+    } else {
+      d = hacd_decompose(mesh, hacd);
+    }
+  } catch (const std::runtime_error& e) {
+    throw io::InputError(o.mesh, 0, e.what());
+  }
+  seconds = seconds_since(start);
+  if (d.flat_clusters > 0) {
+    warnings().add("decompose_flat_pieces",
+                   o.mesh + ": " + std::to_string(d.flat_clusters) +
+                       " of HACD's clusters have no hull even as a slab and were left out");
+  }
+  return d;
+}
+
+// The volume the pieces add to a closed mesh (overlaps between pieces count twice).
+std::optional<Manifest::Volume> added_volume(const std::vector<TriangleMesh>& hulls,
+                                             const TriangleMesh& mesh, const std::string& name) {
+  try {
+    double pieces_volume = 0;
+    for (const TriangleMesh& hull : hulls) pieces_volume += exact::closed_mesh_volume(hull);
+    const double original = exact::closed_mesh_volume(mesh);
+    Manifest::Volume v;
+    v.original = original;
+    v.pieces = pieces_volume;
+    v.added = pieces_volume - original;
+    v.added_fraction = original > 0 ? (pieces_volume - original) / original : 0.0;
+    return v;
+  } catch (const std::invalid_argument&) {
+    // Closed for graspcd's check (welded by exact coordinates) but not a closed triangle mesh
+    // for CGAL's polygon-soup conversion: no volume rather than a wrong one.
+    warnings().add("decompose_no_volume", name + ": CGAL cannot close the mesh; no volume");
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
+DecomposeRun decompose_mesh(const DecomposeOptions& o) {
+  // The mesh as graspcd reads it: a bad file is one line naming it.
+  io::MeshStats stats;
+  const TriangleMesh mesh = io::load_mesh(o.mesh, &stats);
+  for (const std::string& w : io::mesh_warnings(o.mesh, stats, true)) {
+    warnings().add("mesh_hygiene", w);
+  }
+  std::error_code ec;
+  fs::create_directories(o.out, ec);
+  if (ec || !fs::is_directory(o.out)) {
+    throw io::InputError(o.out, 0, "cannot create the output folder: " + ec.message());
+  }
+
+  Manifest m;
+  TriangleMesh coarse;
+  m.simplify = simplify_copy(o, mesh, coarse);
+  const Decomposition d = run_hacd(o, mesh, m.simplify && m.simplify->decimated, coarse, m.seconds);
+
+  // How far the pieces' hulls lie from the original surface, and the volume they add.
+  std::vector<TriangleMesh> hulls;
+  for (const ConvexPiece& p : d.pieces) hulls.push_back(p.hull);
+  const double bound =
+      o.hausdorff_bound > 0 ? o.hausdorff_bound : kDefaultBoundFraction * bounding_diagonal(mesh);
+  const Clock::time_point h_start = Clock::now();
+  const exact::BoundedHausdorff h = exact::one_sided_hausdorff(hulls, mesh, bound);
+  m.hausdorff = {h.distance, h.error_bound, seconds_since(h_start)};
+  if (stats.closedness.closed()) m.volume = added_volume(hulls, mesh, o.mesh);
+
+  const std::string stem = fs::path(o.mesh).stem().string();
+  DecompositionFiles files;
+  try {
+    files = write_decomposition_files(
+        d.pieces, o.out, stem,
+        "graspcd decompose: " + std::to_string(d.pieces.size()) + " convex pieces (HACD) of " +
+            fs::path(o.mesh).filename().string() + ", in its own coordinates and scale");
+  } catch (const std::runtime_error& e) {
+    throw io::InputError(o.out, 0, e.what());
+  }
+
+  m.source = fs::absolute(o.mesh).lexically_normal().string();
+  m.source_faces = mesh.faces.size();
+  m.closed = stats.closedness.closed();
+  m.max_pieces = o.pieces;
+  m.piece_count = d.pieces.size();
+  m.slabs = d.slabs;
+  m.flat_clusters = d.flat_clusters;
+  m.fragment = files.fragment;
+  for (std::size_t k = 0; k < d.pieces.size(); ++k) {
+    m.pieces.push_back(
+        {files.pieces[k], d.pieces[k].hull.vertices.size(), d.pieces[k].hull.faces.size()});
+  }
+  std::string document = write_manifest(o.out, m);
+  return DecomposeRun{std::move(m), std::move(document)};
+}
+
+}  // namespace graspcd::decompose

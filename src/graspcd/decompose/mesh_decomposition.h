@@ -1,0 +1,37 @@
+// `graspcd decompose` as a library: an approximate convex decomposition of a mesh with HACD (Mamou
+// and Ghorbel, ICIP 2009; hacd.h), written as one OBJ per convex piece and an MJCF fragment
+// (decomposition_files.h), with how far the pieces' hulls lie from the original surface (CGAL's
+// bounded-error one-sided Hausdorff distance) and, for a closed mesh, the volume they add. Beside
+// the pieces it writes the manifest, DIR/decomposition.json (manifest.h).
+#pragma once
+
+#include <string>
+
+#include "graspcd/decompose/manifest.h"
+
+namespace graspcd::decompose {
+
+struct DecomposeOptions {
+  std::string mesh;            // OBJ or binary STL
+  std::string out;             // the folder of the pieces, the fragment and the manifest (created)
+  int pieces = 16;             // at most this many pieces (HACD's cluster count)
+  int simplify = 0;            // 0: HACD on the mesh itself; F: on a copy of at most F faces
+  double hausdorff_bound = 0;  // 0: kDefaultBoundFraction of the bounding box diagonal
+};
+
+// The Hausdorff distance's error bound when DecomposeOptions::hausdorff_bound is 0: this fraction
+// of the mesh's bounding box diagonal (0.1 mm for a 10 cm object).
+inline constexpr double kDefaultBoundFraction = 1e-3;
+
+struct DecomposeRun {
+  Manifest manifest;
+  std::string document;  // decomposition.json as written (with graspcd's envelope), no final '\n'
+};
+
+// Decomposes `options.mesh` into `options.out` and writes the manifest there. Warnings (the mesh's
+// hygiene, flat clusters left out, a volume CGAL cannot measure) go to the process's sink. Throws
+// io::InputError (graspcd/io/text_input.h) naming the mesh for a missing or bad mesh or a failed
+// decomposition, naming the folder when it cannot be created or written.
+DecomposeRun decompose_mesh(const DecomposeOptions& options);
+
+}  // namespace graspcd::decompose

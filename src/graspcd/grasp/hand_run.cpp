@@ -1,0 +1,373 @@
+#include "graspcd/grasp/hand_run.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <utility>
+
+#include "graspcd/core/clock.h"
+
+namespace graspcd::grasp {
+
+namespace {
+
+// Whether two hand geoms push the object from opposing sides (grasp.h, "gripped"): per hand geom
+// touching an object geom in d's contacts, the sum of its contact normals turned to point from
+// the hand geom into the object (MuJoCo's frame[0..2] points from geom1 to geom2); two geoms whose
+// sums have a negative dot product oppose. Hand geoms: neither the object's body tree, nor the
+// world body (the floor), nor the support's body tree (support_root -1: none).
+struct GripSides {
+  int touching = 0;  // hand geoms touching the object
+  bool opposing = false;
+};
+
+GripSides grip_sides(const mjModel* m, const mjData* d, const std::vector<char>& is_object_geom,
+                     int support_root) {
+  std::vector<std::pair<int, Vec3>> pushes;  // hand geom, summed normal into the object
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& c = d->contact[i];
+    const bool object1 = is_object_geom[static_cast<std::size_t>(c.geom1)] != 0;
+    const bool object2 = is_object_geom[static_cast<std::size_t>(c.geom2)] != 0;
+    if (object1 == object2) continue;
+    const int hand = object1 ? c.geom2 : c.geom1;
+    const int body = m->geom_bodyid[hand];
+    if (body == 0 || m->body_rootid[body] == support_root) continue;
+    Vec3 n(c.frame[0], c.frame[1], c.frame[2]);
+    if (object1) n = -n;
+    auto at = std::find_if(pushes.begin(), pushes.end(),
+                           [hand](const std::pair<int, Vec3>& p) { return p.first == hand; });
+    if (at == pushes.end()) {
+      pushes.emplace_back(hand, n);
+    } else {
+      at->second += n;
+    }
+  }
+  GripSides out;
+  out.touching = static_cast<int>(pushes.size());
+  for (std::size_t a = 0; a < pushes.size() && !out.opposing; ++a) {
+    for (std::size_t b = a + 1; b < pushes.size(); ++b) {
+      if (pushes[a].second.dot(pushes[b].second) < 0) {
+        out.opposing = true;
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+// The verdicts after the hold (grasp.h): held, and the reason of a failure. `ever_touched`: some
+// segment touched the object during the closing; `grip`: the grip before the lift.
+void judge(bool ever_touched, const GripSides& grip, GraspResult& result) {
+  result.gripped = grip.opposing;
+  const bool rose =
+      result.hand_travel > 0 && result.object_rise >= kHeldRiseShare * result.hand_travel;
+  const bool slipped = result.hold_drift >= kHeldSlip;
+  result.held = result.gripped && rose && !slipped;
+  char text[160];
+  if (!ever_touched) {
+    result.reason = "no segment reached the object";
+  } else if (grip.touching == 0) {
+    result.reason = "no segment touched the object after the squeeze";
+  } else if (!grip.opposing) {
+    result.reason = "no two touching segments push from opposing sides (" +
+                    std::to_string(grip.touching) + " touching)";
+  } else if (slipped) {
+    std::snprintf(text, sizeof text, "slipped at t = %.3f s (moved %.1f cm in the hand)",
+                  result.slip_time, 100 * result.hold_drift);
+    result.reason = text;
+  } else if (!rose) {
+    std::snprintf(text, sizeof text, "rose %.1f cm of the hand's %.1f cm travel (less than %.0f%%)",
+                  100 * result.object_rise, 100 * result.hand_travel, 100 * kHeldRiseShare);
+    result.reason = text;
+  } else {
+    result.reason.clear();
+  }
+}
+
+// Stops the grasp when MuJoCo found a bad number in the state or the controls during the last
+// physics step (grasp.h, "Non-finite state"): it has reset the state or zeroed the controls.
+void throw_if_nonfinite(const mjData* d, const std::string& scene, const std::string& phase,
+                        long physics_steps) {
+  static const std::array<std::pair<int, const char*>, 4> kBad = {{
+      {mjWARN_BADQPOS, "qpos"},
+      {mjWARN_BADQVEL, "qvel"},
+      {mjWARN_BADQACC, "qacc"},
+      {mjWARN_BADCTRL, "ctrl"},
+  }};
+  for (const auto& [warning, what] : kBad) {
+    const mjWarningStat& w = d->warning[warning];
+    if (w.number == 0) continue;
+    throw std::runtime_error(
+        scene + ": the simulation went non-finite in " + phase + " (physics step " +
+        std::to_string(physics_steps) + "): MuJoCo found a bad number (NaN or beyond 1e10) in " +
+        what + " at index " + std::to_string(w.lastinfo) +
+        (warning == mjWARN_BADCTRL ? " and zeroed the controls" : " and reset the state") +
+        "; the grasp stops");
+  }
+}
+
+// Appends grasp step k's record (its contacts, segments touching, the bridge's counters over the
+// step, the object's height) to the result, and adds its detection time to the closing's.
+void add_step_record(int k, int contacts, std::vector<bool> touching,
+                     const mujoco::BridgeStats& stats, double object_z, GraspResult& result) {
+  GraspStepRecord record;
+  record.step = k;
+  record.contacts = contacts;
+  record.touching = std::move(touching);
+  record.detection_ns = stats.detection_ns;
+  record.box_tests = stats.counters.box_tests;
+  record.front_skips = stats.counters.front_skips;
+  record.triangle_tests = stats.counters.tri_tests;
+  record.served_calls = stats.calls;
+  record.contained = stats.contained;
+  record.nonfinite_skips = stats.nonfinite_skips;
+  record.object_z = object_z;
+  result.steps.push_back(std::move(record));
+  result.detection_ns_close += stats.detection_ns;
+}
+
+// One physics step of the hold: when it lies in the last second of the hold ("at rest",
+// grasp.h), the object's speed, the deepest contact of an object geom and the system's kinetic
+// energy go into the result's rest fields. `step` counts from 1 to `steps`.
+void watch_rest(const mjModel* m, mjData* d, int object, const std::vector<char>& is_object_geom,
+                long step, long steps, GraspResult& result) {
+  const long window = std::min(steps, std::lround(1.0 / m->opt.timestep));
+  const long first = steps - window + 1;
+  if (step < first) return;
+  mjtNum velocity[6];
+  mj_objectVelocity(m, d, mjOBJ_BODY, object, velocity, 0);
+  const double speed =
+      std::sqrt(velocity[3] * velocity[3] + velocity[4] * velocity[4] + velocity[5] * velocity[5]);
+  result.rest_max_speed = std::max(result.rest_max_speed, speed);
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& c = d->contact[i];
+    if (is_object_geom[static_cast<std::size_t>(c.geom1)] ||
+        is_object_geom[static_cast<std::size_t>(c.geom2)]) {
+      result.rest_max_penetration = std::max(result.rest_max_penetration, -c.dist);
+    }
+  }
+  const double energy = kinetic_energy(m, d);
+  const long half = window / 2;
+  const double share = energy / static_cast<double>(std::max(1L, half));
+  if (step < first + half) {
+    result.rest_energy_early += share;
+  } else if (step < first + 2 * half) {
+    result.rest_energy_late += share;
+  }
+}
+
+}  // namespace
+
+int require_id(const mjModel* m, mjtObj type, const std::string& name, const std::string& scene,
+               const char* what) {
+  const int id = mj_name2id(m, type, name.c_str());
+  if (id < 0) throw std::runtime_error(scene + ": no " + what + " named " + name);
+  return id;
+}
+
+void HandRun::PairRun::add(int i, int geom1, int geom2) {
+  run = i == last + 1 && geom1 == g1 && geom2 == g2 ? run + 1 : 1;
+  last = i;
+  g1 = geom1;
+  g2 = geom2;
+  most = std::max(most, run);
+}
+
+void HandRun::BridgeTotals::add(const mujoco::BridgeStats& s) {
+  detection_ns += s.detection_ns;
+  contained += s.contained;
+  nonfinite_skips += s.nonfinite_skips;
+  reused += s.reused;
+}
+
+HandRun::HandRun(const mjModel* m, mjData* d, mujoco::Registry* registry, const std::string& scene)
+    : m_(m),
+      d_(d),
+      registry_(registry),
+      scene_(scene),
+      segments_of_geom_(static_cast<std::size_t>(m->ngeom)) {}
+
+void HandRun::set_object(int body) {
+  object_ = body;
+  is_object_geom_.assign(static_cast<std::size_t>(m_->ngeom), 0);
+  for (int g = 0; g < m_->ngeom; ++g) {
+    is_object_geom_[static_cast<std::size_t>(g)] = m_->body_rootid[m_->geom_bodyid[g]] == body;
+  }
+}
+
+int HandRun::add_segment(const std::string& name) {
+  segments_.push_back(name);
+  touching_.push_back(false);
+  return static_cast<int>(segments_.size()) - 1;
+}
+
+void HandRun::add_segment_geom(int geom, int segment) {
+  segments_of_geom_[static_cast<std::size_t>(geom)].push_back(segment);
+}
+
+long HandRun::phase_steps(double seconds) const {
+  return std::max(1L, std::lround(seconds / m_->opt.timestep));
+}
+
+// One physics step (the hand's advance, timed), MuJoCo's non-finite check, then the scan of the
+// segment-object contacts.
+void HandRun::physics_step() {
+  const Clock::time_point start = Clock::now();
+  advance();
+  wall_ns_ += static_cast<std::int64_t>(elapsed_ns(start));
+  ++physics_steps_;
+  throw_if_nonfinite(d_, scene_, phase_, physics_steps_);
+  scan_contacts();
+}
+
+// The contacts between a segment's geom and an object geom: the segments they touch, how many,
+// and the most one geom pair had.
+void HandRun::scan_contacts() {
+  std::fill(touching_.begin(), touching_.end(), false);
+  contacts_ = 0;
+  pair_run_.start();
+  for (int i = 0; i < d_->ncon; ++i) {
+    const auto g1 = static_cast<std::size_t>(d_->contact[i].geom1);
+    const auto g2 = static_cast<std::size_t>(d_->contact[i].geom2);
+    const std::vector<int>* segments = nullptr;
+    if (is_object_geom_[g2] && !segments_of_geom_[g1].empty()) segments = &segments_of_geom_[g1];
+    if (is_object_geom_[g1] && !segments_of_geom_[g2].empty()) segments = &segments_of_geom_[g2];
+    if (segments == nullptr) continue;
+    for (int s : *segments) touching_[static_cast<std::size_t>(s)] = true;
+    ++contacts_;
+    pair_run_.add(i, d_->contact[i].geom1, d_->contact[i].geom2);
+  }
+  max_contacts_ = std::max(max_contacts_, contacts_);
+  contacts_sum_ += contacts_;
+}
+
+// The bridge's statistics since the last call (zero with native collision).
+mujoco::BridgeStats HandRun::take_stats() {
+  if (!registry_) return mujoco::BridgeStats{};
+  const mujoco::BridgeStats s = registry_->take_stats();
+  totals_.add(s);
+  return s;
+}
+
+// Runs `steps` physics steps named `name` in messages; at(i) sets the targets before step i (1 to
+// steps), observe() sees the state after each.
+template <class Targets, class Observe>
+void HandRun::run_phase(const char* name, long steps, Targets at, Observe observe) {
+  phase_ = name;
+  for (long i = 1; i <= steps; ++i) {
+    at(i);
+    physics_step();
+    observe();
+  }
+}
+
+std::array<double, 3> HandRun::object_in_hand() const {
+  return {d_->xpos[3 * object_] - d_->xpos[3 * hand_],
+          d_->xpos[3 * object_ + 1] - d_->xpos[3 * hand_ + 1],
+          d_->xpos[3 * object_ + 2] - d_->xpos[3 * hand_ + 2]};
+}
+
+// Phase 1, paper section 9 (docs/design.md "Semantics"): grasp steps until the hand says the
+// closing is done; a segment's first contact is the grasp step in which it first touched.
+void HandRun::close(const GraspOptions& options, GraspResult& result) {
+  const int n = std::max(1, options.physics_steps_per_grasp_step);
+  const std::size_t segments = segments_.size();
+  for (int k = 1; k <= options.max_steps; ++k) {
+    phase_ = "grasp step " + std::to_string(k) + " of the closing";
+    begin_grasp_step(k);
+    std::vector<bool> touched(segments, false);
+    for (int p = 1; p <= n; ++p) {
+      grasp_step_targets(p, n);
+      physics_step();
+      for (std::size_t s = 0; s < segments; ++s) touched[s] = touched[s] || touching_[s];
+    }
+    add_step_record(k, contacts_, touching_, take_stats(), object_height(), result);
+    if (options.on_grasp_step) options.on_grasp_step(m_, d_, k);
+    for (std::size_t s = 0; s < segments; ++s) {
+      if (touched[s] && result.first_contact[s] < 0) result.first_contact[s] = k;
+    }
+    if (closing_done(k, touched, result)) break;
+  }
+  end_closing();
+}
+
+// Phase 4: hold, watching the object against the hand and, in the last second, at rest.
+void HandRun::hold(const GraspOptions& options, GraspResult& result) {
+  const std::array<double, 3> rel0 = object_in_hand();
+  result.hold_min_z = object_height();
+  result.hold_drift = 0;
+  const long steps = phase_steps(options.hold_time);
+  long step = 0;
+  run_phase(
+      "the hold", steps, [](long) {},
+      [&] {
+        watch_rest(m_, d_, object_, is_object_geom_, ++step, steps, result);
+        result.hold_min_z = std::min(result.hold_min_z, object_height());
+        const std::array<double, 3> rel = object_in_hand();
+        const double drift = std::sqrt((rel[0] - rel0[0]) * (rel[0] - rel0[0]) +
+                                       (rel[1] - rel0[1]) * (rel[1] - rel0[1]) +
+                                       (rel[2] - rel0[2]) * (rel[2] - rel0[2]));
+        result.hold_drift = std::max(result.hold_drift, drift);
+        if (result.slip_time < 0 && result.hold_drift >= kHeldSlip) result.slip_time = d_->time;
+      });
+}
+
+// The run's totals after the hold.
+void HandRun::finish(GraspResult& result) const {
+  result.object_z_final = object_height();
+  result.physics_steps = physics_steps_;
+  result.sim_time = d_->time;
+  result.step_wall_ms =
+      physics_steps_ > 0 ? static_cast<double>(wall_ns_) / 1e6 / static_cast<double>(physics_steps_)
+                         : 0.0;
+  result.detection_ns_total = totals_.detection_ns;
+  result.contained_calls = totals_.contained;
+  result.nonfinite_skips = totals_.nonfinite_skips;
+  result.reused_calls = totals_.reused;
+  result.max_contacts = max_contacts_;
+  result.mean_contacts =
+      physics_steps_ > 0 ? static_cast<double>(contacts_sum_) / static_cast<double>(physics_steps_)
+                         : 0.0;
+  result.max_pair_contacts = pair_run_.most;
+  result.contact_buffer_full = d_->warning[mjWARN_CONTACTFULL].number;
+  result.constraint_buffer_full = d_->warning[mjWARN_CNSTRFULL].number;
+}
+
+// Paper section 9: close, squeeze, settle, lift, hold (grasp.h), then the verdicts.
+void HandRun::run(const GraspOptions& options, GraspResult& result) {
+  result.segments = segments_;
+  result.first_contact.assign(segments_.size(), -1);
+  result.object_z_initial = object_height();
+  close(options, result);
+
+  // Phase 2: squeeze, then settle.
+  begin_squeeze();
+  const long squeeze = phase_steps(options.squeeze_time);
+  const auto nothing = [] {};
+  run_phase(
+      "the squeeze", squeeze, [&](long i) { squeeze_targets(i, squeeze); }, nothing);
+  run_phase(
+      "the settling", phase_steps(options.settle_time), [](long) {}, nothing);
+  result.object_z_gripped = object_height();
+  const GripSides grip = grip_sides(m_, d_, is_object_geom_, support_root());
+  const double hand_at_lift = hand_height();
+
+  // Phase 3: lift.
+  begin_lift();
+  const long lift = phase_steps(options.lift_time);
+  run_phase(
+      "the lift", lift, [&](long i) { lift_targets(i, lift); }, nothing);
+  end_lift();
+
+  hold(options, result);
+  take_stats();
+  finish(result);
+  result.hand_travel = hand_height() - hand_at_lift;
+  result.object_rise = result.object_z_final - result.object_z_gripped;
+  bool ever_touched = false;
+  for (int step : result.first_contact) ever_touched = ever_touched || step > 0;
+  judge(ever_touched, grip, result);
+}
+
+}  // namespace graspcd::grasp
