@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "graspcd/grasp/drive_config.h"
-#include "graspcd/grasp/grasp.h"
+#include "graspcd/grasp/grasp_result.h"
 #include "graspcd/grasp/hand_run.h"
 #include "graspcd/mujoco/registry.h"
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "graspcd/grasp/controllers.h"
-#include "graspcd/grasp/grasp.h"
+#include "graspcd/grasp/grasp_result.h"
 #include "graspcd/grasp/hand_run.h"
 #include "graspcd/mujoco/registry.h"
 

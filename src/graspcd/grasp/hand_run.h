@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "graspcd/grasp/grasp.h"
+#include "graspcd/grasp/grasp_result.h"
 #include "graspcd/mujoco/registry.h"
 
 namespace graspcd::grasp {

@@ -12,7 +12,7 @@
 
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/text_input.h"
-#include "graspcd/mujoco/model_loading.h"
+#include "graspcd/mujoco/input_error.h"
 
 namespace graspcd::mujoco {
 namespace {

@@ -1,0 +1,130 @@
+// What a grasp of the paper's section 9 (grasp.h) is asked and what it reports: its options, its
+// record per grasp step, its result and verdicts, and the measures the verdicts use. Shared by
+// run_grasp and the runs of each hand (hand_run.h).
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "graspcd/core/separators.h"
+#include "graspcd/mujoco/input_error.h"
+#include "graspcd/mujoco/mujoco_ptr.h"
+
+namespace graspcd::grasp {
+
+inline constexpr double kGraspStepRad = 0.003;  // the paper's grasp step
+inline constexpr int kFingerSegments = 12;      // finger{1..4}_{A,B,C}
+// The verdicts (grasp.h): the share of the hand's travel the object must rise, and the most it
+// may move in the hand during the hold (m).
+inline constexpr double kHeldRiseShare = 0.8;
+inline constexpr double kHeldSlip = 0.01;
+
+// A scene or config that cannot be used (model_loading.h): the file, the line and the message
+// apart, printed as one line "FILE: MESSAGE" or "FILE:LINE: MESSAGE".
+using GraspInputError = mujoco::InputError;
+
+struct GraspOptions {
+  std::string config_path;  // pair config; empty: SCENE.pairs.json beside the scene
+  std::optional<Method> method;
+  std::optional<int> cap;               // perceptron pass cap override
+  std::optional<int> switch_passes;     // Neuro-SAT switch override
+  bool native = false;                  // MuJoCo's own collision, no registry
+  std::optional<bool> front_list;       // overrides the config's "front_list" (registry.h)
+  std::optional<double> contact_reuse;  // overrides the config's "contact_reuse" (registry.h)
+  int max_steps = 400;                  // most closing grasp steps
+  // 5 steps of 2 ms per grasp step: a target ramp of 0.3 rad/s, tracked with the velocity
+  // feed-forward within a few 1e-4 rad at omega = 40 rad/s.
+  int physics_steps_per_grasp_step = 5;
+  double omega = 40;  // eq. (15) critically damped, rad/s: kp = omega^2, kv = 2 omega
+  double squeeze = 0.12;
+  double squeeze_time = 0.1;
+  double settle_time = 0.3;
+  double lift_height = 0.06;
+  double lift_time = 1.0;
+  double hold_time = 2.0;
+  // Called after each closing grasp step with the model, the state after the step's last physics
+  // step and the 1-based step number (the study records the poses it replays, src/graspcd/study).
+  std::function<void(const mjModel*, const mjData*, int)> on_grasp_step;
+};
+
+// One closing grasp step.
+struct GraspStepRecord {
+  int step = 0;                    // 1-based
+  int contacts = 0;                // finger-object contacts after the step's last physics step
+  std::vector<bool> touching;      // by GraspResult::segments: those with such a contact then
+  std::uint64_t detection_ns = 0;  // tree query time over the step's physics steps (bridge)
+  std::uint64_t box_tests = 0;
+  std::uint64_t front_skips = 0;  // front pairs kept apart by their gap, untested
+  std::uint64_t triangle_tests = 0;
+  std::uint64_t served_calls = 0;
+  std::uint64_t contained = 0;        // served calls that found a segment wholly inside the object
+  std::uint64_t nonfinite_skips = 0;  // served calls skipped on a non-finite placement
+  double object_z = 0;                // object body height after the step, m
+};
+
+struct GraspResult {
+  std::string scene;
+  bool native = false;
+  std::string method;  // method name, or "native"
+  std::vector<GraspStepRecord> steps;
+  // What "touching" is reported for: the finger segments (finger_segment_names()) on our hands,
+  // the "touch" patterns of the config's "grasp" section on a driven real hand (registry.h).
+  std::vector<std::string> segments;
+  std::vector<int> first_contact;  // by segments: grasp step, -1 when never
+  // Two hand geoms touch the object with opposing contact normals before the lift (see above).
+  bool gripped = false;
+  // Heights are along -gravity (z for gravity along -z), relative to the support body of a
+  // driven real hand (the world on our hands).
+  double object_z_initial = 0;
+  double object_z_gripped = 0;  // after the squeeze and settle
+  double object_z_final = 0;
+  double hold_min_z = 0;  // lowest object height during the final hold
+  double hold_drift = 0;  // largest move of the object relative to the palm in the hold, m
+  bool held = false;
+  double hand_travel = 0;  // the hand's rise from the start of the lift to the end of the hold, m
+  double object_rise = 0;  // the object's over the same time, m
+  double slip_time = -1;   // simulated time at which the object had moved kHeldSlip in the hand
+  std::string reason;      // why not gripped or not held (see above); empty when held
+  // The last second of the hold (or the whole hold when shorter), "at rest": the object's largest
+  // linear speed (m/s), the deepest contact of an object geom (-dist, m; 0 without contacts), and
+  // the whole system's kinetic energy (J, 0.5 qvel^T M qvel) averaged over that window's first
+  // and second halves.
+  double rest_max_speed = 0;
+  double rest_max_penetration = 0;
+  double rest_energy_early = 0;
+  double rest_energy_late = 0;
+  // MuJoCo's warning counters of the grasp's mjData at the end (d->warning[].number): the contact
+  // buffer (nconmax) and the constraint buffer (njmax) were full in this many steps.
+  int contact_buffer_full = 0;
+  int constraint_buffer_full = 0;
+  double sim_time = 0;  // simulated seconds, all phases
+  long physics_steps = 0;
+  double step_wall_ms = 0;  // mean wall time per physics step (mj_step1 + control + mj_step2)
+  std::uint64_t detection_ns_close = 0;  // summed over the closing grasp steps
+  std::uint64_t detection_ns_total = 0;  // all phases
+  int max_contacts = 0;                  // most finger-object contacts in one physics step
+  double mean_contacts = 0;              // finger-object contacts per physics step, all phases
+  int max_pair_contacts = 0;             // most of them one geom pair had in one physics step
+  std::uint64_t contained_calls = 0;     // containment findings over all phases (registry.h)
+  std::uint64_t nonfinite_skips = 0;  // served calls skipped on a non-finite placement, all phases
+  std::uint64_t reused_calls = 0;     // served calls answered by reused contacts, all phases
+  // The registry's warnings (registry.h, Registry::warnings()), one line each.
+  std::vector<std::string> warnings;
+};
+
+// The segment names in record order: finger1_A, finger1_B, ..., finger4_C.
+const std::array<std::string, kFingerSegments>& finger_segment_names();
+
+// The system's kinetic energy, 0.5 qvel^T M qvel with the joint-space inertia of the last step
+// (mj_energyVel's formula; MuJoCo 2.2 fills d->energy only with the energy flag enabled), J.
+double kinetic_energy(const mjModel* m, const mjData* d);
+
+}  // namespace graspcd::grasp
