@@ -1,6 +1,5 @@
 #include "graspcd/grasp/grasp.h"
 
-#include <cctype>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -16,31 +15,13 @@
 
 namespace graspcd::grasp {
 
-// A config's error as a GraspInputError. One that already is (drive_config.h) keeps its file and
-// line; the registry's messages start with the config's name (registry.h), which the
-// GraspInputError carries apart, and a message "CONFIG:LINE: ..." (json_config.h) keeps its line
-// apart too.
+// A config's error as a GraspInputError: the seam's refusals (input_error.h) and the drive
+// config's carry their file and line; anything else is named by the config's path.
 GraspInputError config_error(const std::string& config_path, const std::runtime_error& e) {
   if (const auto* input = dynamic_cast<const GraspInputError*>(&e)) {
     return GraspInputError(input->file(), mujoco::join_lines(input->message()), input->line());
   }
-  std::string message = mujoco::join_lines(e.what());
-  std::size_t line = 0;
-  if (message.rfind(config_path + ":", 0) == 0) {
-    std::size_t at = config_path.size() + 1;
-    std::size_t digits = at;
-    while (digits < message.size() && std::isdigit(static_cast<unsigned char>(message[digits]))) {
-      ++digits;
-    }
-    if (digits > at && message.compare(digits, 2, ": ") == 0) {
-      line = std::stoul(message.substr(at, digits - at));
-      at = digits;
-    }
-    if (message.compare(at, 1, " ") == 0 || message.compare(at, 2, ": ") == 0) {
-      message = message.substr(message.compare(at, 1, " ") == 0 ? at + 1 : at + 2);
-    }
-  }
-  return GraspInputError(config_path, message, line);
+  return GraspInputError(config_path, mujoco::join_lines(e.what()));
 }
 
 namespace {

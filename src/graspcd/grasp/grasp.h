@@ -65,9 +65,9 @@ namespace graspcd::grasp {
 // breaks the scene contract, and for a simulation that goes non-finite (see above).
 GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options = {});
 
-// A pair config's error as a GraspInputError with the file, line and message apart: a
-// GraspInputError of drive_config.h as it is, a std::runtime_error of registry.h or json_config.h
-// (whose message starts "CONFIG: " or "CONFIG:LINE: ") taken apart.
+// A pair config's error as a GraspInputError with the file, line and message apart: the
+// InputError of the pair config, the registry (mujoco/input_error.h) or the drive config as it
+// is, any other std::runtime_error named by `config_path`.
 GraspInputError config_error(const std::string& config_path, const std::runtime_error& e);
 
 }  // namespace graspcd::grasp

@@ -6,14 +6,11 @@
 #include <utility>
 
 #include "graspcd/core/mesh_hygiene.h"
+#include "graspcd/mujoco/input_error.h"
 #include "graspcd/mujoco/primitives.h"
 
 namespace graspcd::mujoco {
 namespace {
-
-[[noreturn]] void fail(const std::string& source, const std::string& message) {
-  throw std::runtime_error(source + ": " + message);
-}
 
 bool collidable(const mjModel* m, int g) {
   return m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0;
@@ -101,10 +98,10 @@ std::vector<int> resolve_pattern(const mjModel* m, const std::string& pattern,
   std::vector<int> out = match_geoms(m, pattern);
   for (int g : out) {
     if (!served_geom_type(m->geom_type[g])) {
-      fail(source, "pattern '" + pattern + "' matches " + unserved_geom(m, g));
+      refuse(source, "pattern '" + pattern + "' matches " + unserved_geom(m, g));
     }
   }
-  if (out.empty()) fail(source, "pattern '" + pattern + "' matches no collidable geom");
+  if (out.empty()) refuse(source, "pattern '" + pattern + "' matches no collidable geom");
   return out;
 }
 
@@ -167,7 +164,7 @@ const MeshTree& GeomTrees::mesh_tree_of(const mjModel* m, int mesh, const std::s
   const std::string mname = object_name(m, mjOBJ_MESH, mesh);
   const std::string what =
       "mesh " + std::to_string(mesh) + (mname.empty() ? "" : " '" + mname + "'");
-  if (tris.empty()) fail(source, what + " has no face of non-zero area");
+  if (tris.empty()) refuse(source, what + " has no face of non-zero area");
   if (!hygiene.dropped_faces.empty()) {
     warn("mesh_zero_area_faces", dropped_faces_message(source, what, hygiene.dropped_faces));
   }
@@ -184,7 +181,7 @@ const MeshTree& GeomTrees::primitive_tree_of(const mjModel* m, int g, const std:
   try {
     shape = tessellate_primitive(m->geom_type[g], m->geom_size + 3 * g);
   } catch (const std::invalid_argument& e) {
-    fail(source, "geom " + std::to_string(g) + ": " + e.what());
+    refuse(source, "geom " + std::to_string(g) + ": " + e.what());
   }
   std::vector<Triangle> tris;
   for (std::size_t f = 0; f < shape.faces.size(); ++f) tris.push_back(shape.triangle(f));

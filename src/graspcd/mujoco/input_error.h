@@ -27,4 +27,10 @@ class InputError : public std::runtime_error {
   std::size_t line_ = 0;
 };
 
+// Refuses a scene or config: throws InputError(file, message, line).
+[[noreturn]] inline void refuse(const std::string& file, const std::string& message,
+                                std::size_t line = 0) {
+  throw InputError(file, message, line);
+}
+
 }  // namespace graspcd::mujoco

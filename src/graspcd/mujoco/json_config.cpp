@@ -4,6 +4,8 @@
 #include <regex>
 #include <stdexcept>
 
+#include "graspcd/mujoco/input_error.h"
+
 namespace graspcd::mujoco {
 namespace {
 
@@ -40,8 +42,7 @@ nlohmann::json parse_json_config(const std::string& text, const std::string& sou
         if (at != std::string::npos) line = line_of(text, at);
       }
     }
-    throw std::runtime_error(source + (line > 0 ? ":" + std::to_string(line) : "") +
-                             ": bad JSON: " + message);
+    refuse(source, "bad JSON: " + message, line);
   }
 }
 

@@ -9,31 +9,28 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "graspcd/mujoco/input_error.h"
 #include "graspcd/mujoco/json_config.h"
 
 namespace graspcd::mujoco {
 namespace {
 
-[[noreturn]] void fail(const std::string& source, const std::string& message) {
-  throw std::runtime_error(source + ": " + message);
-}
-
 // A contact budget of the config: an integer in 1 .. mjMAXCONPAIR (what MuJoCo takes per pair).
 int contact_budget(const nlohmann::json& v, const std::string& field, const std::string& source) {
   if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > mjMAXCONPAIR) {
-    fail(source, "'" + field + "' must be an integer from 1 to " + std::to_string(mjMAXCONPAIR));
+    refuse(source, "'" + field + "' must be an integer from 1 to " + std::to_string(mjMAXCONPAIR));
   }
   return v.get<int>();
 }
 
 // The "pairs" array: one PairPattern per entry, with the entry's own contact budget.
 std::vector<PairPattern> parse_pairs(const nlohmann::json& value, const std::string& source) {
-  if (!value.is_array()) fail(source, "'pairs' must be an array");
+  if (!value.is_array()) refuse(source, "'pairs' must be an array");
   std::vector<PairPattern> out;
   for (const auto& p : value) {
     if (!p.is_object() || !p.contains("a") || !p.contains("b") || !p.at("a").is_string() ||
         !p.at("b").is_string()) {
-      fail(source, "each entry of 'pairs' must be {\"a\": \"pattern\", \"b\": \"pattern\"}");
+      refuse(source, "each entry of 'pairs' must be {\"a\": \"pattern\", \"b\": \"pattern\"}");
     }
     PairPattern pattern{p.at("a").get<std::string>(), p.at("b").get<std::string>(), {}, {}};
     for (const auto& [key, v] : p.items()) {
@@ -42,7 +39,7 @@ std::vector<PairPattern> parse_pairs(const nlohmann::json& value, const std::str
       } else if (key == "max_patch_contacts") {
         pattern.max_patch_contacts = contact_budget(v, "max_patch_contacts", source);
       } else if (key != "a" && key != "b") {
-        fail(source, "unknown field '" + key + "' in an entry of 'pairs'");
+        refuse(source, "unknown field '" + key + "' in an entry of 'pairs'");
       }
     }
     out.push_back(std::move(pattern));
@@ -54,20 +51,20 @@ std::vector<PairPattern> parse_pairs(const nlohmann::json& value, const std::str
 
 RegistryConfig parse_registry_config(const std::string& json_text, const std::string& source) {
   const nlohmann::json j = parse_json_config(json_text, source);
-  if (!j.is_object()) fail(source, "the config must be a JSON object");
+  if (!j.is_object()) refuse(source, "the config must be a JSON object");
   RegistryConfig c;
   const auto positive_int = [&](const char* field) {
     const auto& v = j.at(field);
     if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > (1ll << 30)) {
-      fail(source, std::string("'") + field + "' must be an integer >= 1");
+      refuse(source, std::string("'") + field + "' must be an integer >= 1");
     }
     return v.get<int>();
   };
   for (const auto& [field, value] : j.items()) {
     if (field == "method") {
-      if (!value.is_string()) fail(source, "'method' must be a string");
+      if (!value.is_string()) refuse(source, "'method' must be a string");
       const auto m = parse_method(value.get<std::string>());
-      if (!m) fail(source, "unknown method '" + value.get<std::string>() + "'");
+      if (!m) refuse(source, "unknown method '" + value.get<std::string>() + "'");
       c.method = *m;
     } else if (field == "cap") {
       c.detector.cap = positive_int("cap");
@@ -77,7 +74,7 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
       c.detector.cache_slots = static_cast<std::size_t>(positive_int("cache_slots"));
     } else if (field == "max_depth") {
       if (!value.is_number() || !(value.get<double>() > 0)) {
-        fail(source, "'max_depth' must be a number > 0");
+        refuse(source, "'max_depth' must be a number > 0");
       }
       c.max_depth = value.get<double>();
     } else if (field == "max_contacts") {
@@ -85,12 +82,12 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
     } else if (field == "max_patch_contacts") {
       c.manifold.max_per_patch = contact_budget(value, "max_patch_contacts", source);
     } else if (field == "front_list") {
-      if (!value.is_boolean()) fail(source, "'front_list' must be true or false");
+      if (!value.is_boolean()) refuse(source, "'front_list' must be true or false");
       c.front_list = value.get<bool>();
     } else if (field == "contact_reuse") {
       if (!value.is_number() || !(value.get<double>() >= 0) ||
           !(value.get<double>() <= RegistryConfig::kMaxContactReuse)) {
-        fail(source, "'contact_reuse' must be a number of metres in [0, 0.001]");
+        refuse(source, "'contact_reuse' must be a number of metres in [0, 0.001]");
       }
       c.contact_reuse = value.get<double>();
     } else if (field == "grasp") {
@@ -99,10 +96,10 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
     } else if (field == "pairs") {
       c.patterns = parse_pairs(value, source);
     } else {
-      fail(source, "unknown field '" + field + "'");
+      refuse(source, "unknown field '" + field + "'");
     }
   }
-  if (!j.contains("pairs")) fail(source, "missing field 'pairs'");
+  if (!j.contains("pairs")) refuse(source, "missing field 'pairs'");
   return c;
 }
 
@@ -114,7 +111,7 @@ std::string pair_config_path(const std::string& scene_path) {
 
 RegistryConfig load_registry_config(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open the config file");
+  if (!in) refuse(path, "cannot open the config file");
   std::ostringstream text;
   text << in.rdbuf();
   return parse_registry_config(text.str(), path);

@@ -5,16 +5,10 @@
 #include <stdexcept>
 
 #include "graspcd/core/warnings.h"
+#include "graspcd/mujoco/input_error.h"
 #include "graspcd/mujoco/model_check.h"
 
 namespace graspcd::mujoco {
-namespace {
-
-[[noreturn]] void fail(const std::string& source, const std::string& message) {
-  throw std::runtime_error(source + ": " + message);
-}
-
-}  // namespace
 
 // Resolve every pattern pair and direct geom pair, choose each pair's path, then build one tree per
 // mesh and per primitive (type, size) that a pair served by trees uses (docs/design.md: trees once
@@ -33,9 +27,9 @@ Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::st
 // A model with a non-finite number (MuJoCo compiles a NaN attribute with a warning) is refused
 // here, at construction, never met inside mj_step (model_check.h).
 void Registry::check_model(const std::string& source) const {
-  if (!model_) fail(source, "no model");
+  if (!model_) refuse(source, "no model");
   const std::string non_finite = find_non_finite(model_);
-  if (!non_finite.empty()) fail(source, non_finite);
+  if (!non_finite.empty()) refuse(source, non_finite);
 }
 
 void Registry::add_pattern_pairs(const std::string& source) {
@@ -54,7 +48,7 @@ void Registry::add_pattern_pairs(const std::string& source) {
       }
     }
     if (!any) {
-      fail(source, "pair ('" + p.a + "', '" + p.b + "') selects no pair of distinct geoms");
+      refuse(source, "pair ('" + p.a + "', '" + p.b + "') selects no pair of distinct geoms");
     }
   }
 }
@@ -63,11 +57,11 @@ void Registry::add_geom_pairs(const std::string& source) {
   const mjModel* m = model_;
   for (const auto& [a, b] : config_.geom_pairs) {
     if (a < 0 || b < 0 || a >= m->ngeom || b >= m->ngeom || a == b) {
-      fail(source, "bad geom pair (" + std::to_string(a) + ", " + std::to_string(b) + ")");
+      refuse(source, "bad geom pair (" + std::to_string(a) + ", " + std::to_string(b) + ")");
     }
     for (int g : {a, b}) {
       if (!served_geom_type(m->geom_type[g])) {
-        fail(source, "geom pair member " + unserved_geom(m, g));
+        refuse(source, "geom pair member " + unserved_geom(m, g));
       }
     }
     add_pair(a, b, config_.manifold);
