@@ -19,7 +19,8 @@ namespace graspcd::peer {
 // doubles our trees hold), all contacts: every intersecting triangle pair, as face indices.
 std::unique_ptr<study::Querier> make_fcl_querier(const study::MeshScene& scene, FclBv bv);
 
-// Table 1's peer rows: FCL's OBB tree and its RSS tree, all contacts ("fcl-obb", "fcl-rss").
+// Table 1's peer rows: FCL's OBB tree and its RSS tree, all contacts ("fcl-obb", "fcl-rss"); none
+// in a build without FCL (GRASPCD_WITH_FCL=OFF: fcl_querier_absent.cpp).
 std::vector<study::PeerMethod> fcl_table_methods();
 
 }  // namespace graspcd::peer
