@@ -4,16 +4,13 @@
 #   PREFIX/include/graspcd/core/*.h    included as <graspcd/core/...>
 #   PREFIX/include/graspcd/io/*.h      included as <graspcd/io/...>
 #   PREFIX/include/graspcd/mujoco/*.h  included as <graspcd/mujoco/...>
-#   PREFIX/include/graspcd/bridge/*.h  forwarding headers: the 0.1 include paths "bridge/..." (and
-#                                      "core/...", found under PREFIX/include/graspcd) still compile;
-#                                      removed in 0.3
 #   PREFIX/lib/libgraspcd_core.a       graspcd::core    pure geometry: Eigen, qhull; no MuJoCo
 #   PREFIX/lib/libgraspcd_io.a         graspcd::io      the mesh reader and text grammar
 #   PREFIX/lib/libgraspcd_mujoco.a     graspcd::mujoco  the MuJoCo seam: graspcd::core + MuJoCo
 #   PREFIX/lib/cmake/graspcd/          graspcdConfig.cmake, its version file and the targets
 #   PREFIX/share/graspcd/mjcf/         the template scenes and their meshes, which bin/graspcd finds
 #                                      beside itself (src/graspcd/version/data_dirs.h)
-# so that `find_package(graspcd 0.2 REQUIRED)` gives the three targets. graspcd_exact (CGAL), the
+# so that `find_package(graspcd 0.3 REQUIRED)` gives the three targets. graspcd_exact (CGAL), the
 # grasp experiment and the study are not installed as libraries: CGAL stays out of the installed
 # libraries (the executable links it statically, header-only CGAL with GMP and MPFR).
 include(CMakePackageConfigHelpers)
@@ -33,7 +30,7 @@ install(TARGETS graspcd_core graspcd_io graspcd_mujoco EXPORT graspcdTargets
 install(TARGETS graspcd RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/mjcf/ DESTINATION ${GRASPCD_MJCF_INSTALL_DIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/graspcd/core ${PROJECT_SOURCE_DIR}/src/graspcd/io
-                  ${PROJECT_SOURCE_DIR}/src/graspcd/mujoco ${PROJECT_SOURCE_DIR}/src/compat/bridge
+                  ${PROJECT_SOURCE_DIR}/src/graspcd/mujoco
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/graspcd
         FILES_MATCHING PATTERN "*.h")
 install(EXPORT graspcdTargets NAMESPACE graspcd:: DESTINATION ${GRASPCD_INSTALL_CMAKEDIR})
@@ -41,7 +38,7 @@ install(EXPORT graspcdTargets NAMESPACE graspcd:: DESTINATION ${GRASPCD_INSTALL_
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/graspcdConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/graspcdConfig.cmake
                               INSTALL_DESTINATION ${GRASPCD_INSTALL_CMAKEDIR})
-# 0.x: a request for 0.1 accepts 0.1.y and later 0.x (SameMajorVersion); the API may still change
+# 0.x: a request for 0.3 accepts 0.3.y and later 0.x (SameMajorVersion); the API may still change
 # between minor versions before 1.0 (CHANGELOG.md says when).
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/graspcdConfigVersion.cmake
                                  COMPATIBILITY SameMajorVersion)
