@@ -1,4 +1,4 @@
-// libFuzzer target: the scene path (issue 19). A small fixed MJCF (a mesh finger, a box object on a
+// libFuzzer target: the scene path. A small fixed MJCF (a mesh finger, a box object on a
 // plane, a pair config) whose numeric attributes take their values from the input: line k of the
 // input replaces attribute k of kAttributes (quotes and markup characters dropped, so the XML
 // stays well formed); the lines after them are prepended to the finger's OBJ (a byte-order mark,

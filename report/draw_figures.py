@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Pictures of the grasps and the trees (issue 9), drawn from the trajectory files that
+"""Pictures of the grasps and the trees, drawn from the trajectory files that
 `graspcd study` writes into OUT/trajectories/ (format: src/graspcd/study/trajectory.h).
 
     /usr/bin/python3 report/draw_figures.py TRAJECTORY [TRAJECTORY ...] FIGURES_DIR

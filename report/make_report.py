@@ -1,14 +1,14 @@
 #!/usr/bin/python3
-"""Draws the study's figures and writes REPORT.md from what `graspcd study` wrote (issue 5).
+"""Draws the study's figures and writes REPORT.md from what `graspcd study` wrote.
 
 Usage: /usr/bin/python3 report/make_report.py OUT_DIR
 Reads OUT_DIR/study.json (Table 1, the box hand of Figures 13-15, recordings, machine, build),
 OUT_DIR/sweep.json (the run-time/error sweep, possibly merged from shards) and, if present,
-OUT_DIR/stress.json (`graspcd stress --json`, the numerical stress suite of issue 7) and
-OUT_DIR/perf.json (`./run perf`, graspcd against FCL and MuJoCo, issue 6),
-OUT_DIR/contacts.json (study/contacts_solver.py, what MuJoCo's solver gets, issue 18) and
+OUT_DIR/stress.json (`graspcd stress --json`, the numerical stress suite) and
+OUT_DIR/perf.json (`./run perf`, graspcd against FCL and MuJoCo),
+OUT_DIR/contacts.json (study/contacts_solver.py, what MuJoCo's solver gets) and
 OUT_DIR/race.json, else the cached report/data/race.json (study/race/run_race.py, graspcd
-against the hull and convex decompositions, issue 20), writes
+against the hull and convex decompositions), writes
 OUT_DIR/REPORT.md and OUT_DIR/figures/*.png. Every number in the report comes from those files; the text around a
 number is chosen by comparing numbers, never written in advance.
 
@@ -340,7 +340,7 @@ def stress_section(stress):
     return lines
 
 
-# --- Performance (issue 6): from perf.json of `./run perf` -------------------------------------
+# --- Performance: from perf.json of `./run perf` --------------------------------------------------
 
 PERF_GROUPS = [
     ("obb_test", "One OBB test (65,536 pairs, ns per test)"),
@@ -494,7 +494,7 @@ PERF_TARGETS = [
     ("trajectory", "Along the trajectories, with temporal coherence, at most 0.25x FCL per step"
                    " and FCL's front list"),
     ("mujoco", "mj_step with our callback at most 2x MuJoCo's native collision"),
-    ("grasp", "A served step of a whole grasp at most 2x a native one (issue 18)"),
+    ("grasp", "A served step of a whole grasp at most 2x a native one"),
     ("grasp_reuse", "The same with contacts reused within 20 µm (opt-in)"),
 ]
 
@@ -615,7 +615,7 @@ def contacts_section(contacts):
 
 
 def race_section(race, fig_dir, fig_rel):
-    """The "The race" section from race.json (study/race/run_race.py, issue 20)."""
+    """The "The race" section from race.json (study/race/run_race.py)."""
     lines = []
     w = lines.append
     m = race["machine"]
@@ -1141,8 +1141,8 @@ def main():
     table1_figure(study, fig_dir)
     text = report(study, sweep, fig_dir, args.figures, stress, perf)
     # Sections drawn from optional files of other scripts, each before "## Reproduce":
-    # study/real_models.py (the real hands of ../shared/models, issue 8) and
-    # study/contacts_solver.py (what the solver gets, issue 18).
+    # study/real_models.py (the real hands of ../shared/models) and
+    # study/contacts_solver.py (what the solver gets).
     for name, draw in (("real_models.json", real_models_section),
                        ("contacts.json", contacts_section)):
         data = load(os.path.join(args.out_dir, name), required=False)
@@ -1153,7 +1153,7 @@ def main():
         if at < 0:
             at = len(text)
         text = text[:at].rstrip("\n") + "\n\n" + section + text[at:]
-    # The race (issue 20): OUT_DIR/race.json, else the cached run, report/data/race.json.
+    # The race: OUT_DIR/race.json, else the cached run, report/data/race.json.
     race = load(os.path.join(args.out_dir, "race.json"), required=False)
     if race is None:
         race = load(os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "race.json"),
@@ -1164,7 +1164,7 @@ def main():
         if at < 0:
             at = len(text)
         text = text[:at].rstrip("\n") + "\n\n" + section + text[at:]
-    # The pictures of the grasps and the trees (issue 9), from OUT_DIR/trajectories when present.
+    # The pictures of the grasps and the trees, from OUT_DIR/trajectories when present.
     text = draw_figures.insert_section(text, args.out_dir, fig_dir, args.figures)
     with open(os.path.join(args.out_dir, "REPORT.md"), "w", encoding="utf-8") as f:
         f.write(text)

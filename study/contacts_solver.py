@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""What graspcd hands MuJoCo's solver, per scene (issue 18, "Contacts and the solver").
+"""What graspcd hands MuJoCo's solver, per scene ("Contacts and the solver").
 
 usage: contacts_solver.py GRASPCD OUT_DIR [--quick]
 

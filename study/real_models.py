@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Runs every real-hand scene (mjcf/real_*.xml) and writes report/data/real_models.json (issue 8).
+"""Runs every real-hand scene (mjcf/real_*.xml) and writes report/data/real_models.json.
 
 Per scene: `graspcd grasp --json` REPEATS times (the grasp result, and the detection time per
 closing grasp step of each run: detection_ns_close over the closing steps; the median and min-max

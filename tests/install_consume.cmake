@@ -1,4 +1,4 @@
-# The install-and-consume test (issue 11), run by ctest as `cmake -P` with:
+# The install-and-consume test, run by ctest as `cmake -P` with:
 #   BUILD_DIR     the build folder of the running ctest (its libraries are what gets installed)
 #   SOURCE_DIR    the repository (the example and the scene)
 #   WORK_DIR      a scratch folder, emptied first: WORK_DIR/prefix and WORK_DIR/example

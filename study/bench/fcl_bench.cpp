@@ -1,7 +1,7 @@
 // Our tree query against FCL on the same coherent pose sequences: ns per mesh-mesh query for
 // graspcd (sat, sat-cached; all contacts and first contact) and FCL 0.7 (OBB and RSS trees, the
 // same two modes), and the time to build each tree. Compare within one run, as ratios.
-// Bullet's GImpact is the second peer (issue 20): btGImpactMeshShape against btGImpactMeshShape,
+// Bullet's GImpact is the second peer: btGImpactMeshShape against btGImpactMeshShape,
 // double precision, margins 0 (src/graspcd/peer/gimpact_peer.h), on the same meshes and poses;
 // "cgal_disagree" counts its answers (and everyone's) that differ from CGAL's exact one.
 //

@@ -239,7 +239,7 @@ void BM_NoopDelegated(benchmark::State& state) {
   mjCOLLISIONFUNC[mjGEOM_MESH][mjGEOM_MESH] = saved;
 }
 
-// Whole grasps, as users run them (issue 18): the scene's grasp (close, squeeze, settle, lift,
+// Whole grasps, as users run them: the scene's grasp (close, squeeze, settle, lift,
 // hold; graspcd/grasp/grasp.h) from its start, every physics step in sequence, served or native.
 // The time is the grasp driver's wall clock of its physics steps alone (mj_step1, control,
 // mj_step2; GraspResult::step_wall_ms), so loading the model and building the trees are not in

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Turns the Google Benchmark JSON of `./run perf` into perf.json: medians, min and max over the
-repetitions of every benchmark, and every comparison of issue 6 as a ratio of ours to the peer
-measured in the same run, with its target and whether it is met.
+repetitions of every benchmark, and every comparison of docs/performance.md as a ratio of ours to
+the peer measured in the same run, with its target and whether it is met.
 
 Usage: /usr/bin/python3 study/bench/perf_summary.py FCL_BENCH.json MUJOCO_BENCH.json > perf.json
 
@@ -162,7 +162,7 @@ def main():
     # MuJoCo: mj_step of the triangle hand with our callback against MuJoCo's own collision.
     add(compare(runs, "mujoco", "mj_step, triangle hand, served pairs by graspcd",
                 "BM_StepServed", "BM_StepPlain", 2.0))
-    # Whole grasps (issue 18): consecutive physics steps, served against native, target 2x.
+    # Whole grasps: consecutive physics steps, served against native, target 2x.
     for name in sorted(runs):
         parts = name.split("/")
         if parts[0] != "BM_WholeGrasp" or parts[2] != "served":

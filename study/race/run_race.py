@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The race of issue 20: graspcd against the routes MuJoCo users are told to take, on the same grasps.
+"""The race: graspcd against the routes MuJoCo users are told to take, on the same grasps.
 
 usage: run_race.py GRASPCD [--out FILE] [--work DIR] [--scenes S1,S2,...] [--pieces 4,8,16]
                    [--object "NAME=FILE [grasp --object options]"]... [--scene-pieces S=4,8 ...]

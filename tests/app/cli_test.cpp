@@ -675,7 +675,7 @@ std::string user_box_in_metres() {
   return out.str();
 }
 
-// Issue 21: --object keeps the file's units (metres) unless told, and says so on the first line.
+// --object keeps the file's units (metres) unless told, and says so on the first line.
 TEST_F(CliTest, GraspObjectKeepsTheFilesUnitsByDefault) {
   const std::string box = write("box_m.obj", user_box_in_metres());
   const Result r = run("grasp --object " + box + " --max-steps 2 --json");
@@ -688,7 +688,7 @@ TEST_F(CliTest, GraspObjectKeepsTheFilesUnitsByDefault) {
   EXPECT_NEAR(doc["object"]["size"][2].get<double>(), 0.06, 1e-12);
 }
 
-// The start-state check (issue 21): an object that starts inside the fingers, or sunk into the
+// The start-state check: an object that starts inside the fingers, or sunk into the
 // floor, is bad input: one line naming the file, exit 2, nothing on stdout.
 TEST_F(CliTest, GraspRefusesAnObjectThatStartsInsideTheHandOrTheFloor) {
   // The millimetre box at twice its size, 10 x 8 x 12 cm: wider than the open hand.
@@ -962,7 +962,7 @@ TEST_F(CliTest, GraspHelpDocumentsTheOutput) {
   EXPECT_NE(r.out.find("--native"), std::string::npos) << r.out;
 }
 
-// --- Issue 19: hostile input at the seams between graspcd, MuJoCo and the files -----------------
+// --- Hostile input at the seams between graspcd, MuJoCo and the files ----------------------------
 
 // A unit cube (12 faces) in an OBJ, 8 vertices; `first` replaces the first vertex line.
 std::string cube_obj(const std::string& first = "v 0 0 0") {
@@ -972,7 +972,7 @@ std::string cube_obj(const std::string& first = "v 0 0 0") {
          "f 3 8 7\nf 4 1 5\nf 4 5 8\n";
 }
 
-// Issue 21: meshpair's table as one JSON document, the same answers as the text, with the
+// Meshpair's table as one JSON document, the same answers as the text, with the
 // mesh hygiene warning (tagged "mesh", its face counted from 1 in the file) in the envelope.
 TEST_F(CliTest, MeshpairPrintsItsTableAsJson) {
   const std::string a = write("a.obj", cube_obj() + "f 1 2 1\n");  // a 13th face of zero area

@@ -1,4 +1,4 @@
-// `graspcd decompose`, `graspcd grasp --decomposed` and `graspcd validate --decomposed` (issue 20)
+// `graspcd decompose`, `graspcd grasp --decomposed` and `graspcd validate --decomposed`
 // through the executable: the pieces are convex, the MJCF fragment and the decomposed scene load
 // in MuJoCo 2.2, validate checks the true meshes at the decomposed grasp's poses, bad input is
 // one line with exit code 2.

@@ -121,7 +121,7 @@ TEST(Orient3d, ExtremeButSupportedMagnitudes) {
 namespace graspcd::predicates {
 namespace {
 
-// Issue 19, item 1: a NaN or infinite coordinate has no orientation. Every predicate answers 0 at
+// A NaN or infinite coordinate has no orientation. Every predicate answers 0 at
 // once, the exact variants included, and never fills an expansion with NaN.
 TEST(Predicates, NonFiniteCoordinatesAnswerZeroWithoutExpansions) {
   const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);

@@ -267,7 +267,7 @@ TEST(TriTriReferenceVariants, PlainMollerMissesTouchingPairs) {
 namespace graspcd {
 namespace {
 
-// Issue 19, item 1: a triangle with a NaN or infinite coordinate is no set of points; both exact
+// A triangle with a NaN or infinite coordinate is no set of points; both exact
 // tests say "disjoint" at once, whatever the other coordinates, without exact arithmetic.
 TEST(TriTriNonFinite, ATriangleWithANanOrInfIntersectsNothing) {
   const Triangle t1{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}};

@@ -152,7 +152,7 @@ TEST(NativeGrasp, OnTheCBlockFinger2TouchesLaterWithOurDetector) {
               k_native);
   EXPECT_GT(k_native, 0);
   EXPECT_GT(k_ours, k_native + 5);
-  // The opening stays open with the contact manifold (issue 18): the hull says 55.
+  // The opening stays open with the contact manifold: the hull says 55.
   EXPECT_GE(k_ours, 150);
 }
 

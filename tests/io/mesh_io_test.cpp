@@ -223,7 +223,7 @@ TEST_F(MeshIoTest, ObjErrors) {
 
 // tinyobjloader alone reads "nan" and other words as 0 and "1e999" as inf, without a line; the
 // loader reads every vertex line with the command line's grammar first (mesh_io.h).
-// Issue 19, item 3: a UTF-8 byte-order mark hid the first vertex from both OBJ readers, and every
+// A UTF-8 byte-order mark hid the first vertex from both OBJ readers, and every
 // face then named the next vertex (meshpair answered "1 11" where the file without it gives "0 0").
 TEST_F(MeshIoTest, ObjByteOrderMarkIsRefusedAtLineOne) {
   const std::string cube =

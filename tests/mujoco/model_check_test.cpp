@@ -1,4 +1,4 @@
-// A model with a non-finite number (issue 19, item 5): MuJoCo compiles `pos="nan 0 0"` with only a
+// A model with a non-finite number: MuJoCo compiles `pos="nan 0 0"` with only a
 // warning; find_non_finite names it, and NonconvexContacts refuses it from its constructor, before
 // anything is installed, never from inside mj_step.
 #include "graspcd/mujoco/model_check.h"

@@ -1,4 +1,4 @@
-// NonconvexContacts, the public entry point (issue 11): it attaches its registry and installs the
+// NonconvexContacts, the public entry point: it attaches its registry and installs the
 // collision function for as long as it lives, counts installs across instances, leaves a
 // program's own install alone, installs nothing when the config is bad, and its statistics are
 // the served pairs' work of each step.

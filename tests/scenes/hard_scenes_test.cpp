@@ -1,4 +1,4 @@
-// Hard scenes (issue 18, "Stable under impact"), each run with graspcd serving its pairs and with
+// Hard scenes ("Stable under impact"), each run with graspcd serving its pairs and with
 // MuJoCo's own collision, the scenes' solref/solimp and buffer sizes as shipped (never raised to
 // pass):
 // - the hand of the hold scenes (below) driven by plain PD torques (no model of the plant) towards

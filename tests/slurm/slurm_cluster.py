@@ -1,4 +1,4 @@
-"""A real one-node Slurm cluster for the tests (issue 22), started and stopped by the test itself.
+"""A real one-node Slurm cluster for the tests, started and stopped by the test itself.
 
 SlurmCluster(root) writes a private MUNGE key and a slurm.conf under `root`, starts munged,
 slurmctld and slurmd in the foreground as children of the test (no init script, no systemd, no

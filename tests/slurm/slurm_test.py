@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The study's sweep and an object set through a real Slurm cluster (issue 22).
+"""The study's sweep and an object set through a real Slurm cluster.
 
 Usage: slurm_test.py GRASPCD SOURCE_DIR WORK_DIR MODELS_DIR
 

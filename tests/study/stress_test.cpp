@@ -1,4 +1,4 @@
-// The stress suite (issue 7): a reduced run keeps every method's contract (no false separation,
+// The stress suite: a reduced run keeps every method's contract (no false separation,
 // false overlaps inside their band), every class really holds both truths (so the contract could
 // fail), a deliberately broken separator is caught, the cases are deterministic, and the command
 // line prints the table and JSON with the right exit codes.

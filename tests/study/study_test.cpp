@@ -1,4 +1,4 @@
-// The study driver (issue 5): the quick study as a smoke test of the report's files and of the
+// The study driver: the quick study as a smoke test of the report's files and of the
 // answer hashes, the sweep's shards against one unsharded run, bad options, and the error counts
 // of replay.h on fabricated answers.
 #include "graspcd/study/study.h"
@@ -112,7 +112,7 @@ TEST_F(StudyTest, QuickStudyWritesTheReportAndEveryMethodAgreesWithCgal) {
     ASSERT_TRUE(fs::exists(png)) << f;
     EXPECT_EQ(read_file(png).substr(1, 3), "PNG") << f;
   }
-  // The pictures (issue 9): a trajectory file per grasp, drawn into the report's own section.
+  // The pictures: a trajectory file per grasp, drawn into the report's own section.
   const json traj = load(out / "trajectories" / "example1.json");
   EXPECT_EQ(traj["grasp_steps"], rec["grasp_steps"]);
   EXPECT_EQ(traj["times_ns"].size(), study["table1"]["methods"].size())

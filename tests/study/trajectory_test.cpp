@@ -1,4 +1,4 @@
-// Trajectory files (issue 9): the OBB levels cover their mesh, a recorded grasp written as a
+// Trajectory files: the OBB levels cover their mesh, a recorded grasp written as a
 // trajectory keeps its poses, contacts and times, `graspcd trajectory` and its errors, and
 // report/draw_figures.py draws the report's pictures from such files.
 #include "graspcd/study/trajectory.h"

@@ -1,4 +1,4 @@
-// graspcd validate (issue 10): every method agrees with CGAL on the shipped scenes; a deliberately
+// graspcd validate: every method agrees with CGAL on the shipped scenes; a deliberately
 // broken detector is caught with its first step, and the files written for that step reproduce
 // both its answer and CGAL's through `graspcd meshpair`; the command line's table, JSON and errors.
 #include "graspcd/study/validate.h"
@@ -80,8 +80,8 @@ TesterSpec broken_tester() {
   return spec;
 }
 
-// The methods checked per scene, at their default settings, within the suite's time budget (the
-// closing note of issue 10 and docs/ give the full --all-methods tables):
+// The methods checked per scene, at their default settings, within the suite's time budget (docs/
+// give the full --all-methods tables):
 // - every method on the box hand (its box pairs are cheap);
 // - on the triangle scenes, every method but the perceptron-alone ones on every scene, and those
 //   (seconds to minutes per grasp at their cap of 1,500) on example 1, perceptron-scaled also on
@@ -312,7 +312,7 @@ TEST_F(ValidateTest, UsersOwnSceneWithANewObject) {
       << r.out;
 }
 
-// Issue 21: a validation in which nothing touched says so and warns, instead of a bare "no missed
+// A validation in which nothing touched says so and warns, instead of a bare "no missed
 // collision"; --max-steps is the option's name (--steps stays an alias); nothing is written into
 // the current folder without --out.
 TEST_F(ValidateTest, AValidationWithNoContactToCheckSaysSoAndWarns) {
@@ -378,7 +378,7 @@ TEST_F(ValidateTest, CommandPrintsTheTableAndJsonAndExitsZeroOnTheBoxHand) {
   EXPECT_GT(truth, 0) << "the box hand touches";
 }
 
-// Issue 22: validate --objects DIR. Every OBJ/STL under DIR (recursively, any case) goes through
+// Validate --objects DIR. Every OBJ/STL under DIR (recursively, any case) goes through
 // the --object workflow, one row each; a bad object is a refused row naming its file and line,
 // and one warning line on stderr, while the others are checked; the exit code is 1 for a missed
 // or false collision, else 2 for a refused object, else 0; the shards of the set merge into the

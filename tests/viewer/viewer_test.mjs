@@ -1,4 +1,4 @@
-// The viewer in a real browser (issue 9): Debian's chromium, headless, driven by playwright-core
+// The viewer in a real browser: Debian's chromium, headless, driven by playwright-core
 // (report/viewer-src/package.json; `npm ci` there, which ./run does). Run by ctest as
 //   node viewer_test.mjs GRASPCD SOURCE_DIR WORK_DIR
 // It records example 1 with `graspcd trajectory`, bundles the page with build.mjs, opens it from

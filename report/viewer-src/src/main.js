@@ -1,4 +1,4 @@
-// graspcd's trajectory viewer (issue 9): plays a grasp recorded by `graspcd study` or
+// graspcd's trajectory viewer: plays a grasp recorded by `graspcd study` or
 // `graspcd trajectory` (study/driver/trajectory.h has the file format) with three.js.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';

@@ -1,5 +1,5 @@
 // The distance from points to a triangle surface, by CGAL's AABB tree (the judge of where a
-// contact point lies, issue 20's race), and the face nearest a point (decompose --simplify). This
+// contact point lies, the race), and the face nearest a point (decompose --simplify). This
 // header does not include CGAL.
 #pragma once
 

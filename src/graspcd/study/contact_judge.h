@@ -1,4 +1,4 @@
-// The race's judge (issue 20, docs/design.md "The race"): each contact a grasp hands to MuJoCo's
+// The race's judge (docs/design.md "The race"): each contact a grasp hands to MuJoCo's
 // solver, whatever made it (graspcd's manifold, MuJoCo on the hull, MuJoCo on convex pieces),
 // judged against the true meshes by the exact module at the same poses.
 #pragma once

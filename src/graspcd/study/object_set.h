@@ -1,4 +1,4 @@
-// `graspcd validate --objects DIR` (issue 22): a set of objects checked against CGAL, one row per
+// `graspcd validate --objects DIR`: a set of objects checked against CGAL, one row per
 // object. Every OBJ and STL file under DIR (searched recursively, the extension in any case,
 // sorted by its path relative to DIR) goes through the `grasp --object` workflow
 // (grasp/object_scene.h): placed in the template hand's scene with the same placement options

@@ -1,5 +1,5 @@
-// The study's grasp recordings and the pairs it replays them on (issue 5: "record each grasp
-// once, then replay its poses for each method").
+// The study's grasp recordings and the pairs it replays them on ("record each grasp once,
+// then replay its poses for each method").
 //
 // A Recording is one run of the grasp of paper section 9 (bridge/grasp.h) with the poses of every
 // geom after each closing grasp step (docs/design.md "Semantics": detection is measured per grasp

@@ -1,4 +1,4 @@
-// Timed replays of recorded grasps (issue 5): every method answers the same queries, the poses of a
+// Timed replays of recorded grasps: every method answers the same queries, the poses of a
 // Recording, and is timed per grasp step; its answers are kept and hashed so that a timing run also
 // proves that the methods agreed, and compared with CGAL's ground truth (src/graspcd/exact) for the
 // error sweep.
@@ -88,7 +88,7 @@ ReplayStats replay(const MeshScene& scene, const std::vector<Pose>& poses, int s
 // CGAL's answers (exact::mesh_mesh_pairs, all pairs) on the same doubles: the ground truth.
 Answers exact_answers(const MeshScene& scene, const Recording& recording);
 
-// Errors of `answers` against `truth` (issue 5, item 3).
+// Errors of `answers` against `truth`.
 struct ErrorStats {
   std::uint64_t missed = 0;  // (step, pair) the truth says intersect, the method not
   std::uint64_t false_contacts = 0;

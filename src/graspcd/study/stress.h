@@ -1,4 +1,4 @@
-// `graspcd stress` (issue 7, part 1): the numerical stress suite. Seeded classes of box pairs and
+// `graspcd stress`: the numerical stress suite. Seeded classes of box pairs and
 // triangle pairs at the edges of double precision (sizes 1e-4 to 1e4 m, 1e-3 to 1e5 m from the
 // origin, near-parallel faces and edges at 1e-12 to 1e-3 rad, coplanar and near-coplanar
 // triangles, slivers of aspect 1e6, zero-area triangles and repeated vertices, touching pairs and

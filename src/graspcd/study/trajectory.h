@@ -1,4 +1,4 @@
-// Trajectory files (issue 9): one recorded grasp as the viewer (report/viewer-src) and the
+// Trajectory files: one recorded grasp as the viewer (report/viewer-src) and the
 // figures (report/draw_figures.py) read it, in JSON.
 //
 //   meshes    once, in their geom frames (MuJoCo's recentred vertices, its faces)

@@ -1,4 +1,4 @@
-// `graspcd validate` (issue 10): a scene's grasp, checked at every closing grasp step against
+// `graspcd validate`: a scene's grasp, checked at every closing grasp step against
 // CGAL. Each registered pair's answer (intersect or not) and its set of intersecting triangle
 // pairs, for every method asked for, is compared with CGAL's exact brute force over the same
 // triangles in the same pose (exact::mesh_mesh_pairs; for box-box pairs exact::box_box_overlap).
