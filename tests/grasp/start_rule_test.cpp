@@ -54,6 +54,9 @@ class StartRule : public testing::TempDirTest {
     GraspOptions o;
     o.native = native;
     o.max_steps = 5;
+    o.settle_time = 0.05;
+    o.lift_time = 0.05;
+    o.hold_time = 0.05;
     return o;
   }
 
