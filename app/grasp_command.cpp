@@ -135,11 +135,13 @@ void print_text(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
   }
   out << '\n';
   out << std::setprecision(4) << "# gripped " << (r.gripped ? "yes" : "no") << "; held "
-      << (r.held ? "yes" : "no") << (r.reason.empty() ? "" : ": " + r.reason) << "; object z "
-      << r.object_z_initial << " -> " << r.object_z_gripped << " (before the lift) -> "
-      << r.object_z_final << " m (final), rose " << r.object_rise << " m of the hand's "
-      << r.hand_travel << " m, lowest " << r.hold_min_z << " m and drift " << r.hold_drift
-      << " m in the hold\n";
+      << (r.held ? "yes" : "no") << (grasp::tilt_note(r).empty() ? "" : ", " + grasp::tilt_note(r))
+      << (r.reason.empty() ? "" : ": " + r.reason) << "; object z " << r.object_z_initial << " -> "
+      << r.object_z_gripped << " (before the lift) -> " << r.object_z_final << " m (final), rose "
+      << r.object_rise << " m of the hand's " << r.hand_travel << " m, lowest " << r.hold_min_z
+      << " m and drift " << r.hold_drift << " m in the hold; grip point rose " << r.grip_rise
+      << " m; tilt " << r.tilt_final_deg << " deg final, " << r.tilt_deg << " deg largest; fastest "
+      << r.max_speed << " m/s\n";
   out << "# detection ns " << r.detection_ns_close << " closing, " << r.detection_ns_total
       << " total; " << r.physics_steps << " physics steps, " << std::setprecision(2) << r.sim_time
       << " s simulated, " << std::setprecision(4) << r.step_wall_ms << " ms per physics step; "
@@ -204,6 +206,14 @@ void print_json(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
       {"object_z_final", r.object_z_final},
       {"hold_min_z", r.hold_min_z},
       {"hold_drift", r.hold_drift},
+      {"grip_rise", r.grip_rise},
+      {"tilt_deg", r.tilt_deg},
+      {"tilt_final_deg", r.tilt_final_deg},
+      {"max_speed", r.max_speed},
+      {"ejected", r.ejected ? nlohmann::json{{"t", r.ejected->time},
+                                             {"speed", r.ejected->speed},
+                                             {"cause", r.ejected->cause}}
+                            : nlohmann::json()},
       {"detection_ns_close", r.detection_ns_close},
       {"detection_ns_total", r.detection_ns_total},
       {"physics_steps", r.physics_steps},
@@ -391,7 +401,9 @@ Command add_grasp_command(CLI::App& parent) {
       "(0 with --native), the box and triangle tests, the object's height in m, and the "
       "segments in contact (comma-separated, '-' for none). Then three summary lines starting "
       "with '#': the first-contact grasp step of each segment ('-' for never); 'gripped yes|no; "
-      "held yes|no[: REASON]' with the object's heights, its rise and the hand's travel; the "
+      "held yes[, tilted N°]|no[: REASON]' (REASON 'ejected at t = T s (S m/s)' for an object "
+      "thrown out, bridge/grasp.h) with the object's heights, its rise and the hand's travel, "
+      "its grip point's rise, its tilt since the lift (final and largest) and its top speed; the "
       "detection time of the closing steps and of the whole "
       "run, the physics steps, simulated seconds and wall ms per physics step, the "
       "containment findings (served calls whose surfaces did not meet but a segment lay wholly "
@@ -406,7 +418,11 @@ Command add_grasp_command(CLI::App& parent) {
       "object_z, segments), first_contact (segment -> step or null), gripped, held, reason "
       "(null when held), object_rise and hand_travel (m, from the start of the lift to the end "
       "of the hold), slip_time (s, or null), "
-      "object_z_initial, object_z_gripped, object_z_final, hold_min_z, hold_drift, "
+      "object_z_initial, object_z_gripped, object_z_final, hold_min_z, hold_drift, grip_rise "
+      "(m, the rise of the object's grip point), tilt_deg and tilt_final_deg (the object's "
+      "rotation since the start of the lift: the largest and the final, degrees), max_speed "
+      "(the object's top speed, m/s), ejected ({t, speed, cause}: when, how fast and why the "
+      "object was seen thrown out, cause speed, below or away; null when not), "
       "detection_ns_close, detection_ns_total, physics_steps, sim_time, ms_per_physics_step, "
       "max_contacts, mean_contacts (finger-object contacts per physics step), max_pair_contacts "
       "(the most one geom pair had in a step), rest (the hold's last second: the object's "
@@ -417,11 +433,19 @@ Command add_grasp_command(CLI::App& parent) {
       "Verdicts: before the grasp, the start state is checked: an object that penetrates the "
       "hand, a finger or its support by more than 0.5 mm, or lies wholly inside one (or one "
       "inside it), is bad input (one line 'SCENE: the start state is not valid: ...', exit code "
-      "2). Gripped: just before the lift, two hand geoms touch the object with opposing contact "
-      "normals (negative dot product). Held: gripped, the object rose at least 80% of the "
-      "hand's travel, and it moved less than 1 cm in the hand during the hold. Otherwise "
-      "REASON says why: 'no segment reached the object', 'no two touching segments push from "
-      "opposing sides', 'slipped at t = T s', 'rose X cm of the hand's Y cm travel'. "
+      "2). With --native and --decomposed the meshes are also checked as the convex hulls MuJoCo "
+      "collides: a hull that holds another geom by more than 0.5 mm is refused as a limit of the "
+      "hull (or the pieces), not of the scene ('SCENE: cannot start with --native: MuJoCo "
+      "collides mesh 'M' as its convex hull, which geom 'G' lies D mm inside at the start (...)', "
+      "exit code 2). Gripped: just before the lift, two hand geoms touch the object with opposing "
+      "contact normals (negative dot product). Held: gripped, not ejected, the object's grip "
+      "point (the mean of its contacts with the hand before the lift) rose at least 80% of the "
+      "hand's travel, and the object moved less than 1 cm in the hand during the hold; a held "
+      "object turned 2 degrees or more since the lift is 'held yes, tilted N°'. Ejected: faster "
+      "than 2 m/s, more than twice its reach below its start, or out of the scene. Otherwise "
+      "REASON says why: 'ejected at t = T s (S m/s)', 'no segment reached the object', 'no two "
+      "touching segments push from opposing sides', 'slipped at t = T s', 'its grip rose X cm "
+      "of the hand's Y cm travel'. "
       "--require-held: exit code 1 when not held.\n"
       "Warnings: the pair registry's findings that do not stop the grasp (a served geom with a "
       "margin, an open mesh inside which containment is not checked), one line 'warning: "

@@ -1,13 +1,19 @@
 // grasp/start_check.h on small scenes: a cube object (closed OBJ, 2 cm) resting on a floor, sunk
-// into it, inside a box "finger", wholly inside one, and a finger wholly inside a large object.
+// into it, inside a box "finger", wholly inside one, and a finger wholly inside a large object;
+// and a ring with a finger through its hole, which the true mesh lets start but its convex hull
+// (native collision) does not, nor the hulls of the ring cut in two halves (a decomposition's
+// pieces), while the hulls of its quarters do.
 #include "graspcd/grasp/start_check.h"
 
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <cmath>
 #include <string>
+#include <utility>
 
 #include "graspcd/core/warnings.h"
+#include "support/ring_mesh.h"
 #include "support/temp_dir.h"
 
 namespace graspcd::grasp {
@@ -89,6 +95,63 @@ TEST_F(StartCheckTest, ObjectsWhollyInsideEitherWayAreRefused) {
   // A 5 mm finger in a 10 cm cube.
   EXPECT_EQ(check(0.05, "0 0 0.0504", "0 0 0.05", "0.0025 0.0025 0.0025"),
             "geom 'finger' lies wholly inside the object (geom 'cube' of the object)");
+}
+
+class RingStartTest : public testing::TempDirTest {
+ protected:
+  // The ring (r_in 2 cm, r_out 3 cm, 2 cm tall) as the object, in `pieces` pieces (meshes
+  // ring__piece_K, the names graspcd grasp --decomposed gives them; 1: the whole ring, mesh
+  // 'ring'), and a box finger 8 x 8 x 40 mm through its hole. Returns check_start_state's and
+  // check_hull_start's messages.
+  std::pair<std::string, std::string> check(int pieces) {
+    const double kTwoPi = 2 * std::acos(-1.0);
+    std::string assets, geoms;
+    for (int k = 0; k < pieces; ++k) {
+      const std::string name = pieces == 1 ? "ring" : "ring__piece_" + std::to_string(k);
+      write(name + ".obj", testing::ring_obj(0.02, 0.03, 0.01, kTwoPi * k / pieces,
+                                             kTwoPi * (k + 1) / pieces, 32 / pieces));
+      assets += "<mesh name=\"" + name + "\" file=\"" + name + ".obj\"/>";
+      geoms += "<geom name=\"" + name + "\" type=\"mesh\" mesh=\"" + name + "\"/>";
+    }
+    const std::string scene =
+        write("ring.xml", "<mujoco><compiler meshdir=\".\"/><asset>" + assets +
+                              "</asset><worldbody><body name=\"finger\"><geom name=\"finger\" "
+                              "type=\"box\" size=\"0.004 0.004 0.02\"/></body>"
+                              "<body name=\"object\"><freejoint/>" +
+                              geoms + "</body></worldbody></mujoco>");
+    char error[1000] = "";
+    mjModel* m = mj_loadXML(scene.c_str(), nullptr, error, sizeof error);
+    EXPECT_NE(m, nullptr) << error;
+    if (m == nullptr) return {"no model", "no model"};
+    mjData* d = mj_makeData(m);
+    mj_forward(m, d);
+    const int object = mj_name2id(m, mjOBJ_BODY, "object");
+    std::pair<std::string, std::string> out{check_start_state(m, d, object),
+                                            check_hull_start(m, d, object)};
+    mj_deleteData(d);
+    mj_deleteModel(m);
+    return out;
+  }
+};
+
+TEST_F(RingStartTest, AFingerThroughTheHoleStartsOnTheTrueMeshButNotInsideTheHull) {
+  const auto [truth, hull] = check(1);
+  EXPECT_EQ(truth, "");
+  // The finger's edges lie inside the hull (a 32-gon prism) up to its top and bottom, 10 mm away.
+  EXPECT_EQ(hull,
+            "MuJoCo collides mesh 'ring' as its convex hull, which geom 'finger' lies 10.0 mm "
+            "inside at the start");
+}
+
+TEST_F(RingStartTest, PiecesAreCheckedByTheirOwnHulls) {
+  // Quarters: each hull reaches 14 mm from the axis, the finger's corners 5.7 mm.
+  EXPECT_EQ(check(4), std::make_pair(std::string(), std::string()));
+  // Halves: each hull is closed by the plane through the axis, which the 8 mm finger crosses.
+  const auto [truth, hull] = check(2);
+  EXPECT_EQ(truth, "");
+  EXPECT_EQ(hull,
+            "MuJoCo collides mesh 'ring__piece_0' as its convex hull, which geom 'finger' lies "
+            "4.0 mm inside at the start");
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "graspcd/grasp/decomposed_pieces.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
 
@@ -46,15 +47,5 @@ DecomposedScene write_decomposed_scene(const std::string& scene_path,
 GraspResult run_decomposed_grasp(const std::string& scene_path,
                                  const std::string& decomposition_dir, GraspOptions options,
                                  DecomposedScene* written = nullptr);
-
-// Whether geom `g` of a model compiled from a written scene is one of the pieces (its mesh asset
-// is named MESH__piece_K, whether the geom has a name or not).
-bool is_piece(const mjModel* m, int g);
-
-// A copy of `m` (compiled from a written scene) with the object as it was: every piece out of
-// collision (contype = conaffinity = 0) and every replaced geom colliding again as its pieces did.
-// Geom ids are `m`'s, so a registry built on the copy checks the true meshes at the poses of a
-// grasp run on `m` (validate --decomposed).
-mujoco::ModelPtr true_object_model(const mjModel* m);
 
 }  // namespace graspcd::grasp

@@ -32,6 +32,7 @@ class DrivenRun : public HandRun {
   void advance() override;
   double object_height() const override { return height_of(object_); }
   double hand_height() const override { return height_of(hand_); }
+  std::array<double, 3> up() const override { return up_; }
   int support_root() const override;
   void begin_grasp_step(int k) override;
   void grasp_step_targets(int, int) override {}

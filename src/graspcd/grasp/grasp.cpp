@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "graspcd/grasp/decomposed_pieces.h"
 #include "graspcd/grasp/drive_config.h"
 #include "graspcd/grasp/driven_run.h"
 #include "graspcd/grasp/grasp_run.h"
@@ -26,11 +27,26 @@ GraspInputError config_error(const std::string& config_path, const std::runtime_
 
 namespace {
 
-// The start-state check (start_check.h) as bad input naming the scene.
-void throw_if_bad_start(const mjModel* m, const mjData* d, int object, const std::string& scene) {
-  const std::string problem = check_start_state(m, d, object);
+// The start rule (grasp.h, start_check.h) as bad input naming the scene: the scene itself, its
+// object's true meshes (for a decomposed scene, the model with the object as it was) checked by
+// check_start_state; then, under native collision, the geometry MuJoCo collides (the hulls of
+// the meshes, or of the pieces) by check_hull_start.
+void throw_if_bad_start(const mjModel* m, const mjData* d, int object, const std::string& scene,
+                        bool native) {
+  bool decomposed = false;
+  for (int g = 0; g < m->ngeom && !decomposed; ++g) decomposed = is_piece(m, g);
+  const mujoco::ModelPtr truth = decomposed ? true_object_model(m) : nullptr;
+  const std::string problem = check_start_state(decomposed ? truth.get() : m, d, object);
   if (!problem.empty()) {
     throw GraspInputError(scene, "the start state is not valid: " + problem);
+  }
+  if (!native) return;
+  const std::string hull = check_hull_start(m, d, object);
+  if (!hull.empty()) {
+    throw GraspInputError(scene, std::string("cannot start with ") +
+                                     (decomposed ? "--decomposed" : "--native") + ": " + hull +
+                                     " (a limit of the " + (decomposed ? "pieces" : "hull") +
+                                     ", not of the scene; graspcd's contacts start this scene)");
   }
 }
 
@@ -115,7 +131,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
     run = std::make_unique<GraspRun>(m, d, registry.get(), options, scene_path);
   }
   mj_forward(m, d);
-  throw_if_bad_start(m, d, run->object(), scene_path);
+  throw_if_bad_start(m, d, run->object(), scene_path, options.native);
   if (registry) registry->reset_stats();
   run->run(options, result);
   attached.release();

@@ -27,18 +27,41 @@
 //      wrist rises by lift_height and the hand keeps its orientation (arm2 + arm3 = 0).
 //   4. Hold `hold_time` s.
 //
-// Before phase 1 the start state is checked (start_check.h): an object that starts inside the
-// hand, a finger or its support (by more than 0.5 mm), or wholly inside one, is bad input
-// (GraspInputError naming the scene). The verdicts (docs/design.md, "Semantics"):
+// Before phase 1 the start state is checked (start_check.h), against the geometry each
+// configuration collides. First the scene itself, on the true meshes (for --decomposed, the
+// object as it was): an object that starts inside the hand, a finger or its support (by more than
+// 0.5 mm), or wholly inside one, is bad input (GraspInputError naming the scene, "the start state
+// is not valid: ..."). Then, under native collision (--native, --decomposed), the meshes as
+// MuJoCo collides them, their convex hulls (check_hull_start): a hull that holds another geom
+// more than 0.5 mm deep is a start that geometry cannot represent, refused as bad input with
+// "cannot start with --native: MuJoCo collides mesh 'M' as its convex hull, which geom 'G' lies
+// D mm inside at the start (a limit of the hull, not of the scene; graspcd's contacts start this
+// scene)" ("--decomposed", "a limit of the pieces" for the pieces). The verdicts (docs/design.md, "Semantics"):
 //  - gripped: at the end of the settling (just before the lift), two hand geoms touch the object
 //    with opposing contact normals: the mean normals, from each geom into the object, of two
 //    touching geoms have a negative dot product (kGripOpposing). One side pushing is no grip.
-//  - held: gripped, the object rose at least kHeldRiseShare (80%) of the hand's travel from the
-//    start of the lift to the end of the hold, and it moved by less than kHeldSlip (1 cm)
-//    relative to the hand during the hold.
-//  - reason: why a grasp was not gripped or not held, one phrase (empty when held): "no segment
-//    reached the object", "no two touching segments push from opposing sides", "slipped at
-//    t = 2.35 s", "rose 1.2 cm of the hand's 6.0 cm travel (less than 80%)".
+//  - held: gripped, not ejected, the object's grip point rose at least kHeldRiseShare (80%) of the
+//    hand's travel from the start of the lift to the end of the hold, and the object moved by less
+//    than kHeldSlip (1 cm) relative to the hand during the hold. The grip point is the mean of the
+//    hand-object contacts at the start of the lift, carried with the object: a held object
+//    hangs from the grip, and the point it hangs from rises with the hand however the object
+//    turns about it (a bowl pinched at its rim hangs tilted and its origin rises less than the
+//    hand; an object that slides down or falls takes its grip point with it).
+//  - tilted: the object's rotation from its orientation at the start of the lift, the angle of
+//    the relative rotation (2 acos |q0 . q|): tilt_deg the largest over the lift and the hold,
+//    tilt_final_deg at the end. A held object whose final tilt is kTiltShownDeg (2 degrees) or
+//    more is "held, tilted N°" (tilt_note): steady but not as it stood.
+//  - ejected: after any physics step of any phase, the object was faster than kEjectSpeed
+//    (2 m/s: no hand here moves an object faster than 0.4 m/s; MuJoCo's push out of a convex
+//    hull throws objects at tens of m/s), its origin fell more than 2 R + 1 cm below where it
+//    started (R: how far its geoms reach from its origin; resting on its support in any pose it
+//    lies at most 2 R lower: it passed below its support), or it went farther from its start
+//    than the scene's extent (at least 1 m). The first such step gives the time and the speed;
+//    the run goes on, but the verdict is the ejection: never held, and its reason comes first.
+//  - reason: why a grasp was not gripped or not held, one phrase (empty when held): "ejected at
+//    t = 0.412 s (57.3 m/s)", "no segment reached the object", "no two touching segments push
+//    from opposing sides", "slipped at t = 2.35 s", "its grip rose 1.2 cm of the hand's 6.0 cm
+//    travel (less than 80%)".
 //
 // Non-finite state: after every physics step the driver reads MuJoCo's warnings for a bad number
 // (NaN, or beyond mjMAXVAL = 1e10) in qpos, qvel, qacc or ctrl (mjWARN_BADQPOS, mjWARN_BADQVEL,

@@ -1,5 +1,6 @@
 #include "graspcd/grasp/grasp_result.h"
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,13 @@ const std::array<std::string, kFingerSegments>& finger_segment_names() {
     return out;
   }();
   return names;
+}
+
+std::string tilt_note(const GraspResult& result) {
+  if (!result.held || result.tilt_final_deg < kTiltShownDeg) return "";
+  char text[48];
+  std::snprintf(text, sizeof text, "tilted %.0f\xc2\xb0", result.tilt_final_deg);
+  return text;
 }
 
 double kinetic_energy(const mjModel* m, const mjData* d) {

@@ -22,10 +22,18 @@ namespace graspcd::grasp {
 
 inline constexpr double kGraspStepRad = 0.003;  // the paper's grasp step
 inline constexpr int kFingerSegments = 12;      // finger{1..4}_{A,B,C}
-// The verdicts (grasp.h): the share of the hand's travel the object must rise, and the most it
-// may move in the hand during the hold (m).
+// The verdicts (grasp.h): the share of the hand's travel the object's grip point must rise, and
+// the most the object may move in the hand during the hold (m).
 inline constexpr double kHeldRiseShare = 0.8;
 inline constexpr double kHeldSlip = 0.01;
+// The speed past which an object has been thrown, not moved by the hand (grasp.h, "ejected"),
+// m/s. The fastest the hands move an object in a grasp: the lift's peak, pi/2 * 6 cm / 1 s =
+// 0.09 m/s, and the real hands' closing, up to 0.35 m/s on the shipped scenes (the Shadow hand);
+// MuJoCo's push out of a convex hull throws objects at 50-60 m/s. 2 m/s leaves a margin of five
+// below and twenty-five above.
+inline constexpr double kEjectSpeed = 2.0;
+// The verdict text names the object's final tilt from this many degrees on (grasp.h, "tilted").
+inline constexpr double kTiltShownDeg = 2.0;
 
 // A scene or config that cannot be used (model_loading.h): the file, the line and the message
 // apart, printed as one line "FILE: MESSAGE" or "FILE:LINE: MESSAGE".
@@ -70,6 +78,15 @@ struct GraspStepRecord {
   double object_z = 0;                // object body height after the step, m
 };
 
+// Where and how fast the object left the grasp (grasp.h, "ejected"): the simulated time of the
+// first physics step that saw it, the object's speed then (m/s), and what was seen: "speed"
+// (faster than kEjectSpeed), "below" (below its support) or "away" (out of the scene).
+struct Ejection {
+  double time = 0;
+  double speed = 0;
+  std::string cause;
+};
+
 struct GraspResult {
   std::string scene;
   bool native = false;
@@ -92,7 +109,16 @@ struct GraspResult {
   double hand_travel = 0;  // the hand's rise from the start of the lift to the end of the hold, m
   double object_rise = 0;  // the object's over the same time, m
   double slip_time = -1;   // simulated time at which the object had moved kHeldSlip in the hand
-  std::string reason;      // why not gripped or not held (see above); empty when held
+  // The rise of the object's grip point (the mean of its contacts with the hand before the lift,
+  // carried with the object) over the hand's travel, m (grasp.h, "held").
+  double grip_rise = 0;
+  // The angle between the object's orientation at the start of the lift and its orientation at
+  // any later step (the largest) and at the end of the hold, degrees.
+  double tilt_deg = 0;
+  double tilt_final_deg = 0;
+  double max_speed = 0;             // the object's largest linear speed over all phases, m/s
+  std::optional<Ejection> ejected;  // the first sign that the object was thrown out, if any
+  std::string reason;               // why not gripped or not held (see above); empty when held
   // The last second of the hold (or the whole hold when shorter), "at rest": the object's largest
   // linear speed (m/s), the deepest contact of an object geom (-dist, m; 0 without contacts), and
   // the whole system's kinetic energy (J, 0.5 qvel^T M qvel) averaged over that window's first
@@ -119,6 +145,10 @@ struct GraspResult {
   // The registry's warnings (registry.h, Registry::warnings()), one line each.
   std::vector<std::string> warnings;
 };
+
+// What the verdict of a held object adds: "tilted 12°" for a final tilt of kTiltShownDeg or
+// more, else "".
+std::string tilt_note(const GraspResult& result);
 
 // The segment names in record order: finger1_A, finger1_B, ..., finger4_C.
 const std::array<std::string, kFingerSegments>& finger_segment_names();

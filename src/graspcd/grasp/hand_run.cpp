@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "graspcd/core/clock.h"
+#include "graspcd/mujoco/collision_pose.h"
 
 namespace graspcd::grasp {
 
@@ -56,16 +57,40 @@ GripSides grip_sides(const mjModel* m, const mjData* d, const std::vector<char>&
   return out;
 }
 
+// The object's grip point (grasp.h, "held"): the mean position of the contacts between hand geoms
+// (as in grip_sides) and object geoms in d's contacts, in the world; nullopt without any.
+std::optional<Vec3> grip_point(const mjModel* m, const mjData* d,
+                               const std::vector<char>& is_object_geom, int support_root) {
+  Vec3 sum(0, 0, 0);
+  int n = 0;
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& c = d->contact[i];
+    const bool object1 = is_object_geom[static_cast<std::size_t>(c.geom1)] != 0;
+    const bool object2 = is_object_geom[static_cast<std::size_t>(c.geom2)] != 0;
+    if (object1 == object2) continue;
+    const int body = m->geom_bodyid[object1 ? c.geom2 : c.geom1];
+    if (body == 0 || m->body_rootid[body] == support_root) continue;
+    sum += Vec3(c.pos[0], c.pos[1], c.pos[2]);
+    ++n;
+  }
+  if (n == 0) return std::nullopt;
+  return sum / n;
+}
+
 // The verdicts after the hold (grasp.h): held, and the reason of a failure. `ever_touched`: some
 // segment touched the object during the closing; `grip`: the grip before the lift.
 void judge(bool ever_touched, const GripSides& grip, GraspResult& result) {
   result.gripped = grip.opposing;
   const bool rose =
-      result.hand_travel > 0 && result.object_rise >= kHeldRiseShare * result.hand_travel;
+      result.hand_travel > 0 && result.grip_rise >= kHeldRiseShare * result.hand_travel;
   const bool slipped = result.hold_drift >= kHeldSlip;
-  result.held = result.gripped && rose && !slipped;
+  result.held = result.gripped && rose && !slipped && !result.ejected;
   char text[160];
-  if (!ever_touched) {
+  if (result.ejected) {
+    std::snprintf(text, sizeof text, "ejected at t = %.3f s (%.1f m/s)", result.ejected->time,
+                  result.ejected->speed);
+    result.reason = text;
+  } else if (!ever_touched) {
     result.reason = "no segment reached the object";
   } else if (grip.touching == 0) {
     result.reason = "no segment touched the object after the squeeze";
@@ -77,8 +102,9 @@ void judge(bool ever_touched, const GripSides& grip, GraspResult& result) {
                   result.slip_time, 100 * result.hold_drift);
     result.reason = text;
   } else if (!rose) {
-    std::snprintf(text, sizeof text, "rose %.1f cm of the hand's %.1f cm travel (less than %.0f%%)",
-                  100 * result.object_rise, 100 * result.hand_travel, 100 * kHeldRiseShare);
+    std::snprintf(text, sizeof text,
+                  "its grip rose %.1f cm of the hand's %.1f cm travel (less than %.0f%%)",
+                  100 * result.grip_rise, 100 * result.hand_travel, 100 * kHeldRiseShare);
     result.reason = text;
   } else {
     result.reason.clear();
@@ -219,6 +245,74 @@ void HandRun::physics_step() {
   ++physics_steps_;
   throw_if_nonfinite(d_, scene_, phase_, physics_steps_);
   scan_contacts();
+  watch_object();
+}
+
+// The object at the start (grasp.h, "ejected"): resting on its support, its origin lies at most R
+// above its lowest point, R the farthest any of its geoms reaches from the origin; resting in any
+// pose on a support no lower, the origin lies at most 2 R below where it started. Out of the
+// scene: farther from the start than the scene's extent (MuJoCo's stat.extent), at least 1 m.
+void HandRun::start_watch() {
+  watch_ = ObjectWatch{};
+  for (int k = 0; k < 3; ++k) watch_.start[static_cast<std::size_t>(k)] = d_->xpos[3 * object_ + k];
+  watch_.start_height = object_height();
+  double reach = 0;
+  for (int g = 0; g < m_->ngeom; ++g) {
+    if (!is_object_geom_[static_cast<std::size_t>(g)]) continue;
+    double offset = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double e = d_->geom_xpos[3 * g + k] - d_->xpos[3 * object_ + k];
+      offset += e * e;
+    }
+    reach = std::max(reach, std::sqrt(offset) + m_->geom_rbound[g]);
+  }
+  watch_.drop = 2 * reach + kHeldSlip;
+  watch_.away = std::max(1.0, static_cast<double>(m_->stat.extent));
+}
+
+// After each physics step: the object's speed, whether it has been thrown out (the first time:
+// faster than kEjectSpeed, below its support, out of the scene), and after the start of the lift
+// the angle of its rotation since then (2 acos |q0 . q| for unit quaternions).
+void HandRun::watch_object() {
+  mjtNum velocity[6];
+  mj_objectVelocity(m_, d_, mjOBJ_BODY, object_, velocity, 0);
+  const double speed =
+      std::sqrt(velocity[3] * velocity[3] + velocity[4] * velocity[4] + velocity[5] * velocity[5]);
+  watch_.max_speed = std::max(watch_.max_speed, speed);
+  if (!watch_.ejected) {
+    double away = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double e = d_->xpos[3 * object_ + k] - watch_.start[static_cast<std::size_t>(k)];
+      away += e * e;
+    }
+    const char* cause = nullptr;
+    if (speed > kEjectSpeed) {
+      cause = "speed";
+    } else if (object_height() < watch_.start_height - watch_.drop) {
+      cause = "below";
+    } else if (std::sqrt(away) > watch_.away) {
+      cause = "away";
+    }
+    if (cause != nullptr) watch_.ejected = Ejection{d_->time, speed, cause};
+  }
+  if (watch_.tilt_on) {
+    double dot = 0;
+    for (int k = 0; k < 4; ++k) {
+      dot += watch_.quat_lift[static_cast<std::size_t>(k)] * d_->xquat[4 * object_ + k];
+    }
+    watch_.tilt = 2 * std::acos(std::min(1.0, std::abs(dot)));
+    watch_.max_tilt = std::max(watch_.max_tilt, watch_.tilt);
+  }
+}
+
+double HandRun::point_height(const std::array<double, 3>& p) const {
+  const std::array<double, 3> u = up();
+  double h = object_height();
+  for (int k = 0; k < 3; ++k) {
+    h += (p[static_cast<std::size_t>(k)] - d_->xpos[3 * object_ + k]) *
+         u[static_cast<std::size_t>(k)];
+  }
+  return h;
 }
 
 // The contacts between a segment's geom and an object geom: the segments they touch, how many,
@@ -339,6 +433,7 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   result.segments = segments_;
   result.first_contact.assign(segments_.size(), -1);
   result.object_z_initial = object_height();
+  start_watch();
   close(options, result);
 
   // Phase 2: squeeze, then settle.
@@ -352,6 +447,22 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   result.object_z_gripped = object_height();
   const GripSides grip = grip_sides(m_, d_, is_object_geom_, support_root());
   const double hand_at_lift = hand_height();
+  // The grip point in the object's frame (the object's origin without contacts), and its height.
+  const Vec3 origin(d_->xpos[3 * object_], d_->xpos[3 * object_ + 1], d_->xpos[3 * object_ + 2]);
+  const Mat3 rotation = mujoco::from_row_major(d_->xmat + 9 * object_);
+  const Vec3 grip_local =
+      rotation.transpose() *
+      (grip_point(m_, d_, is_object_geom_, support_root()).value_or(origin) - origin);
+  const auto grip_world = [&] {
+    const Vec3 o(d_->xpos[3 * object_], d_->xpos[3 * object_ + 1], d_->xpos[3 * object_ + 2]);
+    const Vec3 p = o + mujoco::from_row_major(d_->xmat + 9 * object_) * grip_local;
+    return std::array<double, 3>{p.x(), p.y(), p.z()};
+  };
+  const double grip_at_lift = point_height(grip_world());
+  for (int k = 0; k < 4; ++k) {
+    watch_.quat_lift[static_cast<std::size_t>(k)] = d_->xquat[4 * object_ + k];
+  }
+  watch_.tilt_on = true;
 
   // Phase 3: lift.
   begin_lift();
@@ -365,6 +476,12 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   finish(result);
   result.hand_travel = hand_height() - hand_at_lift;
   result.object_rise = result.object_z_final - result.object_z_gripped;
+  result.grip_rise = point_height(grip_world()) - grip_at_lift;
+  constexpr double kDegrees = 180.0 / 3.14159265358979323846;
+  result.tilt_deg = watch_.max_tilt * kDegrees;
+  result.tilt_final_deg = watch_.tilt * kDegrees;
+  result.max_speed = watch_.max_speed;
+  result.ejected = watch_.ejected;
   bool ever_touched = false;
   for (int step : result.first_contact) ever_touched = ever_touched || step > 0;
   judge(ever_touched, grip, result);

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,8 @@ class HandRun {
   // Heights along -gravity (GraspResult), of the object and of the hand.
   virtual double object_height() const = 0;
   virtual double hand_height() const = 0;
+  // The unit vector along -gravity that heights are measured on.
+  virtual std::array<double, 3> up() const { return {0, 0, 1}; }
   // The body tree whose geoms are not hand geoms (grip_sides), -1 for none.
   virtual int support_root() const { return -1; }
 
@@ -83,7 +86,24 @@ class HandRun {
     void add(const mujoco::BridgeStats& s);
   };
 
+  // What the object does over the run (grasp.h, "tilted", "ejected"): its first ejection, its
+  // largest speed, and from the start of the lift its tilt.
+  struct ObjectWatch {
+    std::array<double, 3> start{};  // its position at the start of the grasp
+    double start_height = 0;
+    double drop = 0;  // how far below start_height it can rest on the support, m
+    double away = 0;  // how far from start it can be in the scene, m
+    double max_speed = 0;
+    std::optional<Ejection> ejected;
+    bool tilt_on = false;
+    std::array<double, 4> quat_lift{};  // its orientation at the start of the lift
+    double tilt = 0, max_tilt = 0;      // radians
+  };
+
   void physics_step();
+  void start_watch();
+  void watch_object();
+  double point_height(const std::array<double, 3>& p) const;
   void scan_contacts();
   mujoco::BridgeStats take_stats();
   template <class Targets, class Observe>
@@ -106,6 +126,7 @@ class HandRun {
   long physics_steps_ = 0;
   std::int64_t wall_ns_ = 0;
   BridgeTotals totals_;
+  ObjectWatch watch_;
 };
 
 // Looks up a named element of the scene; a missing one breaks the scene contract.

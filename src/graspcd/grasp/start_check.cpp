@@ -47,11 +47,39 @@ struct WorldSurface {
   std::vector<Vec3> probes;
 };
 
-std::optional<WorldSurface> world_surface(const mjModel* m, const mjData* d, int g) {
+// The faces of a mesh's convex hull as MuJoCo 2.2 keeps it for its native collision (mesh_graph,
+// built when the model is compiled by qhull, the Quickhull algorithm of Barber, Dobkin and
+// Huhdanpaa, ACM TOMS 22(4), 1996; user_mesh.cc, MakeGraph): at mesh_graphadr, the
+// ints numvert, numface, then vert_edgeadr[numvert], vert_globalid[numvert],
+// edge_localid[numvert + 3 numface] and face_globalid[3 numface], the faces' vertices as indices
+// into the mesh's vertices. Empty for a mesh without a graph.
+std::vector<Triangle> hull_triangles(const mjModel* m, int mesh_id) {
+  const int adr = m->mesh_graphadr[mesh_id];
+  if (adr < 0) return {};
+  const int* graph = m->mesh_graph + adr;
+  const int numvert = graph[0];
+  const int numface = graph[1];
+  const int* face_globalid = graph + 2 + 3 * numvert + 3 * numface;
+  const int vadr = m->mesh_vertadr[mesh_id];
+  std::vector<Triangle> out(static_cast<std::size_t>(numface));
+  for (int f = 0; f < numface; ++f) {
+    Triangle& t = out[static_cast<std::size_t>(f)];
+    for (int k = 0; k < 3; ++k) {
+      const float* v = m->mesh_vert + 3 * (vadr + face_globalid[3 * f + k]);
+      t.v[static_cast<std::size_t>(k)] = Vec3(v[0], v[1], v[2]);
+    }
+  }
+  return out;
+}
+
+// `hull`: a mesh geom's surface is its convex hull (hull_triangles; its faces when it has none).
+std::optional<WorldSurface> world_surface(const mjModel* m, const mjData* d, int g,
+                                          bool hull = false) {
   std::vector<Triangle> local;
   const int type = m->geom_type[g];
   if (type == mjGEOM_MESH) {
-    local = mujoco::Registry::mesh_triangles(m, m->geom_dataid[g]);
+    if (hull) local = hull_triangles(m, m->geom_dataid[g]);
+    if (local.empty()) local = mujoco::Registry::mesh_triangles(m, m->geom_dataid[g]);
   } else if (mujoco::is_primitive(type)) {
     const TriangleMesh mesh = mujoco::tessellate_primitive(type, m->geom_size + 3 * g);
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) local.push_back(mesh.triangle(f));
@@ -98,6 +126,22 @@ bool may_collide(const mjModel* m, int a, int b) {
          (m->geom_contype[b] & m->geom_conaffinity[a]) != 0;
 }
 
+// Whether the bounding spheres of two geoms lie farther apart than kStartPenetration.
+bool far_apart(const mjModel* m, const mjData* d, int a, int b) {
+  const double gap = (mujoco::geom_position(d, a) - mujoco::geom_position(d, b)).norm() -
+                     m->geom_rbound[a] - m->geom_rbound[b];
+  return gap > kStartPenetration;
+}
+
+// "MuJoCo collides mesh 'M' as its convex hull, which WHAT lies X inside at the start".
+std::string inside_hull(const mjModel* m, int hull_geom, const std::string& what, double depth) {
+  const char* mesh = mj_id2name(m, mjOBJ_MESH, m->geom_dataid[hull_geom]);
+  const std::string named = mesh != nullptr && *mesh != '\0' ? "mesh '" + std::string(mesh) + "'"
+                                                             : geom_name(m, hull_geom);
+  return "MuJoCo collides " + named + " as its convex hull, which " + what + " lies " +
+         millimetres(depth) + " inside at the start";
+}
+
 }  // namespace
 
 std::string check_start_state(const mjModel* m, const mjData* d, int object_body) {
@@ -111,11 +155,7 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
       if (in_object(g) || !may_collide(m, o, g)) continue;
       const int type = m->geom_type[g];
       if (type == mjGEOM_HFIELD) continue;
-      if (type != mjGEOM_PLANE) {
-        const double gap = (mujoco::geom_position(d, o) - mujoco::geom_position(d, g)).norm() -
-                           m->geom_rbound[o] - m->geom_rbound[g];
-        if (gap > kStartPenetration) continue;
-      }
+      if (type != mjGEOM_PLANE && far_apart(m, d, o, g)) continue;
       if (!object) {
         object = world_surface(m, d, o);
         if (!object) return "";  // a plane or height field as the object: nothing to check
@@ -162,6 +202,49 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
         }
       } else {
         warn_open(m, o, warned);
+      }
+    }
+  }
+  return "";
+}
+
+std::string check_hull_start(const mjModel* m, const mjData* d, int object_body) {
+  const int root = m->body_rootid[object_body];
+  const auto in_object = [&](int g) { return m->body_rootid[m->geom_bodyid[g]] == root; };
+  for (int o = 0; o < m->ngeom; ++o) {
+    if (!in_object(o) || (m->geom_contype[o] == 0 && m->geom_conaffinity[o] == 0)) continue;
+    std::optional<WorldSurface> object;  // built at the first geom near it
+    for (int g = 0; g < m->ngeom; ++g) {
+      if (in_object(g) || !may_collide(m, o, g)) continue;
+      const bool object_mesh = m->geom_type[o] == mjGEOM_MESH;
+      const bool other_mesh = m->geom_type[g] == mjGEOM_MESH;
+      // Planes, height fields and pairs of primitives collide as check_start_state sees them.
+      if (!object_mesh && !other_mesh) continue;
+      if (!mujoco::is_primitive(m->geom_type[g]) && !other_mesh) continue;
+      if (far_apart(m, d, o, g)) continue;
+      if (!object) {
+        object = world_surface(m, d, o, true);
+        if (!object) return "";
+      }
+      const std::optional<WorldSurface> other = world_surface(m, d, g, true);
+      if (!other) continue;
+      // A hull is convex and closed. The object's hull around the other geom first (a finger in
+      // a bowl's cavity or a handle's hole), then the other's hull around the object. A mesh's
+      // probes are its hull's: MuJoCo collides two meshes hull against hull.
+      const auto probed = [&](int geom, std::string name) {
+        return m->geom_type[geom] == mjGEOM_MESH ? "the hull of " + name : name;
+      };
+      if (object_mesh && object->closedness.closed()) {
+        const VertexPenetration p = deepest_point_inside(object->tree, other->probes);
+        if (p.depth > kStartPenetration) {
+          return inside_hull(m, o, probed(g, geom_name(m, g)), p.depth);
+        }
+      }
+      if (other_mesh && other->closedness.closed()) {
+        const VertexPenetration p = deepest_point_inside(other->tree, object->probes);
+        if (p.depth > kStartPenetration) {
+          return inside_hull(m, g, probed(o, geom_name(m, o) + " of the object"), p.depth);
+        }
       }
     }
   }

@@ -35,4 +35,17 @@ inline constexpr double kStartPenetration = 0.5e-3;
 // valid. `object_body` is the object's body id; `d` holds the initial state after mj_forward.
 std::string check_start_state(const mjModel* m, const mjData* d, int object_body);
 
+// The start as MuJoCo's native collision sees it (--native, and the pieces of --decomposed, which
+// are mesh geoms collided natively): every mesh geom is its convex hull (MuJoCo 2.2's mesh_graph,
+// the hull qhull built when the model was compiled). For each object geom and each geom near it
+// that may collide with it, when one of them is a mesh, the same probes as above (vertices and
+// edge points; of a mesh, its hull's) and their depth inside a mesh's hull: first the other
+// geom's inside the object's hull, then the object's inside the other's hull. The first depth
+// beyond kStartPenetration as one message, "MuJoCo collides mesh 'bowl' as its convex hull, which
+// geom 'left_pad' lies 18.3 mm inside at the start" (a mesh's probes are named "the hull of geom
+// ..."), or "" when none. A start that passes check_start_state and fails this one is a limit of
+// the hull, not of the scene. Primitives against primitives, planes and height fields are left to
+// check_start_state, which sees them as MuJoCo collides them.
+std::string check_hull_start(const mjModel* m, const mjData* d, int object_body);
+
 }  // namespace graspcd::grasp
