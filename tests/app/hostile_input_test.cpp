@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,30 @@ std::string cube_obj() {
   return "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
          "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\n"
          "f 3 8 7\nf 4 1 5\nf 4 5 8\n";
+}
+
+// A torus of 16 x 8 quads: concave, so its pieces' hulls lie off its surface, and the farthest
+// point lies inside a face, where the distance is refined rather than found at a vertex.
+std::string torus_obj() {
+  constexpr int kAround = 16;
+  constexpr int kAcross = 8;
+  std::ostringstream out;
+  for (int i = 0; i < kAround; ++i) {
+    const double a = 2 * M_PI * i / kAround;
+    for (int j = 0; j < kAcross; ++j) {
+      const double b = 2 * M_PI * j / kAcross;
+      const double r = 2 + 0.7 * std::cos(b);
+      out << "v " << r * std::cos(a) << ' ' << r * std::sin(a) << ' ' << 0.7 * std::sin(b) << '\n';
+    }
+  }
+  const auto v = [](int i, int j) { return 1 + (i % kAround) * kAcross + (j % kAcross); };
+  for (int i = 0; i < kAround; ++i) {
+    for (int j = 0; j < kAcross; ++j) {
+      out << "f " << v(i, j) << ' ' << v(i + 1, j) << ' ' << v(i + 1, j + 1) << '\n';
+      out << "f " << v(i, j) << ' ' << v(i + 1, j + 1) << ' ' << v(i, j + 1) << '\n';
+    }
+  }
+  return out.str();
 }
 
 std::string shipped_scene(const std::string& name) {
@@ -61,9 +87,9 @@ class HostileInputTest : public graspcd::testing::CommandTest {
 // --- Hangs ---
 
 TEST_F(HostileInputTest, DecomposeRefusesAHausdorffBoundFinerThanItCanReach) {
-  const std::string mesh = write("cube.obj", cube_obj());
+  const std::string mesh = write("torus.obj", torus_obj());
   const auto r = graspcd("decompose " + mesh + " --out " + (dir_ / "dec").string() +
-                         " --hausdorff-bound 1e-300");
+                         " --pieces 16 --hausdorff-bound 1e-300");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(one_line(r).rfind("graspcd: --hausdorff-bound: the bound 1e-300 m is finer", 0), 0u)
       << r.err;
