@@ -243,6 +243,7 @@ TEST_F(HostileInputTest, PlacementOptionsAreNamedWhenTheirNumbersMeanNothing) {
   // A tiny quaternion is normalised, not taken for zero.
   const auto r = graspcd("grasp --object " + box + " --scale 0.01 --pose 1e-300 0 0 0 " +
                          "--max-steps 1 --write-scene " + (dir_ / "out").string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("quaternion"), std::string::npos) << r.err;
 }
 
