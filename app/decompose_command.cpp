@@ -51,7 +51,13 @@ void print_text(const decompose::Manifest& m, const decompose::DecomposeOptions&
 }
 
 void run_decompose(const DecomposeOptions& o) {
-  const decompose::DecomposeRun run = decompose::decompose_mesh(o.run);
+  const decompose::DecomposeRun run = [&o] {
+    try {
+      return decompose::decompose_mesh(o.run);
+    } catch (const decompose::BoundError& e) {
+      throw UsageError(std::string("--hausdorff-bound: ") + e.what());
+    }
+  }();
   if (o.json) {
     std::cout << run.document << '\n';
     return;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <new>
 #include <streambuf>
 #include <string>
 #include <vector>
@@ -140,6 +141,12 @@ int main(int argc, char** argv) {
       graspcd::cli::add_decompose_command(app),
   };
 
+  // --version prints and exits inside CLI11's parse, before the words after it are seen: a word
+  // after it is refused here rather than ignored.
+  if (argc > 2 && std::string(argv[1]) == "--version") {
+    return report_error(std::string("graspcd: --version: unexpected argument '") + argv[2] +
+                        "' (run with --help for usage)");
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -172,6 +179,9 @@ int main(int argc, char** argv) {
     return report_error(e.what());
   } catch (const graspcd::cli::UsageError& e) {
     return report_error(std::string("graspcd: ") + e.what());
+  } catch (const std::bad_alloc&) {
+    // The text inputs name their file (text_input.h); elsewhere no file is to blame.
+    return report_error("graspcd: error: out of memory");
   } catch (const std::exception& e) {
     return report_error(std::string("graspcd: error: ") + e.what());
   }

@@ -1,6 +1,8 @@
 #include "object_placement.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "command.h"
 
@@ -44,7 +46,7 @@ void add_placement_options(CLI::App& app, PlacementOptions& options,
     const char* name = name_of(a.option);
     switch (a.option) {
       case Placement::kScale:
-        app.add_option(name, options.scale, a.help)->check(positive_number());
+        app.add_option(name, options.scale, a.help)->check(number_in_range(kMinScale, kMaxScale));
         break;
       case Placement::kFit:
         app.add_flag(name, options.fit, a.help);
@@ -56,10 +58,12 @@ void add_placement_options(CLI::App& app, PlacementOptions& options,
         app.add_option(name, options.up, a.help)->capture_default_str();
         break;
       case Placement::kYaw:
-        app.add_option(name, options.yaw, a.help)->check(CLI::Range(-360.0, 360.0));
+        app.add_option(name, options.yaw, a.help)->check(number_in_range(-360.0, 360.0));
         break;
       case Placement::kPose:
-        app.add_option(name, options.pose, a.help)->expected(4);
+        app.add_option(name, options.pose, a.help)
+            ->expected(4)
+            ->check(number_in_range(-1e300, 1e300));
         break;
       case Placement::kWriteScene:
         app.add_option(name, options.write_scene, a.help);
@@ -95,8 +99,22 @@ grasp::ObjectPlacement object_placement(const PlacementOptions& options, const s
   placement.up = options.up;
   placement.yaw_degrees = options.yaw;
   if (!options.pose.empty()) {
-    placement.pose =
-        std::array<double, 4>{options.pose[0], options.pose[1], options.pose[2], options.pose[3]};
+    // Scaled by its largest component first, so that a tiny quaternion (1e-300 0 0 0) normalises
+    // rather than underflow to zero.
+    std::array<double, 4> q{options.pose[0], options.pose[1], options.pose[2], options.pose[3]};
+    double largest = 0;
+    for (double x : q) largest = std::max(largest, std::fabs(x));
+    if (!std::isfinite(largest) || !(largest > 0)) {
+      throw UsageError("--pose: not a finite unit quaternion (W X Y Z, finite and not all zero)");
+    }
+    double norm = 0;
+    for (double& x : q) {
+      x /= largest;
+      norm += x * x;
+    }
+    norm = std::sqrt(norm);
+    for (double& x : q) x /= norm;
+    placement.pose = q;
   }
   return placement;
 }

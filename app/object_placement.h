@@ -22,6 +22,11 @@ struct PlacementOptions {
   std::string write_scene;   // --write-scene DIR: keep the generated scene there
 };
 
+// The range of --scale: file units to metres, from micrometres to kilometres per unit (beyond it
+// the placed coordinates would overflow or vanish).
+inline constexpr double kMinScale = 1e-6;
+inline constexpr double kMaxScale = 1e3;
+
 // One of the options, with its help text (the command's own).
 enum class Placement { kScale, kFit, kHand, kUp, kYaw, kPose, kWriteScene };
 struct PlacementOption {
@@ -30,7 +35,8 @@ struct PlacementOption {
 };
 
 // Adds the given options to `app` in the given order (a command's --help lists them so), with
-// their checks: --scale > 0, --yaw in [-360, 360], --pose four numbers.
+// their checks: --scale in [kMinScale, kMaxScale], --yaw in [-360, 360], --pose four finite
+// numbers (each named: "--yaw: Value nan is not a finite number").
 void add_placement_options(CLI::App& app, PlacementOptions& options,
                            const std::vector<PlacementOption>& added);
 
@@ -41,7 +47,8 @@ void add_placement_options(CLI::App& app, PlacementOptions& options,
 void check_placement_options(const CLI::App& app, const std::string& command,
                              const std::string& owner, bool owner_given);
 
-// The placement of `file` (empty for an object set, whose files are found later).
+// The placement of `file` (empty for an object set, whose files are found later); --pose
+// normalised. Throws UsageError "--pose: not a finite unit quaternion ..." when it is all zeros.
 grasp::ObjectPlacement object_placement(const PlacementOptions& options, const std::string& file);
 
 }  // namespace graspcd::cli

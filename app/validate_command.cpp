@@ -22,6 +22,8 @@
 #include "graspcd/exact/exact.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/io/text_input.h"
+#include "graspcd/mujoco/input_error.h"
+#include "graspcd/mujoco/model_loading.h"
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/registry.h"
 #include "graspcd/study/object_set.h"
@@ -58,6 +60,17 @@ constexpr int kExitMissed = 1;
 // object was refused and every object checked agreed with CGAL (the output is complete).
 constexpr int kExitBadInput = 2;
 
+// The scene is named before its config: a config that cannot be read is reported only when the
+// scene itself loads (a file that is no scene is refused as such, whatever its config).
+[[noreturn]] void config_refused(const std::string& scene, const io::InputError& error) {
+  try {
+    mujoco::load_model(scene);
+  } catch (const mujoco::InputError& e) {
+    throw io::InputError(e.file(), e.line(), e.message());
+  }
+  throw error;
+}
+
 // The methods to check: --all-methods, --method, or the config's (SCENE's, or the template's for
 // --objects); cap and switch from the command line when given, else from the config.
 std::vector<study::TesterSpec> testers_of(ValidateCliOptions& o, const CLI::App& app,
@@ -68,14 +81,14 @@ std::vector<study::TesterSpec> testers_of(ValidateCliOptions& o, const CLI::App&
     throw io::InputError(scene, 0, "cannot open the scene");
   }
   if (!std::filesystem::is_regular_file(config_path, ec)) {
-    throw io::InputError(config_path, 0, "cannot open the pair config");
+    config_refused(scene, io::InputError(config_path, 0, "cannot open the pair config"));
   }
   mujoco::RegistryConfig config;
   try {
     config = mujoco::load_registry_config(config_path);
   } catch (const std::runtime_error& e) {
     const grasp::GraspInputError error = grasp::config_error(config_path, e);
-    throw io::InputError(error.file(), error.line(), error.message());
+    config_refused(scene, io::InputError(error.file(), error.line(), error.message()));
   }
   DetectorOptions detector = config.detector;
   if (app.count("--cap") > 0) detector.cap = o.method.cap;

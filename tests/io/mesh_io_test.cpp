@@ -296,7 +296,7 @@ TEST_F(MeshIoTest, FileErrors) {
   EXPECT_EQ(load_error(missing), missing + ": cannot open: No such file or directory");
   const std::string folder = (dir_ / "folder.obj").string();
   fs::create_directory(folder);
-  EXPECT_EQ(load_error(folder), folder + ": cannot open: Is a directory");
+  EXPECT_EQ(load_error(folder), folder + ": not a regular file (a folder)");
   const std::string ply = write("mesh.ply", "ply\n");
   EXPECT_EQ(load_error(ply), ply + ": unknown mesh format (expected a .obj or .stl file)");
   const std::string none = write("mesh", kTetrahedron);

@@ -100,7 +100,7 @@ TEST(RegistryConfig, ParsesEveryField) {
   EXPECT_EQ(c.patterns[1].max_contacts, 2);
   EXPECT_EQ(c.patterns[1].max_patch_contacts, 1);
   // The defaults (tolerances.h): 4 per patch, 8 per pair.
-  const RegistryConfig d = parse_registry_config(R"({"pairs": []})", "d.json");
+  const RegistryConfig d = parse_registry_config(R"({"pairs": [{"a": "x", "b": "y"}]})", "d.json");
   EXPECT_EQ(d.manifold.max_per_patch, 4);
   EXPECT_EQ(d.manifold.max_per_pair, 8);
   EXPECT_TRUE(d.front_list);
@@ -116,6 +116,8 @@ TEST(RegistryConfig, ErrorsAreOneLineAndNameTheSource) {
            R"({"max_depth": -1, "pairs": []})",     // depth <= 0
            R"({"colour": "red", "pairs": []})",     // unknown field
            R"({"method": "sat"})",                  // no pairs
+           R"({"method": "sat", "pairs": []})",     // an empty pair list: nothing served
+           R"({"cap": 2, "cap": 3, "pairs": []})",  // a key given twice
            R"({"pairs": [{"a": "x"}]})",            // pair without b
            R"([1, 2])",                             // not an object
            R"({"max_depth": 1e999, "pairs": []})",  // overflow: nlohmann's out_of_range 406
@@ -135,9 +137,11 @@ TEST(RegistryConfig, ErrorsAreOneLineAndNameTheSource) {
       ADD_FAILURE() << "accepted: " << bad;
     } catch (const std::runtime_error& e) {
       const std::string what = e.what();
-      // A syntax error or an overflowing number also names its line (json_config.h).
+      // A syntax error, an overflowing number or a duplicate key also names its line
+      // (json_config.h).
       EXPECT_TRUE(what.rfind("cfg/hand.json: ", 0) == 0 ||
-                  what.rfind("cfg/hand.json:1: bad JSON: ", 0) == 0)
+                  what.rfind("cfg/hand.json:1: bad JSON: ", 0) == 0 ||
+                  what.rfind("cfg/hand.json:1: duplicate key ", 0) == 0)
           << what;
       EXPECT_EQ(what.find('\n'), std::string::npos) << what;
     }

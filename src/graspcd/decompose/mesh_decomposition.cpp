@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -127,6 +128,15 @@ DecomposeRun decompose_mesh(const DecomposeOptions& o) {
   // The mesh as graspcd reads it: a bad file is one line naming it.
   io::MeshStats stats;
   const TriangleMesh mesh = io::load_mesh(o.mesh, &stats);
+  const double finest = kMinBoundFraction * bounding_diagonal(mesh);
+  // (The slack accepts the finest bound as the message prints it, to 6 digits.)
+  if (o.hausdorff_bound > 0 && !(o.hausdorff_bound >= finest * (1 - 1e-5))) {
+    std::ostringstream out;
+    out << "the bound " << o.hausdorff_bound << " m is finer than the distance can be refined to: "
+        << "at least " << kMinBoundFraction << " of " << o.mesh << "'s bounding box diagonal ("
+        << finest << " m)";
+    throw BoundError(out.str());
+  }
   for (const std::string& w : io::mesh_warnings(o.mesh, stats, true)) {
     warnings().add("mesh_hygiene", w);
   }

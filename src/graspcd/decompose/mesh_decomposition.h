@@ -5,6 +5,7 @@
 // the pieces it writes the manifest, DIR/decomposition.json (manifest.h).
 #pragma once
 
+#include <stdexcept>
 #include <string>
 
 #include "graspcd/decompose/manifest.h"
@@ -22,6 +23,18 @@ struct DecomposeOptions {
 // The Hausdorff distance's error bound when DecomposeOptions::hausdorff_bound is 0: this fraction
 // of the mesh's bounding box diagonal (0.1 mm for a 10 cm object).
 inline constexpr double kDefaultBoundFraction = 1e-3;
+
+// The finest Hausdorff bound accepted: this fraction of the bounding box diagonal. A finer bound
+// (down to the coordinates' floating-point resolution and below) refines the distance without
+// end; DecomposeOptions::hausdorff_bound below it is refused before anything runs.
+inline constexpr double kMinBoundFraction = 1e-6;
+
+// Thrown by decompose_mesh for a DecomposeOptions::hausdorff_bound below kMinBoundFraction of the
+// mesh's bounding box diagonal (the command line names its option before the message).
+class BoundError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
 
 struct DecomposeRun {
   Manifest manifest;

@@ -32,6 +32,7 @@ namespace {
 
 // Fails unless `path` names a readable regular file (a directory opens but cannot be read).
 void require_readable(const std::string& path) {
+  require_regular_file(path);
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) fail(path, std::string("cannot open: ") + std::strerror(errno));
   struct stat info {};
@@ -129,7 +130,7 @@ std::vector<ObjVertexLine> read_obj_vertex_lines(const std::string& path,
       pos = stop;
     }
   };
-  for (std::size_t line_number = 1; std::getline(in, line); ++line_number) {
+  for (std::size_t line_number = 1; read_line(in, line, path, line_number); ++line_number) {
     if (line_number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) {
       fail(path, "UTF-8 byte-order mark", 1);
     }
@@ -406,7 +407,7 @@ void check_mesh_file(const std::string& path) {
   const std::string ext = lower_extension(path);
   if (ext == "obj") {
     std::vector<std::string> objects;
-    read_obj_vertex_lines(path, objects);
+    if (read_obj_vertex_lines(path, objects).empty()) fail(path, "no vertex in the OBJ file");
   } else if (ext == "stl") {
     load_stl(path);
   }

@@ -1,13 +1,18 @@
 #include "graspcd/io/text_input.h"
 
+#include <fcntl.h>
+#include <poll.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <new>
 #include <sstream>
+#include <streambuf>
 
 #include "graspcd/core/tolerances.h"
 
@@ -69,7 +74,72 @@ void require_rotation(const Mat3& R, const std::string& name) {
   throw ValueError(out.str());
 }
 
+// A FIFO with a name in the file system (mkfifo), not the pipe of a shell's process substitution
+// (/dev/fd/N, whose link names no file).
+bool is_named_fifo(const std::string& path) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0 || !S_ISFIFO(info.st_mode)) return false;
+  char* resolved = ::realpath(path.c_str(), nullptr);
+  std::free(resolved);
+  return resolved != nullptr;
+}
+
+// Opens a named FIFO without blocking on it (fopen waits until something opens it for writing, and
+// so forever when nothing does), then waits kFifoWaitSeconds for its first byte or its end. Throws
+// InputError when nothing comes; returns nullptr with errno set when it cannot be opened.
+std::FILE* open_fifo(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK);
+  if (fd < 0) return nullptr;
+  pollfd wait{fd, POLLIN, 0};
+  int ready = 0;
+  do {
+    ready = ::poll(&wait, 1, kFifoWaitSeconds * 1000);
+  } while (ready < 0 && errno == EINTR);
+  if (ready <= 0) {
+    ::close(fd);
+    throw InputError(path, 0,
+                     "a FIFO that nothing wrote to in " + std::to_string(kFifoWaitSeconds) +
+                         " s (give the input on standard input, -, instead)");
+  }
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  std::FILE* file = ::fdopen(fd, "rb");
+  if (file == nullptr) ::close(fd);
+  return file;
+}
+
 }  // namespace
+
+bool read_line(std::istream& in, std::string& line, const std::string& name,
+               std::size_t line_number) {
+  line.clear();
+  std::streambuf* buffer = in.rdbuf();
+  bool any = false;
+  for (;;) {
+    const auto c = buffer->sbumpc();
+    if (std::char_traits<char>::eq_int_type(c, std::char_traits<char>::eof())) {
+      in.setstate(std::ios::eofbit);
+      if (!any) in.setstate(std::ios::failbit);
+      return any;
+    }
+    any = true;
+    if (c == '\n') return true;
+    if (line.size() >= kMaxLineBytes) {
+      throw InputError(name, line_number,
+                       "line longer than " + std::to_string(kMaxLineBytes) + " bytes");
+    }
+    line.push_back(std::char_traits<char>::to_char_type(c));
+  }
+}
+
+void require_regular_file(const std::string& path) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) return;
+  if (S_ISREG(info.st_mode)) return;
+  const char* kind = S_ISDIR(info.st_mode)    ? "a folder"
+                     : S_ISFIFO(info.st_mode) ? "a FIFO"
+                                              : "a device or special file";
+  throw InputError(path, 0, std::string("not a regular file (") + kind + ")");
+}
 
 InputError::InputError(std::string file, std::size_t line, std::string message)
     : std::runtime_error(located(file, line, message)),
@@ -84,7 +154,11 @@ TextReader::TextReader(const std::string& path) {
     return;
   }
   name_ = path;
-  file_ = std::fopen(path.c_str(), "rb");
+  if (is_named_fifo(path)) {
+    file_ = open_fifo(path);
+  } else {
+    file_ = std::fopen(path.c_str(), "rb");
+  }
   if (file_ == nullptr) {
     throw InputError(name_, 0, std::string("cannot open: ") + std::strerror(errno));
   }
@@ -99,7 +173,6 @@ TextReader::TextReader(const std::string& path) {
 }
 
 TextReader::~TextReader() {
-  std::free(line_buffer_);
   if (owns_file_) std::fclose(file_);
 }
 
@@ -109,17 +182,29 @@ bool TextReader::next(std::size_t count, std::vector<double>& values) {
   values.clear();
   std::string token;
   for (;;) {
-    // Read one physical line (up to '\n', which is dropped; a final line may lack it). POSIX
-    // getline keeps embedded NUL bytes, which the number check then reports.
-    errno = 0;
-    const ssize_t length = ::getline(&line_buffer_, &line_capacity_, file_);
-    if (length < 0) {
-      if (std::ferror(file_)) {
-        throw InputError(name_, line_ + 1, std::string("read error: ") + std::strerror(errno));
+    // Read one physical line (up to '\n', which is dropped; a final line may lack it), at most
+    // kMaxLineBytes long. Embedded NUL bytes are kept, which the number check then reports.
+    buffer_.clear();
+    bool any = false;
+    int c = 0;
+    try {
+      while ((c = getc_unlocked(file_)) != EOF) {
+        any = true;
+        if (c == '\n') break;
+        if (buffer_.size() >= kMaxLineBytes) {
+          throw InputError(name_, line_ + 1,
+                           "line longer than " + std::to_string(kMaxLineBytes) + " bytes");
+        }
+        buffer_.push_back(static_cast<char>(c));
       }
-      return false;
+    } catch (const std::bad_alloc&) {
+      buffer_ = std::string();
+      throw InputError(name_, line_ + 1, "out of memory reading the line");
     }
-    buffer_.assign(line_buffer_, static_cast<std::size_t>(length));
+    if (c == EOF && std::ferror(file_)) {
+      throw InputError(name_, line_ + 1, std::string("read error: ") + std::strerror(errno));
+    }
+    if (!any) return false;
     ++line_;
 
     // Skip blank and comment lines ('\r' of CRLF counts as blank).

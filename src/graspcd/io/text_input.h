@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdio>
+#include <istream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -40,13 +41,34 @@ class ValueError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+// The longest line a line-oriented text input (the cases of tritri, boxbox and meshpair --poses, an
+// OBJ file) may hold, without its '\n': a longer line is "FILE:LINE: line longer than N bytes",
+// read no further, so that an endless line (/dev/zero) never exhausts memory.
+inline constexpr std::size_t kMaxLineBytes = std::size_t{16} << 20;
+
+// Reads one line of `in` into `line`, without its '\n' (a last line may lack it). Returns false at
+// the end of the input. Throws InputError "NAME:LINE_NUMBER: line longer than N bytes" when the
+// line exceeds kMaxLineBytes.
+bool read_line(std::istream& in, std::string& line, const std::string& name,
+               std::size_t line_number);
+
+// Throws InputError "FILE: not a regular file" unless `path` names a regular file (or a symlink to
+// one): a folder, a FIFO or a device is refused at once, before anything opens it (opening a FIFO
+// blocks until something writes to it). A path that does not exist passes: opening it reports that.
+void require_regular_file(const std::string& path);
+
 // The name of standard input in messages.
 inline constexpr const char* kStdinName = "<stdin>";
+
+// How long TextReader waits for the first byte of a named FIFO (mkfifo) before it refuses it.
+inline constexpr int kFifoWaitSeconds = 10;
 
 // Reads cases from a file, or from standard input when the path is "-".
 class TextReader {
  public:
-  // Opens `path` ("-" = stdin). Throws InputError "FILE: cannot open: <reason>" on failure.
+  // Opens `path` ("-" = stdin). Throws InputError "FILE: cannot open: <reason>" on failure, and
+  // for a named FIFO that nothing writes to within kFifoWaitSeconds (a pipe of the shell, `-` or
+  // /dev/fd/N, is read as it comes).
   explicit TextReader(const std::string& path);
   ~TextReader();
   TextReader(const TextReader&) = delete;
@@ -54,7 +76,7 @@ class TextReader {
 
   // Reads the next case line into `values`: exactly `count` numbers. Returns false at the end of
   // the input. Throws InputError on a malformed, non-finite or out-of-range number, on a wrong
-  // count, and on a read error.
+  // count, on a line longer than kMaxLineBytes, on a read error and when memory runs out.
   bool next(std::size_t count, std::vector<double>& values);
 
   // The file name used in messages ("<stdin>" for "-").
@@ -70,8 +92,6 @@ class TextReader {
   std::FILE* file_ = nullptr;
   bool owns_file_ = false;
   std::size_t line_ = 0;
-  char* line_buffer_ = nullptr;  // POSIX getline's buffer (malloc'd)
-  std::size_t line_capacity_ = 0;
   std::string buffer_;
 };
 

@@ -1,8 +1,10 @@
 #include "graspcd/mujoco/json_config.h"
 
 #include <algorithm>
+#include <map>
 #include <regex>
 #include <stdexcept>
+#include <vector>
 
 #include "graspcd/mujoco/input_error.h"
 
@@ -15,11 +17,53 @@ std::size_t line_of(const std::string& text, std::size_t at) {
   return 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + at, '\n'));
 }
 
+// Refuses a key given twice in one object of `text`, which nlohmann has parsed (so `text` is valid
+// JSON): nlohmann keeps the last silently, and its SAX interface gives no positions, so the keys
+// are found here by a scan that counts lines.
+void refuse_duplicate_keys(const std::string& text, const std::string& source) {
+  struct Frame {
+    bool object = false;
+    bool expecting_key = false;
+    std::map<std::string, std::size_t> key_lines;
+  };
+  std::vector<Frame> frames;
+  std::size_t line = 1;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+    } else if (c == '{' || c == '[') {
+      frames.push_back(Frame{c == '{', c == '{', {}});
+    } else if (c == '}' || c == ']') {
+      if (!frames.empty()) frames.pop_back();
+    } else if (c == ',') {
+      if (!frames.empty() && frames.back().object) frames.back().expecting_key = true;
+    } else if (c == '"') {
+      const std::size_t begin = i;
+      for (++i; i < text.size() && text[i] != '"'; ++i) {
+        if (text[i] == '\\') ++i;
+      }
+      if (frames.empty() || !frames.back().object || !frames.back().expecting_key) continue;
+      frames.back().expecting_key = false;
+      const std::string key =
+          nlohmann::json::parse(text.substr(begin, i + 1 - begin)).get<std::string>();
+      const auto [at, inserted] = frames.back().key_lines.emplace(key, line);
+      if (!inserted) {
+        refuse(source,
+               "duplicate key '" + key + "' (lines " + std::to_string(at->second) + " and " +
+                   std::to_string(line) + ")",
+               line);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 nlohmann::json parse_json_config(const std::string& text, const std::string& source) {
+  nlohmann::json j;
   try {
-    return nlohmann::json::parse(text);
+    j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     // "[json.exception.parse_error.101] parse error at line 2, column 5: MESSAGE": the id and
     // the position go, the line comes first.
@@ -44,6 +88,8 @@ nlohmann::json parse_json_config(const std::string& text, const std::string& sou
     }
     refuse(source, "bad JSON: " + message, line);
   }
+  refuse_duplicate_keys(text, source);
+  return j;
 }
 
 }  // namespace graspcd::mujoco

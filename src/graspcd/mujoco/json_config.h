@@ -11,7 +11,9 @@ namespace graspcd::mujoco {
 
 // Parses `text`. A syntax error, or a number that overflows a double, throws std::runtime_error
 // "SOURCE:LINE: bad JSON: MESSAGE": LINE is 1-based (the line of nlohmann's byte position, or of
-// the overflowing literal), MESSAGE nlohmann's without its exception id and position.
+// the overflowing literal), MESSAGE nlohmann's without its exception id and position. A key given
+// twice in one object (nlohmann would keep the last) throws "SOURCE:LINE: duplicate key 'K' (lines
+// A and B)".
 nlohmann::json parse_json_config(const std::string& text, const std::string& source);
 
 }  // namespace graspcd::mujoco

@@ -100,6 +100,7 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
     }
   }
   if (!j.contains("pairs")) refuse(source, "missing field 'pairs'");
+  if (c.patterns.empty()) refuse(source, "'pairs' is empty: the config would serve no pair");
   return c;
 }
 
@@ -110,6 +111,10 @@ std::string pair_config_path(const std::string& scene_path) {
 }
 
 RegistryConfig load_registry_config(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    refuse(path, "not a regular file");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) refuse(path, "cannot open the config file");
   std::ostringstream text;

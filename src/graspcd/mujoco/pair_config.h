@@ -28,7 +28,8 @@
 // unordered pair. Geoms with contype == conaffinity == 0 (visual only) are skipped silently.
 //
 // Errors of the parser, each a std::runtime_error with a one-line message that starts with the
-// config's name: bad JSON, an unknown field or method, a value out of range.
+// config's name: bad JSON, a key given twice in one object, an unknown field or method, a value out
+// of range, an empty "pairs" (a config that serves nothing).
 #pragma once
 
 #include <optional>

@@ -96,6 +96,13 @@ void scan_file(const std::string& path, Scan& scan) {
   if (scan.depth >= kMaxIncludeDepth) return;
   tinyxml2::XMLDocument doc;
   if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS || doc.RootElement() == nullptr) return;
+  // MuJoCo's reader reads the first root element and ignores what follows it.
+  if (const tinyxml2::XMLElement* second = doc.RootElement()->NextSiblingElement()) {
+    refuse(path,
+           std::string("a second root element <") + second->Name() + "> after <" +
+               doc.RootElement()->Name() + ">: an XML file has one root",
+           static_cast<std::size_t>(second->GetLineNum()));
+  }
   ++scan.depth;
   scan_element(path, doc.RootElement(), scan);
   --scan.depth;
@@ -113,7 +120,7 @@ void check_scene_file(const std::string& path) {
     fs::path file(mesh.file);
     if (file.is_relative()) file = scan.main_dir / fs::path(scan.meshdir) / file;
     std::error_code ec;
-    if (!fs::is_regular_file(file, ec)) continue;  // MuJoCo's error names it
+    if (!fs::exists(file, ec)) continue;  // MuJoCo's error names it
     try {
       io::check_mesh_file(file.lexically_normal().string());
     } catch (const io::InputError& e) {

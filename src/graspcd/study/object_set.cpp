@@ -1,11 +1,16 @@
 #include "graspcd/study/object_set.h"
 
+#include <sys/stat.h>
+#include <sys/types.h>
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 #include "graspcd/core/warnings.h"
 #include "graspcd/grasp/grasp.h"
@@ -116,16 +121,43 @@ std::string shard_name(int index, int count) {
 std::vector<std::string> find_object_files(const std::string& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw io::InputError(dir, 0, "not a folder of objects");
-  std::vector<std::string> files;
-  fs::recursive_directory_iterator it(dir, fs::directory_options::follow_directory_symlink, ec);
+  const fs::path root = fs::canonical(dir, ec);
   if (ec) throw io::InputError(dir, 0, "cannot read the folder: " + ec.message());
-  for (const fs::directory_entry& e : it) {
-    if (e.is_regular_file(ec) && is_object_file(e.path())) {
-      files.push_back(fs::relative(e.path(), dir).generic_string());
+  // Inside the root: what a symbolic link names must lie under it (a link that leads out, or up
+  // into a loop, is not followed), and each folder is read once, known by device and inode.
+  const auto inside = [&root](const fs::path& p) {
+    std::error_code e;
+    const fs::path target = fs::canonical(p, e);
+    if (e) return false;
+    const auto [r, t] = std::mismatch(root.begin(), root.end(), target.begin(), target.end());
+    return r == root.end();
+  };
+  std::set<std::pair<dev_t, ino_t>> seen;
+  const auto first_visit = [&seen](const fs::path& p) {
+    struct stat info {};
+    if (::stat(p.c_str(), &info) != 0) return false;
+    return seen.emplace(info.st_dev, info.st_ino).second;
+  };
+  std::vector<std::string> files;
+  std::vector<fs::path> folders{fs::path(dir)};
+  first_visit(dir);
+  while (!folders.empty()) {
+    const fs::path folder = folders.back();
+    folders.pop_back();
+    fs::directory_iterator it(folder, ec);
+    if (ec) throw io::InputError(folder.string(), 0, "cannot read the folder: " + ec.message());
+    for (const fs::directory_entry& e : it) {
+      if (e.is_symlink(ec) && !inside(e.path())) continue;
+      if (e.is_directory(ec)) {
+        if (first_visit(e.path())) folders.push_back(e.path());
+      } else if (e.is_regular_file(ec) && is_object_file(e.path())) {
+        files.push_back(fs::relative(e.path(), dir).generic_string());
+      }
     }
   }
   if (files.empty()) throw io::InputError(dir, 0, "no OBJ or STL file in the folder");
   std::sort(files.begin(), files.end());
+  files.erase(std::unique(files.begin(), files.end()), files.end());
   return files;
 }
 

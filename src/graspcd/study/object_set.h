@@ -46,7 +46,9 @@ struct ObjectSetOptions {
   std::function<void(const std::string&)> log;  // progress, one line per object
 };
 
-// The OBJ and STL files under `dir`, relative to it ('/' separated), sorted. Throws
+// The OBJ and STL files under `dir`, relative to it ('/' separated), sorted. Symbolic links are
+// followed only where they lead to a place under `dir`, and each folder is read once (by device
+// and inode), so that a link loop (`up -> ..`) or a link out of `dir` adds nothing. Throws
 // io::InputError naming `dir` when it is not a folder or holds no such file.
 std::vector<std::string> find_object_files(const std::string& dir);
 

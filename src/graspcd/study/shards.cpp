@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "graspcd/io/text_input.h"
 #include "graspcd/study/experiment.h"
 #include "graspcd/study/study.h"
 #include "graspcd/study/sweep.h"
@@ -18,13 +19,21 @@ using json = nlohmann::json;
 
 json read_shard_file(const std::string& file, const std::string& kind,
                      const std::vector<std::string>& keys) {
+  if (file.empty()) throw io::InputError("--merge", 0, "an empty file name (give the shard files)");
+  std::error_code ec;
+  if (file[0] == '-' && !std::filesystem::exists(file, ec)) {
+    // `--merge --out DIR`: the option was taken for the first file.
+    throw io::InputError("--merge", 0,
+                         "'" + file + "' is no shard file (give the shard files after --merge)");
+  }
+  io::require_regular_file(file);
   std::ifstream in(file);
-  if (!in) throw std::runtime_error(file + ": cannot open the shard file");
+  if (!in) throw io::InputError(file, 0, "cannot open the shard file");
   json j;
   try {
     in >> j;
   } catch (const json::exception& e) {
-    throw std::runtime_error(file + ": not " + kind + " (" + e.what() + ")");
+    throw io::InputError(file, 0, "not " + kind + " (" + e.what() + ")");
   }
   const bool complete = j.is_object() && std::all_of(keys.begin(), keys.end(),
                                                      [&j](const auto& k) { return j.contains(k); });
@@ -33,7 +42,7 @@ json read_shard_file(const std::string& file, const std::string& kind,
     for (std::size_t i = 0; i < keys.size(); ++i) {
       names += (i == 0 ? "" : i + 1 == keys.size() ? " or " : ", ") + keys[i];
     }
-    throw std::runtime_error(file + ": not " + kind + " (no " + names + ")");
+    throw io::InputError(file, 0, "not " + kind + " (no " + names + ")");
   }
   return j;
 }
