@@ -479,7 +479,7 @@ Command add_grasp_command(CLI::App& parent) {
       "'# decomposed: G geom(s) of MESH collide as N convex pieces each (native)' (JSON: "
       "'decomposed': dir, source, pieces, geoms). A DIR without decomposition.json, or a SCENE "
       "without a mesh of MESH, is one line naming it, exit code 2.\n"
-      "--judge: the race's contact fidelity (issue 20). After each closing grasp step, every "
+      "--judge: the race's contact fidelity. After each closing grasp step, every "
       "contact between the object and a hand geom is judged against the true meshes by CGAL "
       "(the object and a support it stands on are the pair config's 'grasp' section's "
       "'object' and 'support', else the body 'object' and none; a hand geom is every "

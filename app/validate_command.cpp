@@ -516,7 +516,7 @@ Command add_validate_command(CLI::App& parent) {
       "steps, agree, truth_hits, missed, false_contacts, pair_mismatch, missed_tri_pairs, "
       "false_tri_pairs, first_disagreement: null or step, truth, answer, truth_pairs, "
       "answer_pairs, files, command), decomposed (null, or dir, source, pieces, geoms).\n"
-      "--decomposed DIR: the truth side of the race (issue 20). The grasp runs as 'graspcd "
+      "--decomposed DIR: the truth side of the race. The grasp runs as 'graspcd "
       "grasp SCENE --decomposed DIR' does: the object's geoms of the mesh DIR decomposes keep "
       "their mass without colliding, one geom per convex piece collides in their place under "
       "MuJoCo's native collision, SCENE.pairs.json drives the hand. At each closing grasp step "
