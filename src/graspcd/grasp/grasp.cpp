@@ -105,11 +105,12 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   const std::string config_path =
       options.config_path.empty() ? mujoco::pair_config_path(scene_path) : options.config_path;
   std::unique_ptr<mujoco::ScopedInstall> install_guard;
-  mujoco::Attachment attached;  // of the registry, released before it
   GraspConfig loaded = load_grasp_config(m, config_path, options);
   std::unique_ptr<mujoco::Registry>& registry = loaded.registry;
   const mujoco::RegistryConfig& config = loaded.registry_config;
   const std::optional<DriveConfig>& drive = loaded.drive;
+  // Declared after the registry, so that it detaches before the registry goes, on a throw too.
+  mujoco::Attachment attached;
   if (registry) {
     install_guard = std::make_unique<mujoco::ScopedInstall>();
     attached = mujoco::attach(*registry);

@@ -146,16 +146,17 @@ Attachment attach(Registry& registry) {
   return Attachment(&registry);
 }
 
+// The slot is found by the registry's address alone, never by reading the registry, so that a
+// release after the registry went (against the rule in collision_table.h) reads no freed memory.
 void Attachment::release() {
   if (!registry_) return;
-  const Registry& registry = *registry_;
+  const Registry* registry = registry_;
   registry_ = nullptr;
   std::lock_guard<std::mutex> lock(g_mutex);
   const int used = g_used.load(std::memory_order_relaxed);
   for (int i = 0; i < used; ++i) {
     Slot& s = g_slots[static_cast<std::size_t>(i)];
-    if (s.model.load(std::memory_order_relaxed) == registry.model() &&
-        s.registry.load(std::memory_order_relaxed) == &registry) {
+    if (s.registry.load(std::memory_order_relaxed) == registry) {
       s.model.store(nullptr, std::memory_order_release);
       s.registry.store(nullptr, std::memory_order_release);
     }
