@@ -148,6 +148,19 @@ TEST(RegistryConfig, ErrorsAreOneLineAndNameTheSource) {
   }
 }
 
+// nlohmann's reader stops at a NUL byte: a config with one is refused at its line, whatever
+// follows it (here a key that is not UTF-8), never read as far as the NUL and accepted.
+TEST(RegistryConfig, ANulByteIsRefusedAtItsLine) {
+  const char raw[] = "{\"pairs\": [{\"a\": \"x\", \"b\": \"y\"}]}\n\0{\"\x86\": 1}";
+  const std::string text(raw, sizeof raw - 1);
+  try {
+    parse_registry_config(text, "cfg/hand.json");
+    ADD_FAILURE() << "accepted a config with a NUL byte";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "cfg/hand.json:2: a NUL byte in the config (byte 35)");
+  }
+}
+
 TEST(RegistryConfig, LoadReadsAFileAndNamesItInErrors) {
   TempDir dir;
   const std::string good = (dir.path() / "good.json").string();

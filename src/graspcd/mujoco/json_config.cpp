@@ -17,9 +17,9 @@ std::size_t line_of(const std::string& text, std::size_t at) {
   return 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + at, '\n'));
 }
 
-// Refuses a key given twice in one object of `text`, which nlohmann has parsed (so `text` is valid
-// JSON): nlohmann keeps the last silently, and its SAX interface gives no positions, so the keys
-// are found here by a scan that counts lines.
+// Refuses a key given twice in one object of `text`, which nlohmann has parsed: nlohmann keeps the
+// last silently, and its SAX interface gives no positions, so the keys are found here by a scan
+// that counts lines. A key that does not decode is no key to compare.
 void refuse_duplicate_keys(const std::string& text, const std::string& source) {
   struct Frame {
     bool object = false;
@@ -45,8 +45,10 @@ void refuse_duplicate_keys(const std::string& text, const std::string& source) {
       }
       if (frames.empty() || !frames.back().object || !frames.back().expecting_key) continue;
       frames.back().expecting_key = false;
-      const std::string key =
-          nlohmann::json::parse(text.substr(begin, i + 1 - begin)).get<std::string>();
+      const nlohmann::json decoded =
+          nlohmann::json::parse(text.substr(begin, i + 1 - begin), nullptr, false);
+      if (!decoded.is_string()) continue;
+      const std::string key = decoded.get<std::string>();
       const auto [at, inserted] = frames.back().key_lines.emplace(key, line);
       if (!inserted) {
         refuse(source,
@@ -61,6 +63,11 @@ void refuse_duplicate_keys(const std::string& text, const std::string& source) {
 }  // namespace
 
 nlohmann::json parse_json_config(const std::string& text, const std::string& source) {
+  // nlohmann's reader ends its input at a NUL byte and would take what comes after for nothing.
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
+    refuse(source, "a NUL byte in the config (byte " + std::to_string(nul + 1) + ")",
+           line_of(text, nul));
+  }
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
