@@ -1,5 +1,5 @@
 // graspcd grasp SCENE.xml [--method M] [--cap N] [--switch N] [--native] [--json]
-// [--config PAIRS.json] [--max-steps N]: runs the grasp of paper section 9 (bridge/grasp.h) and
+// [--config PAIRS.json] [--max-steps N]: runs the grasp of paper section 9 (grasp/grasp.h) and
 // prints, per grasp step, contacts and detection time, then a summary.
 // graspcd grasp --object FILE [--scale S] [--write-scene DIR]: the same with a user's OBJ or STL
 // in the template scene (example 1's arm and hand, the cup swapped for FILE).
@@ -402,7 +402,7 @@ Command add_grasp_command(CLI::App& parent) {
       "segments in contact (comma-separated, '-' for none). Then three summary lines starting "
       "with '#': the first-contact grasp step of each segment ('-' for never); 'gripped yes|no; "
       "held yes[, tilted N°]|no[: REASON]' (REASON 'ejected at t = T s (S m/s)' for an object "
-      "thrown out, bridge/grasp.h) with the object's heights, its rise and the hand's travel, "
+      "thrown out, grasp/grasp.h) with the object's heights, its rise and the hand's travel, "
       "its grip point's rise, its tilt since the lift (final and largest) and its top speed; the "
       "detection time of the closing steps and of the whole "
       "run, the physics steps, simulated seconds and wall ms per physics step, the "

@@ -1,4 +1,4 @@
-// The grasp of paper section 9 (bridge/grasp.h) on the generated scenes: with our collision
+// The grasp of paper section 9 (grasp/grasp.h) on the generated scenes: with our collision
 // callback the fingers reach the object in grasp steps of 0.003 rad, the arm lifts it, and it stays
 // in the hand for 2 s of simulated time, on the non-convex cup (example 1) and the can (example 2);
 // the per-step detection time is recorded; MuJoCo's native collision runs the same grasp, and on

@@ -622,7 +622,7 @@ TEST(BoxHand, ClosingTouchesWithoutTrianglesOrTrees) {
   EXPECT_EQ(registry.tree_count(), 0u);
 }
 
-// The grasp (bridge/grasp.h) on the box hand: with the bridge the box-box contacts are MuJoCo's
+// The grasp (grasp/grasp.h) on the box hand: with the bridge the box-box contacts are MuJoCo's
 // own, so the run is the native run: the same first-contact steps and the same object heights;
 // the object is lifted and held both ways, and every closing step ran box tests, no triangle.
 TEST(BoxHand, GraspLiftsAndHoldsLikeTheNativeRun) {

@@ -1,5 +1,5 @@
 // graspcd's trajectory viewer: plays a grasp recorded by `graspcd study` or
-// `graspcd trajectory` (study/driver/trajectory.h has the file format) with three.js.
+// `graspcd trajectory` (src/graspcd/study/trajectory.h has the file format) with three.js.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 

@@ -24,7 +24,7 @@
 // nothing) and counts one BridgeStats::nonfinite_skips. Delegated pairs go to MuJoCo unchanged, as
 // always.
 //
-// Contract per served call (mujoco-2.2-notes.md): at most the pair's max_contacts (pair_config.h;
+// Contract per served call (docs/mujoco.md): at most the pair's max_contacts (pair_config.h;
 // 8 by default, never above mjMAXCONPAIR) contacts, dist <= 0,
 // frame[0..2] the unit normal from geom1 toward geom2 and frame[3..8] a right-handed tangent
 // basis (box-box pairs: MuJoCo's own contacts); MuJoCo fills the rest. Margins are ignored on

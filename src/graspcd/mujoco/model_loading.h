@@ -11,7 +11,7 @@
 namespace graspcd::mujoco {
 
 // Loads an MJCF file. A missing file or MuJoCo's error become an InputError whose message is
-// "FILE: <MuJoCo's message on one line>" (mujoco-2.2-notes.md "Errors").
+// "FILE: <MuJoCo's message on one line>" (docs/mujoco.md, "Loading a scene").
 ModelPtr load_model(const std::string& path);
 
 // Joins MuJoCo's multi-line error text into one line (line breaks become "; ", blanks trimmed).

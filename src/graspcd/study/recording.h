@@ -1,7 +1,7 @@
 // The study's grasp recordings and the pairs it replays them on ("record each grasp once,
 // then replay its poses for each method").
 //
-// A Recording is one run of the grasp of paper section 9 (bridge/grasp.h) with the poses of every
+// A Recording is one run of the grasp of paper section 9 (grasp/grasp.h) with the poses of every
 // geom after each closing grasp step (docs/design.md "Semantics": detection is measured per grasp
 // step). A MeshScene resolves a triangle scene's served pairs (its SCENE.pairs.json, through the
 // bridge's registry) and builds the trees the replay uses; a BoxScene lists the box pairs of the

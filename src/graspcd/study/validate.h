@@ -4,7 +4,7 @@
 // triangles in the same pose (exact::mesh_mesh_pairs; for box-box pairs exact::box_box_overlap).
 //
 // What is checked, precisely:
-// - The grasp runs once through the bridge (bridge/grasp.h) with the pair config's method (the
+// - The grasp runs once through the bridge (grasp/grasp.h) with the pair config's method (the
 //   trajectory the user times). After each closing grasp step (the state after its last physics
 //   step, as the study records it), every pair of the registry the bridge attached is posed from
 //   d->geom_xpos / d->geom_xmat (mujoco::relative_pose, geom2 in geom1's frame, geom1 the geom
