@@ -1,9 +1,9 @@
 // graspcd grasp SCENE.xml [--method M] [--cap N] [--switch N] [--native] [--json]
-// [--config PAIRS.json] [--max-steps N]: runs the grasp of paper section 9 (grasp/grasp.h) and
-// prints, per grasp step, contacts and detection time, then a summary.
-// graspcd grasp --object FILE [--scale S] [--write-scene DIR]: the same with a user's OBJ or STL
-// in the template scene (example 1's arm and hand, the cup swapped for FILE).
-// graspcd grasp SCENE --decomposed DIR: the object collides as its convex pieces (natively).
+// [--config PAIRS.json] [--max-steps N] [--quiet]: runs the grasp of paper section 9
+// (grasp/grasp.h) and prints, per grasp step, contacts and detection time, then a summary. graspcd
+// grasp --object FILE [--scale S] [--write-scene DIR]: the same with a user's OBJ or STL in the
+// template scene (example 1's arm and hand, the cup swapped for FILE). graspcd grasp SCENE
+// --decomposed DIR: the object collides as its convex pieces (natively).
 
 #include <algorithm>
 #include <array>
@@ -47,6 +47,7 @@ struct GraspCliOptions {
   std::string config;
   bool native = false;
   bool json = false;
+  bool quiet = false;  // --quiet: the text without the per-step lines
   bool require_held = false;
   int max_steps = 400;
   double contact_reuse = 0;    // --contact-reuse M: the config's "contact_reuse" overridden
@@ -112,17 +113,20 @@ std::string object_line(const ObjectRun& o) {
   return out.str();
 }
 
+// quiet: without the per-step table (its header line and one line per grasp step).
 void print_text(const grasp::GraspResult& r, const std::optional<ObjectRun>& object,
                 const std::optional<grasp::DecomposedScene>& decomposed,
-                const std::optional<study::ContactJudgeSummary>& judged) {
+                const std::optional<study::ContactJudgeSummary>& judged, bool quiet) {
   std::ostringstream out;
   if (object) out << object_line(*object) << '\n';
-  out << "step contacts detection_ns box_tests triangle_tests object_z segments\n";
   out << std::fixed;
-  for (const grasp::GraspStepRecord& s : r.steps) {
-    out << s.step << ' ' << s.contacts << ' ' << s.detection_ns << ' ' << s.box_tests << ' '
-        << s.triangle_tests << ' ' << std::setprecision(6) << s.object_z << ' '
-        << segments_text(r, s) << '\n';
+  if (!quiet) {
+    out << "step contacts detection_ns box_tests triangle_tests object_z segments\n";
+    for (const grasp::GraspStepRecord& s : r.steps) {
+      out << s.step << ' ' << s.contacts << ' ' << s.detection_ns << ' ' << s.box_tests << ' '
+          << s.triangle_tests << ' ' << std::setprecision(6) << s.object_z << ' '
+          << segments_text(r, s) << '\n';
+    }
   }
   out << "# method " << r.method << "; first contact (grasp step):";
   for (std::size_t s = 0; s < r.first_contact.size(); ++s) {
@@ -335,7 +339,7 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   if (options.json) {
     print_json(result, object, decomposed, options.decomposed, judged);
   } else {
-    print_text(result, object, decomposed, judged);
+    print_text(result, object, decomposed, judged, options.quiet);
   }
   if (options.require_held && !result.held) *exit_code = 1;
 }
@@ -377,6 +381,9 @@ Command add_grasp_command(CLI::App& parent) {
   app->add_flag("--judge", options->judge,
                 "Judge every closing step's hand-object contacts against the true meshes (CGAL)");
   app->add_flag("--json", options->json, "Print one JSON document instead of text");
+  app->add_flag("--quiet", options->quiet,
+                "Text without the per-step lines: the object line (--object) and the '#' summary "
+                "lines (no effect with --json)");
   app->add_option("--config", options->config,
                   "Pair config (JSON); default SCENE.pairs.json beside the scene");
   app->add_option("--max-steps", options->max_steps, "Most closing grasp steps")
@@ -399,8 +406,9 @@ Command add_grasp_command(CLI::App& parent) {
       "segments', then one line per grasp step: its number, the finger-object contacts after "
       "it, the tree query time in ns summed over its physics steps and all registered pairs "
       "(0 with --native), the box and triangle tests, the object's height in m, and the "
-      "segments in contact (comma-separated, '-' for none). Then three summary lines starting "
-      "with '#': the first-contact grasp step of each segment ('-' for never); 'gripped yes|no; "
+      "segments in contact (comma-separated, '-' for none); --quiet leaves out the header and "
+      "these lines. Then three summary lines starting with '#': the first-contact grasp step of "
+      "each segment ('-' for never); 'gripped yes|no; "
       "held yes[, tilted N°]|no[: REASON]' (REASON 'ejected at t = T s (S m/s)' for an object "
       "thrown out, grasp/grasp.h) with the object's heights, its rise and the hand's travel, "
       "its grip point's rise, its tilt since the lift (final and largest) and its top speed; the "

@@ -688,6 +688,35 @@ TEST_F(CliTest, GraspObjectKeepsTheFilesUnitsByDefault) {
   EXPECT_NEAR(doc["object"]["size"][2].get<double>(), 0.06, 1e-12);
 }
 
+// --quiet: the same run without the per-step table, so the '#' summary lines alone; with
+// --object the object line stays first. With --json it changes nothing.
+TEST_F(CliTest, GraspQuietPrintsOnlyTheHeaderAndTheVerdict) {
+  const Result full = run("grasp " + shipped_scene("example2") + " --max-steps 8");
+  const Result r = run("grasp " + shipped_scene("example2") + " --max-steps 8 --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const std::vector<std::string> out = lines(r.out);
+  ASSERT_EQ(out.size(), 3u) << r.out;
+  for (const std::string& line : out) EXPECT_EQ(line.rfind("# ", 0), 0u) << line;
+  const std::vector<std::string> all = lines(full.out);
+  ASSERT_EQ(all.size(), 1u + 8u + 3u) << full.out;
+  // The verdict is the same run's (the detection times differ from run to run).
+  EXPECT_EQ(out[0], all[9]);
+  EXPECT_EQ(out[1], all[10]);
+
+  const std::string box = write("box_m.obj", user_box_in_metres());
+  const Result object = run("grasp --object " + box + " --max-steps 2 --quiet");
+  ASSERT_EQ(object.exit_code, 0) << object.err;
+  const std::vector<std::string> object_out = lines(object.out);
+  ASSERT_EQ(object_out.size(), 4u) << object.out;
+  EXPECT_EQ(object_out[0].rfind("# object " + box + " at scale 1 (given)", 0), 0u) << object_out[0];
+  EXPECT_EQ(object_out[2].rfind("# gripped no; held no", 0), 0u) << object_out[2];
+
+  const Result json = run("grasp " + shipped_scene("example2") + " --max-steps 8 --quiet --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_EQ(nlohmann::json::parse(json.out)["steps"].size(), 8u);
+}
+
 // The start-state check: an object that starts inside the fingers, or sunk into the
 // floor, is bad input: one line naming the file, exit 2, nothing on stdout.
 TEST_F(CliTest, GraspRefusesAnObjectThatStartsInsideTheHandOrTheFloor) {
