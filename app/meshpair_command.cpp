@@ -6,6 +6,9 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <tuple>
+#include <utility>
 
 #include "command.h"
 #include "graspcd/core/clock.h"
@@ -82,16 +85,21 @@ void run_meshpair(MeshpairOptions& options) {
   finish_method_options(options.method);
   // Load both meshes first, then build, so that a bad file is reported before any work.
   io::MeshStats stats_a, stats_b;
-  const TriangleMesh mesh_a = io::load_mesh(options.mesh_a, &stats_a);
-  auto mesh_b = std::make_shared<const TriangleMesh>(io::load_mesh(options.mesh_b, &stats_b));
+  TriangleMesh loaded_a = io::load_mesh(options.mesh_a, &stats_a);
+  TriangleMesh loaded_b = io::load_mesh(options.mesh_b, &stats_b);
   // Mesh hygiene findings that change the answers or MuJoCo's view of the file (dropped
-  // zero-area faces, an OBJ with several objects), one line each in the run's warnings.
-  for (const auto& [path, stats] :
-       {std::pair{options.mesh_a, &stats_a}, {options.mesh_b, &stats_b}}) {
+  // zero-area faces, an OBJ with several objects), one line each in the run's warnings; a closed
+  // mesh whose faces point inward is turned right way out (containment reads their direction).
+  for (const auto& [path, stats, mesh] : {std::tuple{options.mesh_a, &stats_a, &loaded_a},
+                                          std::tuple{options.mesh_b, &stats_b, &loaded_b}}) {
     for (const std::string& w : io::mesh_warnings(path, *stats, true)) {
       warnings().add("mesh_hygiene", w);
     }
+    const std::string flipped = io::turn_right_way_out(path, *stats, mesh);
+    if (!flipped.empty()) warnings().add("mesh_inside_out", flipped);
   }
+  const TriangleMesh mesh_a = std::move(loaded_a);
+  auto mesh_b = std::make_shared<const TriangleMesh>(std::move(loaded_b));
   MeshQuery query;
   if (options.exact) {
     query = exact_query(options, mesh_a, mesh_b);

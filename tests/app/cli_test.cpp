@@ -717,6 +717,60 @@ TEST_F(CliTest, GraspQuietPrintsOnlyTheHeaderAndTheVerdict) {
   EXPECT_EQ(nlohmann::json::parse(json.out)["steps"].size(), 8u);
 }
 
+// `obj` with every face reversed: the same closed box turned inside out.
+std::string inside_out(const std::string& obj) {
+  std::istringstream in(obj);
+  std::ostringstream out;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("f ", 0) == 0) {
+      std::istringstream f(line.substr(2));
+      std::string a, b, c;
+      f >> a >> b >> c;
+      out << "f " << a << ' ' << c << ' ' << b << '\n';
+    } else {
+      out << line << '\n';
+    }
+  }
+  return out.str();
+}
+
+// A closed mesh whose faces all point inward is turned right way out with one warning naming the
+// file: the grasp's verdict is the right-way-out box's (without the turn MuJoCo's inertia and the
+// containment check read the reversed faces: the box slipped). meshpair turns it too.
+TEST_F(CliTest, AnInsideOutMeshIsFlippedWithAWarningAndGraspsAsTheRightWayOutOne) {
+  const std::string box = write("box_m.obj", user_box_in_metres());
+  const std::string inverted = write("inverted.obj", inside_out(user_box_in_metres()));
+  const Result right = run("grasp --object " + box + " --json");
+  const Result turned = run("grasp --object " + inverted + " --json");
+  ASSERT_EQ(right.exit_code, 0) << right.err;
+  ASSERT_EQ(turned.exit_code, 0) << turned.err;
+  const nlohmann::json a = nlohmann::json::parse(right.out);
+  const nlohmann::json b = nlohmann::json::parse(turned.out);
+  EXPECT_TRUE(a["warnings"].empty()) << a["warnings"];
+  ASSERT_EQ(b["warnings"].size(), 1u) << b["warnings"];
+  EXPECT_EQ(b["warnings"][0]["code"], "mesh_inside_out");
+  EXPECT_EQ(b["warnings"][0]["source"], "mesh");
+  EXPECT_EQ(b["warnings"][0]["message"],
+            inverted + ": the faces point inward (signed volume -0.00012 m^3): flipped");
+  EXPECT_EQ(turned.err, "warning: " + inverted +
+                            ": the faces point inward (signed volume -0.00012 m^3): "
+                            "flipped\n");
+  for (const char* key : {"gripped", "held", "reason", "object_z_final", "hold_drift"}) {
+    EXPECT_EQ(a[key], b[key]) << key;
+  }
+  EXPECT_TRUE(b["held"]) << b["reason"];
+
+  // meshpair: the same warning, the same answers.
+  const std::string poses = write("poses.txt", "1 0 0 0 1 0 0 0 1  0.03 0 0.02\n");
+  const Result pair_right = run("meshpair " + box + " " + box + " --poses " + poses);
+  const Result pair_turned = run("meshpair " + box + " " + inverted + " --poses " + poses);
+  ASSERT_EQ(pair_turned.exit_code, 0) << pair_turned.err;
+  EXPECT_EQ(pair_turned.out.substr(0, 2), pair_right.out.substr(0, 2));
+  EXPECT_EQ(pair_turned.err, "warning: " + inverted +
+                                 ": the faces point inward (signed volume -0.00012 m^3): "
+                                 "flipped\n");
+}
+
 // The start-state check: an object that starts inside the fingers, or sunk into the
 // floor, is bad input: one line naming the file, exit 2, nothing on stdout.
 TEST_F(CliTest, GraspRefusesAnObjectThatStartsInsideTheHandOrTheFloor) {

@@ -102,10 +102,9 @@ io::InputError template_error(const std::string& template_path, const tinyxml2::
 
 // The user's mesh as graspcd reads it (an error names the file), its hygiene warnings added: its
 // extent places and fits it.
-TriangleMesh read_object_mesh(const std::string& file) {
-  io::MeshStats stats;
-  TriangleMesh mesh = io::load_mesh(file, &stats);
-  for (const std::string& w : io::mesh_warnings(file, stats, true)) {
+TriangleMesh read_object_mesh(const std::string& file, io::MeshStats* stats) {
+  TriangleMesh mesh = io::load_mesh(file, stats);
+  for (const std::string& w : io::mesh_warnings(file, *stats, true)) {
     warnings().add("mesh_hygiene", w, "mesh");
   }
   return mesh;
@@ -432,7 +431,8 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
                                const std::string& hand, const std::string& dir,
                                const std::optional<std::array<double, 2>>& default_fit,
                                const std::vector<TemplatePath>& moved) {
-  const TriangleMesh mesh = read_object_mesh(placement.file);
+  io::MeshStats stats;
+  TriangleMesh mesh = read_object_mesh(placement.file, &stats);
   tinyxml2::XMLDocument doc;
   const TemplateParts t = read_template(doc, template_path);
   const GravityFrame frame = gravity_frame(t.root, template_path);
@@ -441,12 +441,21 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
 
   const fs::path target = fs::path(dir);
   fs::create_directories(target);
+  const std::string stem = fs::path(placement.file).stem().string();
+  // A closed mesh whose faces point inward: MuJoCo's inertia and graspcd's containment read the
+  // faces' direction, so the scene loads the mesh turned right way out, written beside it.
+  std::string object_file = placement.file;
+  const std::string flipped = io::turn_right_way_out(placement.file, stats, &mesh, out.scale);
+  if (!flipped.empty()) {
+    warnings().add("mesh_inside_out", flipped, "mesh");
+    object_file = (target / (stem + ".outward.obj")).string();
+    io::write_obj(object_file, mesh);
+  }
   const fs::path mesh_folder = rewrite_paths(t, template_path, target, moved);
-  set_object(t, placement.file, mesh_folder, out);
+  set_object(t, object_file, mesh_folder, out);
   raise_size(doc, t.root);
   replace_comments(doc, t.root, scene_header(template_path, hand, placement, out, room.support));
 
-  const std::string stem = fs::path(placement.file).stem().string();
   out.scene = (target / (stem + ".xml")).string();
   out.pairs = (target / (stem + ".pairs.json")).string();
   save_scene(doc, template_path, out);

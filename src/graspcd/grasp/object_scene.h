@@ -3,7 +3,9 @@
 // (TEMPLATE.pairs.json) whose object is the body `object`, a child of <worldbody> with a free
 // joint and one mesh geom. The new scene is the template read and written by tinyxml2 with:
 //  - that mesh asset's file replaced by the user's mesh and its scale set (the asset is renamed
-//    "object_mesh", the geom "object");
+//    "object_mesh", the geom "object"); a closed mesh whose faces all point inward (negative
+//    signed volume, io::turn_right_way_out) is written turned right way out as STEM.outward.obj
+//    beside the scene, which the asset names instead, with the warning "mesh_inside_out";
 //  - the object body turned (the file's `up` axis along -gravity, then `yaw` about it, or the
 //    quaternion `pose`) and placed with its lowest point along gravity kSupportGap above the
 //    support point, centred on it across gravity;

@@ -12,11 +12,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iomanip>
 #include <iterator>
 #include <limits>
 #include <regex>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "graspcd/core/mesh_hygiene.h"
@@ -400,6 +403,37 @@ TriangleMesh load_mesh(const std::string& path, MeshStats* stats) {
   s.file_vertices = hygiene.input_vertices;
   if (stats != nullptr) s.closedness = closedness(mesh);
   return mesh;
+}
+
+double signed_volume(const TriangleMesh& mesh) {
+  double six_volume = 0;
+  for (const auto& f : mesh.faces) {
+    six_volume += mesh.vertices[f[0]].dot(mesh.vertices[f[1]].cross(mesh.vertices[f[2]]));
+  }
+  return six_volume / 6;
+}
+
+std::string turn_right_way_out(const std::string& path, const MeshStats& stats, TriangleMesh* mesh,
+                               double unit) {
+  if (!stats.closedness.closed()) return "";
+  const double volume = signed_volume(*mesh);
+  if (!(volume < 0)) return "";
+  for (auto& f : mesh->faces) std::swap(f[1], f[2]);
+  std::ostringstream out;
+  out << path << ": the faces point inward (signed volume " << std::setprecision(3)
+      << volume * unit * unit * unit << " m^3): flipped";
+  return out.str();
+}
+
+void write_obj(const std::string& path, const TriangleMesh& mesh) {
+  std::ofstream out(path, std::ios::binary);
+  out << std::setprecision(17);
+  for (const Vec3& v : mesh.vertices) out << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+  for (const auto& f : mesh.faces) {
+    out << "f " << f[0] + 1 << ' ' << f[1] + 1 << ' ' << f[2] + 1 << '\n';
+  }
+  out.flush();
+  if (!out) throw std::runtime_error("cannot write " + path);
 }
 
 void check_mesh_file(const std::string& path) {

@@ -37,6 +37,22 @@ struct MeshStats {
 std::vector<std::string> mesh_warnings(const std::string& path, const MeshStats& stats,
                                        bool changes_only = false);
 
+// The signed volume enclosed by a mesh's faces (file units cubed): positive when they point
+// outward (counter-clockwise seen from outside), negative when every face is reversed. Meaningful
+// for a closed mesh only.
+double signed_volume(const TriangleMesh& mesh);
+
+// A closed mesh (stats.closedness) with a negative signed volume, its faces pointing inward,
+// turned right way out by reversing every face; `unit` (m per file unit) words the volume in the
+// returned warning, "PATH: the faces point inward (signed volume -V m^3): flipped". An open mesh
+// or one with a positive volume is left as it is, and the warning is empty.
+std::string turn_right_way_out(const std::string& path, const MeshStats& stats, TriangleMesh* mesh,
+                               double unit = 1);
+
+// Writes a mesh as a Wavefront OBJ ('v' and 'f' lines, 17 significant digits: it reads back
+// exactly). Throws std::runtime_error when the file cannot be written.
+void write_obj(const std::string& path, const TriangleMesh& mesh);
+
 // Loads an OBJ (".obj") or binary STL (".stl") file; the format comes from the extension, case
 // insensitive.
 //  - OBJ: every object and group is concatenated into one mesh; polygons are triangulated
