@@ -139,7 +139,8 @@ void print_text(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
   }
   out << '\n';
   out << std::setprecision(4) << "# gripped " << (r.gripped ? "yes" : "no") << "; held "
-      << (r.held ? "yes" : "no") << (grasp::tilt_note(r).empty() ? "" : ", " + grasp::tilt_note(r))
+      << (r.held ? "yes" : "no") << (grasp::push_note(r).empty() ? "" : ", " + grasp::push_note(r))
+      << (grasp::tilt_note(r).empty() ? "" : ", " + grasp::tilt_note(r))
       << (r.reason.empty() ? "" : ": " + r.reason) << "; object z " << r.object_z_initial << " -> "
       << r.object_z_gripped << " (before the lift) -> " << r.object_z_final << " m (final), rose "
       << r.object_rise << " m of the hand's " << r.hand_travel << " m, lowest " << r.hold_min_z
@@ -205,6 +206,9 @@ void print_json(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
       {"object_rise", r.object_rise},
       {"hand_travel", r.hand_travel},
       {"slip_time", r.slip_time >= 0 ? nlohmann::json(r.slip_time) : nlohmann::json()},
+      {"pushed", r.squeeze_push},
+      {"pushed_during_squeeze", r.pushed_during_squeeze},
+      {"dropped_at", r.dropped_at ? nlohmann::json(*r.dropped_at) : nlohmann::json()},
       {"object_z_initial", r.object_z_initial},
       {"object_z_gripped", r.object_z_gripped},
       {"object_z_final", r.object_z_final},
@@ -425,7 +429,9 @@ Command add_grasp_command(CLI::App& parent) {
       "triangle_tests, served_calls, contained, nonfinite_skips, "
       "object_z, segments), first_contact (segment -> step or null), gripped, held, reason "
       "(null when held), object_rise and hand_travel (m, from the start of the lift to the end "
-      "of the hold), slip_time (s, or null), "
+      "of the hold), slip_time (s, or null), pushed (m, the object's largest move over the "
+      "squeeze and settling) and pushed_during_squeeze (more than 1 cm), dropped_at (s, or "
+      "null), "
       "object_z_initial, object_z_gripped, object_z_final, hold_min_z, hold_drift, grip_rise "
       "(m, the rise of the object's grip point), tilt_deg and tilt_final_deg (the object's "
       "rotation since the start of the lift: the largest and the final, degrees), max_speed "
@@ -449,10 +455,14 @@ Command add_grasp_command(CLI::App& parent) {
       "contact normals (negative dot product). Held: gripped, not ejected, the object's grip "
       "point (the mean of its contacts with the hand before the lift) rose at least 80% of the "
       "hand's travel, and the object moved less than 1 cm in the hand during the hold; a held "
-      "object turned 2 degrees or more since the lift is 'held yes, tilted N°'. Ejected: faster "
+      "object turned 2 degrees or more since the lift is 'held yes, tilted N°', one the squeeze "
+      "moved more than 1 cm before the lift 'held yes, pushed N cm during the squeeze' (still "
+      "held: --require-held passes). Dropped: gripped, then no hand contact for the rest of the "
+      "run, and more than 1 cm below the hand's path at the end. Ejected: faster "
       "than 2 m/s, more than twice its reach below its start, or out of the scene. Otherwise "
       "REASON says why: 'ejected at t = T s (S m/s)', 'no segment reached the object', 'no two "
-      "touching segments push from opposing sides', 'slipped at t = T s', 'its grip rose X cm "
+      "touching segments push from opposing sides', 'dropped at t = T s', 'slipped at t = T s', "
+      "'its grip rose X cm "
       "of the hand's Y cm travel'. "
       "--require-held: exit code 1 when not held.\n"
       "Warnings: the pair registry's findings that do not stop the grasp (a served geom with a "

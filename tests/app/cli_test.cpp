@@ -520,6 +520,11 @@ TEST_F(CliTest, GraspJsonIsOneDocumentWithTheSameRecords) {
   EXPECT_EQ(doc.at("first_contact").size(), 12u);
   EXPECT_TRUE(doc.at("first_contact").at("finger2_C").is_null());
   EXPECT_EQ(doc.at("held"), false);
+  // Five steps reach nothing: the squeeze moves nothing, and nothing was gripped to drop.
+  EXPECT_GE(doc.at("pushed").get<double>(), 0.0);
+  EXPECT_LT(doc.at("pushed").get<double>(), 0.01);
+  EXPECT_EQ(doc.at("pushed_during_squeeze"), false);
+  EXPECT_TRUE(doc.at("dropped_at").is_null());
   graspcd::testing::expect_envelope(doc);
 }
 

@@ -3,7 +3,9 @@
 // Shadow hand, mjcf/real_shadow_glass.xml, when ../shared/models is there), and an object that
 // passes below its support or is faster than kEjectSpeed is "ejected at t = ...", never "no
 // segment reached the object" (the can of example 2 made to collide with nothing: it falls
-// through the floor out of the hand's reach).
+// through the floor out of the hand's reach). The squeeze's push and the drop (grasp.h,
+// "pushed", "dropped"): the classifier on made-up measures, and a slippery can that the hand
+// loses as it lifts.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -54,6 +56,127 @@ TEST(TiltVerdict, TheCupHangsTiltedInTheHandAndIsHeldWithItsTilt) {
   EXPECT_EQ(tilt_note(r), "tilted 4\xc2\xb0");
   EXPECT_GE(r.grip_rise, kHeldRiseShare * r.hand_travel);
   EXPECT_LT(r.max_speed, kEjectSpeed / 10);
+  // The squeeze moves the cup about 6 mm: measured, not a push; the hand never lets it go.
+  EXPECT_GT(r.squeeze_push, 0.001);
+  EXPECT_LT(r.squeeze_push, kSqueezePush);
+  EXPECT_FALSE(r.pushed_during_squeeze);
+  EXPECT_EQ(push_note(r), "");
+  EXPECT_LT(r.release_time, 0);
+  EXPECT_FALSE(r.dropped_at.has_value());
+}
+
+// The measures of a grasp whose object was gripped, rose with the hand (6 cm) and stayed in it:
+// held, until a test changes a measure.
+GraspResult gripped_and_lifted() {
+  GraspResult r;
+  r.hand_travel = 0.06;
+  r.object_rise = 0.059;
+  r.grip_rise = 0.059;
+  r.hold_drift = 0.002;
+  return r;
+}
+
+TEST(PushVerdict, AnObjectTheSqueezeMovedMoreThanKSqueezePushIsHeldButSaysItWasPushed) {
+  GraspResult r = gripped_and_lifted();
+  r.squeeze_push = 0.009;
+  judge_grasp(true, 2, true, r);
+  EXPECT_TRUE(r.held);
+  EXPECT_FALSE(r.pushed_during_squeeze);
+  EXPECT_EQ(push_note(r), "");
+  // The L-shape the Robotiq threw 12 cm up before the lift: still held (the later rules hold),
+  // but the verdict says so.
+  r.squeeze_push = 0.12;
+  judge_grasp(true, 2, true, r);
+  EXPECT_TRUE(r.held);
+  EXPECT_TRUE(r.reason.empty()) << r.reason;
+  EXPECT_TRUE(r.pushed_during_squeeze);
+  EXPECT_EQ(push_note(r), "pushed 12.0 cm during the squeeze");
+  // Not held: the reason says why, the flag stays in the result, the note is a held object's.
+  r.hold_drift = 0.03;
+  r.slip_time = 2.5;
+  judge_grasp(true, 2, true, r);
+  EXPECT_FALSE(r.held);
+  EXPECT_TRUE(r.pushed_during_squeeze);
+  EXPECT_EQ(push_note(r), "");
+}
+
+TEST(DropVerdict, AGrippedObjectThatLeftTheHandAndFellIsDroppedNotSlipped) {
+  // The plate that fell 40 m: no hand contact from t = 2.2 s on, far below the hand's path.
+  GraspResult r = gripped_and_lifted();
+  r.release_time = 2.2;
+  r.object_rise = -40;
+  r.grip_rise = -40;
+  r.hold_drift = 36.7;
+  r.slip_time = 2.25;
+  judge_grasp(true, 2, true, r);
+  EXPECT_FALSE(r.held);
+  ASSERT_TRUE(r.dropped_at.has_value());
+  EXPECT_EQ(*r.dropped_at, 2.2);
+  EXPECT_EQ(r.reason, "dropped at t = 2.200 s");
+
+  // Ejected keeps precedence (a fall below the support is an ejection).
+  GraspResult ejected = r;
+  ejected.ejected = Ejection{2.6, 2.1, "speed"};
+  judge_grasp(true, 2, true, ejected);
+  EXPECT_FALSE(ejected.dropped_at.has_value());
+  EXPECT_EQ(ejected.reason, "ejected at t = 2.600 s (2.1 m/s)");
+
+  // Still touched at the end: it slipped in the hand.
+  GraspResult touched = r;
+  touched.release_time = -1;
+  touched.hold_drift = 0.03;
+  touched.object_rise = 0.03;
+  touched.grip_rise = 0.03;
+  judge_grasp(true, 2, true, touched);
+  EXPECT_FALSE(touched.dropped_at.has_value());
+  EXPECT_EQ(touched.reason, "slipped at t = 2.250 s (moved 3.0 cm in the hand)");
+
+  // Let go but not fallen behind the hand (within kHeldSlip of its path): not dropped, held.
+  GraspResult resting = gripped_and_lifted();
+  resting.release_time = 3.9;
+  judge_grasp(true, 2, true, resting);
+  EXPECT_FALSE(resting.dropped_at.has_value());
+  EXPECT_TRUE(resting.held) << resting.reason;
+
+  // No segment reached it (a hand geom that is no segment may still grip): that reason, never
+  // dropped.
+  GraspResult unreached = r;
+  judge_grasp(false, 2, true, unreached);
+  EXPECT_FALSE(unreached.dropped_at.has_value());
+  EXPECT_EQ(unreached.reason, "no segment reached the object");
+
+  // Never gripped: the grip's reason, never dropped.
+  GraspResult loose = r;
+  judge_grasp(true, 1, false, loose);
+  EXPECT_FALSE(loose.dropped_at.has_value());
+  EXPECT_EQ(loose.reason, "no two touching segments push from opposing sides (1 touching)");
+}
+
+class DropRun : public testing::TempDirTest {};
+
+// Example 2's can made five times as dense and slippery (friction 0.05), native: the fingers grip
+// it but lose it, and it stays on the floor while the hand rises 6 cm. Dropped
+// when it lost the hand, not "its grip rose -0.0 cm of the hand's 6.0 cm travel".
+TEST_F(DropRun, ASlipperyHeavyCanLeavesTheHandAtTheLiftAndIsDropped) {
+  std::string xml = read_text(kMjcf + "/example2.xml");
+  xml = replaced(xml, "meshdir=\"meshes\"", "meshdir=\"" + kMjcf + "/meshes\"");
+  xml = replaced(xml, "mesh=\"can\" contype=\"1\" conaffinity=\"3\"",
+                 "mesh=\"can\" contype=\"1\" conaffinity=\"3\" friction=\"0.05 0.005 0.0001\" "
+                 "density=\"5000\"");
+  GraspOptions options;
+  options.native = true;
+  const GraspResult r = run_grasp(write("slippery.xml", xml), options);
+  EXPECT_TRUE(r.gripped);
+  EXPECT_FALSE(r.held);
+  EXPECT_FALSE(r.ejected.has_value());
+  ASSERT_TRUE(r.dropped_at.has_value()) << r.reason;
+  EXPECT_EQ(*r.dropped_at, r.release_time);
+  EXPECT_GT(r.hand_travel - r.object_rise, kHeldSlip);
+  char expected[48];
+  std::snprintf(expected, sizeof expected, "dropped at t = %.3f s", *r.dropped_at);
+  EXPECT_EQ(r.reason, expected);
+  EXPECT_GT(*r.dropped_at, 0);
+  EXPECT_LT(*r.dropped_at, r.sim_time);
 }
 
 class RealScene : public testing::TempDirTest {

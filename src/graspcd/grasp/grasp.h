@@ -36,7 +36,8 @@
 // more than 0.5 mm deep is a start that geometry cannot represent, refused as bad input with
 // "cannot start with --native: MuJoCo collides mesh 'M' as its convex hull, which geom 'G' lies
 // D mm inside at the start (a limit of the hull, not of the scene; graspcd's contacts start this
-// scene)" ("--decomposed", "a limit of the pieces" for the pieces). The verdicts (docs/design.md, "Semantics"):
+// scene)" ("--decomposed", "a limit of the pieces" for the pieces). The verdicts (docs/design.md,
+// "Semantics"):
 //  - gripped: at the end of the settling (just before the lift), two hand geoms touch the object
 //    with opposing contact normals: the mean normals, from each geom into the object, of two
 //    touching geoms have a negative dot product (kGripOpposing). One side pushing is no grip.
@@ -58,10 +59,20 @@
 //    lies at most 2 R lower: it passed below its support), or it went farther from its start
 //    than the scene's extent (at least 1 m). The first such step gives the time and the speed;
 //    the run goes on, but the verdict is the ejection: never held, and its reason comes first.
-//  - reason: why a grasp was not gripped or not held, one phrase (empty when held): "ejected at
-//    t = 0.412 s (57.3 m/s)", "no segment reached the object", "no two touching segments push
-//    from opposing sides", "slipped at t = 2.35 s", "its grip rose 1.2 cm of the hand's 6.0 cm
-//    travel (less than 80%)".
+//  - pushed: the object moved more than kSqueezePush (1 cm) from its place at the start of the
+//    squeeze, at any physics step up to the start of the lift (squeeze_push, the largest move;
+//    pushed_during_squeeze). It stays held when the rules above hold, but the verdict of a held
+//    object says "held, pushed 12.0 cm during the squeeze" (push_note).
+//  - dropped: gripped (and a segment touched in the closing), then from some physics step of the
+//    lift or the hold on no hand geom touched the object for the rest of the run (release_time),
+//    and at the end the object's rise fell short of the hand's travel by more than kHeldSlip: it
+//    left the hand and fell. Never held; dropped_at is release_time. An ejection comes first: an
+//    ejected object is never dropped.
+//  - reason: why a grasp was not gripped or not held, one phrase (empty when held), the first
+//    that applies: "ejected at t = 0.412 s (57.3 m/s)", "no segment reached the object", "no
+//    segment touched the object after the squeeze", "no two touching segments push from opposing
+//    sides", "dropped at t = 2.206 s", "slipped at t = 2.35 s" (still touched, moved 1 cm or more
+//    in the hand), "its grip rose 1.2 cm of the hand's 6.0 cm travel (less than 80%)".
 //
 // Non-finite state: after every physics step the driver reads MuJoCo's warnings for a bad number
 // (NaN, or beyond mjMAXVAL = 1e10) in qpos, qvel, qacc or ctrl (mjWARN_BADQPOS, mjWARN_BADQVEL,

@@ -26,6 +26,11 @@ inline constexpr int kFingerSegments = 12;      // finger{1..4}_{A,B,C}
 // the most the object may move in the hand during the hold (m).
 inline constexpr double kHeldRiseShare = 0.8;
 inline constexpr double kHeldSlip = 0.01;
+// The most the object may move from the start of the squeeze to the start of the lift before the
+// verdict says it was pushed (grasp.h, "pushed"), m: the slip the hold allows. An object moved
+// farther was not gripped where the fingers closed on it (thrown up, tipped over, slid), even if
+// the hand then lifts it.
+inline constexpr double kSqueezePush = 0.01;
 // The speed past which an object has been thrown, not moved by the hand (grasp.h, "ejected"),
 // m/s. The fastest the hands move an object in a grasp: the lift's peak, pi/2 * 6 cm / 1 s =
 // 0.09 m/s, and the real hands' closing, up to 0.35 m/s on the shipped scenes (the Shadow hand);
@@ -118,7 +123,16 @@ struct GraspResult {
   double tilt_final_deg = 0;
   double max_speed = 0;             // the object's largest linear speed over all phases, m/s
   std::optional<Ejection> ejected;  // the first sign that the object was thrown out, if any
-  std::string reason;               // why not gripped or not held (see above); empty when held
+  // The object's largest move (its origin, in the world) from where it was at the start of the
+  // squeeze, over the squeeze and the settling, m; more than kSqueezePush: pushed (grasp.h).
+  double squeeze_push = 0;
+  bool pushed_during_squeeze = false;
+  // From the start of the lift: the simulated time after which no hand geom touched the object
+  // for the rest of the run, s; -1 when one touched it at the end.
+  double release_time = -1;
+  // When a gripped object left the hand and fell (grasp.h, "dropped"): release_time; else none.
+  std::optional<double> dropped_at;
+  std::string reason;  // why not gripped or not held (see above); empty when held
   // The last second of the hold (or the whole hold when shorter), "at rest": the object's largest
   // linear speed (m/s), the deepest contact of an object geom (-dist, m; 0 without contacts), and
   // the whole system's kinetic energy (J, 0.5 qvel^T M qvel) averaged over that window's first
@@ -149,6 +163,17 @@ struct GraspResult {
 // What the verdict of a held object adds: "tilted 12°" for a final tilt of kTiltShownDeg or
 // more, else "".
 std::string tilt_note(const GraspResult& result);
+
+// What the verdict of a held object adds when the squeeze pushed it (grasp.h, "pushed"): "pushed
+// 12.0 cm during the squeeze", else "".
+std::string push_note(const GraspResult& result);
+
+// The verdicts (grasp.h) from the run's measures in `result` (hand_travel, grip_rise, hold_drift,
+// slip_time, ejected, squeeze_push, release_time, object_rise): sets gripped, held,
+// pushed_during_squeeze, dropped_at and reason. `ever_touched`: a segment touched the object in
+// the closing; `touching`: the hand geoms that touched it at the start of the lift; `opposing`:
+// two of them pushed from opposing sides then.
+void judge_grasp(bool ever_touched, int touching, bool opposing, GraspResult& result);
 
 // The segment names in record order: finger1_A, finger1_B, ..., finger4_C.
 const std::array<std::string, kFingerSegments>& finger_segment_names();

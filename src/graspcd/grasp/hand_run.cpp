@@ -77,40 +77,6 @@ std::optional<Vec3> grip_point(const mjModel* m, const mjData* d,
   return sum / n;
 }
 
-// The verdicts after the hold (grasp.h): held, and the reason of a failure. `ever_touched`: some
-// segment touched the object during the closing; `grip`: the grip before the lift.
-void judge(bool ever_touched, const GripSides& grip, GraspResult& result) {
-  result.gripped = grip.opposing;
-  const bool rose =
-      result.hand_travel > 0 && result.grip_rise >= kHeldRiseShare * result.hand_travel;
-  const bool slipped = result.hold_drift >= kHeldSlip;
-  result.held = result.gripped && rose && !slipped && !result.ejected;
-  char text[160];
-  if (result.ejected) {
-    std::snprintf(text, sizeof text, "ejected at t = %.3f s (%.1f m/s)", result.ejected->time,
-                  result.ejected->speed);
-    result.reason = text;
-  } else if (!ever_touched) {
-    result.reason = "no segment reached the object";
-  } else if (grip.touching == 0) {
-    result.reason = "no segment touched the object after the squeeze";
-  } else if (!grip.opposing) {
-    result.reason = "no two touching segments push from opposing sides (" +
-                    std::to_string(grip.touching) + " touching)";
-  } else if (slipped) {
-    std::snprintf(text, sizeof text, "slipped at t = %.3f s (moved %.1f cm in the hand)",
-                  result.slip_time, 100 * result.hold_drift);
-    result.reason = text;
-  } else if (!rose) {
-    std::snprintf(text, sizeof text,
-                  "its grip rose %.1f cm of the hand's %.1f cm travel (less than %.0f%%)",
-                  100 * result.grip_rise, 100 * result.hand_travel, 100 * kHeldRiseShare);
-    result.reason = text;
-  } else {
-    result.reason.clear();
-  }
-}
-
 // Stops the grasp when MuJoCo found a bad number in the state or the controls during the last
 // physics step (grasp.h, "Non-finite state"): it has reset the state or zeroed the controls.
 void throw_if_nonfinite(const mjData* d, const std::string& scene, const std::string& phase,
@@ -295,6 +261,13 @@ void HandRun::watch_object() {
     }
     if (cause != nullptr) watch_.ejected = Ejection{d_->time, speed, cause};
   }
+  if (watch_.contact_on) {
+    if (grip_point(m_, d_, is_object_geom_, support_root())) {
+      watch_.release_time = -1;
+    } else if (watch_.release_time < 0) {
+      watch_.release_time = d_->time;
+    }
+  }
   if (watch_.tilt_on) {
     double dot = 0;
     for (int k = 0; k < 4; ++k) {
@@ -436,14 +409,21 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   start_watch();
   close(options, result);
 
-  // Phase 2: squeeze, then settle.
+  // Phase 2: squeeze, then settle, watching how far the object is pushed from where it was.
   begin_squeeze();
   const long squeeze = phase_steps(options.squeeze_time);
   const auto nothing = [] {};
+  const Vec3 before_squeeze(d_->xpos[3 * object_], d_->xpos[3 * object_ + 1],
+                            d_->xpos[3 * object_ + 2]);
+  result.squeeze_push = 0;
+  const auto pushed = [&] {
+    const Vec3 o(d_->xpos[3 * object_], d_->xpos[3 * object_ + 1], d_->xpos[3 * object_ + 2]);
+    result.squeeze_push = std::max(result.squeeze_push, (o - before_squeeze).norm());
+  };
   run_phase(
-      "the squeeze", squeeze, [&](long i) { squeeze_targets(i, squeeze); }, nothing);
+      "the squeeze", squeeze, [&](long i) { squeeze_targets(i, squeeze); }, pushed);
   run_phase(
-      "the settling", phase_steps(options.settle_time), [](long) {}, nothing);
+      "the settling", phase_steps(options.settle_time), [](long) {}, pushed);
   result.object_z_gripped = object_height();
   const GripSides grip = grip_sides(m_, d_, is_object_geom_, support_root());
   const double hand_at_lift = hand_height();
@@ -463,6 +443,7 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
     watch_.quat_lift[static_cast<std::size_t>(k)] = d_->xquat[4 * object_ + k];
   }
   watch_.tilt_on = true;
+  watch_.contact_on = true;
 
   // Phase 3: lift.
   begin_lift();
@@ -484,7 +465,8 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   result.ejected = watch_.ejected;
   bool ever_touched = false;
   for (int step : result.first_contact) ever_touched = ever_touched || step > 0;
-  judge(ever_touched, grip, result);
+  result.release_time = watch_.release_time;
+  judge_grasp(ever_touched, grip.touching, grip.opposing, result);
 }
 
 }  // namespace graspcd::grasp

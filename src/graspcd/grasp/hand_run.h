@@ -96,6 +96,9 @@ class HandRun {
     double max_speed = 0;
     std::optional<Ejection> ejected;
     bool tilt_on = false;
+    // From the start of the lift: when the object lost its last hand contact, -1 while touched.
+    bool contact_on = false;
+    double release_time = -1;
     std::array<double, 4> quat_lift{};  // its orientation at the start of the lift
     double tilt = 0, max_tilt = 0;      // radians
   };
