@@ -776,6 +776,43 @@ TEST_F(CliTest, AnInsideOutMeshIsFlippedWithAWarningAndGraspsAsTheRightWayOutOne
                                  "flipped\n");
 }
 
+// An L-shaped block (6 x 3 x 7 cm, 1.5 cm thick) turned 45 degrees in the Robotiq: the pads meet
+// its corner and the squeeze pushes it about 1.3 cm before the lift; the hand then lifts it. Held,
+// but the verdict says it was pushed, and --require-held still passes.
+TEST_F(CliTest, GraspSaysWhenTheSqueezePushedAHeldObject) {
+  const fs::path models = fs::path(GRASPCD_MODELS_DIR);
+  if (!fs::exists(models / "hands" / "robotiq_2f85" / "2f85.xml")) {
+    GTEST_SKIP() << "real hands not found in " << models;
+  }
+  if (sanitizer_pass()) {
+    GTEST_SKIP() << "real-hand grasps skipped at GRASPCD_TEST_SCALE < 1 (sanitizer pass)";
+  }
+  const std::string l_shape = write(
+      "l_shape.obj",
+      inside_out("v 0 0 0\nv 0.06 0 0\nv 0.06 0 0.015\nv 0.015 0 0.015\nv 0.015 0 0.07\n"
+                 "v 0 0 0.07\nv 0 0.03 0\nv 0.06 0.03 0\nv 0.06 0.03 0.015\nv 0.015 0.03 0.015\n"
+                 "v 0.015 0.03 0.07\nv 0 0.03 0.07\n"
+                 "f 1 2 8\nf 1 8 7\nf 2 3 9\nf 2 9 8\nf 3 4 10\nf 3 10 9\nf 4 5 11\nf 4 11 10\n"
+                 "f 5 6 12\nf 5 12 11\nf 6 1 7\nf 6 7 12\nf 1 3 2\nf 7 8 9\nf 1 4 3\nf 7 9 10\n"
+                 "f 1 5 4\nf 7 10 11\nf 1 6 5\nf 7 11 12\n"));
+  const std::string args = "grasp --object " + l_shape + " --hand robotiq --yaw 45 --require-held";
+  const Result json = run(args + " --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json doc = nlohmann::json::parse(json.out);
+  EXPECT_TRUE(doc["held"]) << doc["reason"];
+  EXPECT_TRUE(doc["pushed_during_squeeze"]);
+  EXPECT_GT(doc["pushed"].get<double>(), 0.01);
+  EXPECT_LT(doc["pushed"].get<double>(), 0.03);
+  EXPECT_TRUE(doc["dropped_at"].is_null());
+  for (const nlohmann::json& w : doc["warnings"]) EXPECT_NE(w["code"], "mesh_inside_out") << w;
+  const Result text = run(args + " --quiet");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const std::vector<std::string> out = lines(text.out);
+  ASSERT_EQ(out.size(), 4u) << text.out;
+  EXPECT_EQ(out[2].rfind("# gripped yes; held yes, pushed 1.", 0), 0u) << out[2];
+  EXPECT_NE(out[2].find(" cm during the squeeze; object z "), std::string::npos) << out[2];
+}
+
 // The start-state check: an object that starts inside the fingers, or sunk into the
 // floor, is bad input: one line naming the file, exit 2, nothing on stdout.
 TEST_F(CliTest, GraspRefusesAnObjectThatStartsInsideTheHandOrTheFloor) {
