@@ -1,31 +1,25 @@
 #include "graspcd/grasp/drive_config.h"
 
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <stdexcept>
 
+#include "graspcd/mujoco/input_error.h"
 #include "graspcd/mujoco/json_config.h"
-#include "graspcd/mujoco/model_loading.h"
 
 namespace graspcd::grasp {
 namespace {
 
-[[noreturn]] void fail(const std::string& source, const std::string& message) {
-  throw mujoco::InputError(source, message);
-}
-
 DriveConfig parse_drive(const nlohmann::json& j, const std::string& source) {
   const auto where = [&](const std::string& what) { return "'grasp': " + what; };
-  if (!j.is_object()) fail(source, where("must be an object"));
+  if (!j.is_object()) mujoco::refuse(source, where("must be an object"));
   const auto text = [&](const nlohmann::json& v, const std::string& name) {
     if (!v.is_string() || v.get<std::string>().empty()) {
-      fail(source, where("'" + name + "' must be a non-empty string"));
+      mujoco::refuse(source, where("'" + name + "' must be a non-empty string"));
     }
     return v.get<std::string>();
   };
   const auto number = [&](const nlohmann::json& v, const std::string& name) {
-    if (!v.is_number()) fail(source, where("'" + name + "' must be a number"));
+    if (!v.is_number()) mujoco::refuse(source, where("'" + name + "' must be a number"));
     return v.get<double>();
   };
   DriveConfig d;
@@ -38,44 +32,46 @@ DriveConfig parse_drive(const nlohmann::json& j, const std::string& source) {
       d.support = text(value, field);
     } else if (field == "close") {
       if (!value.is_array() || value.empty())
-        fail(source, where("'close' must be a non-empty array"));
+        mujoco::refuse(source, where("'close' must be a non-empty array"));
       for (const auto& c : value) {
-        if (!c.is_object()) fail(source, where("each entry of 'close' must be an object"));
+        if (!c.is_object())
+          mujoco::refuse(source, where("each entry of 'close' must be an object"));
         CloseDrive cd;
         for (const auto& [f, v] : c.items()) {
           if (f == "actuator") {
             cd.actuator = text(v, f);
           } else if (f == "step") {
             cd.step = number(v, f);
-            if (!(cd.step > 0)) fail(source, where("'step' must be > 0"));
+            if (!(cd.step > 0)) mujoco::refuse(source, where("'step' must be > 0"));
           } else if (f == "squeeze") {
             cd.squeeze = number(v, f);
           } else if (f == "touch") {
             if (!v.is_array() || v.empty())
-              fail(source, where("'touch' must be a non-empty array"));
+              mujoco::refuse(source, where("'touch' must be a non-empty array"));
             for (const auto& t : v) cd.touch.push_back(text(t, "touch"));
           } else {
-            fail(source, where("unknown field '" + f + "' in 'close'"));
+            mujoco::refuse(source, where("unknown field '" + f + "' in 'close'"));
           }
         }
         if (cd.actuator.empty() || cd.step <= 0 || cd.touch.empty()) {
-          fail(source, where("each entry of 'close' needs 'actuator', 'step' and 'touch'"));
+          mujoco::refuse(source,
+                         where("each entry of 'close' needs 'actuator', 'step' and 'touch'"));
         }
         d.close.push_back(cd);
       }
     } else if (field == "lift") {
       if (!value.is_object() || !value.contains("actuator") || !value.contains("by") ||
           value.size() != 2) {
-        fail(source, where("'lift' must be {\"actuator\": NAME, \"by\": CTRL}"));
+        mujoco::refuse(source, where("'lift' must be {\"actuator\": NAME, \"by\": CTRL}"));
       }
       d.lift_actuator = text(value.at("actuator"), "actuator");
       d.lift_by = number(value.at("by"), "by");
     } else {
-      fail(source, where("unknown field '" + field + "'"));
+      mujoco::refuse(source, where("unknown field '" + field + "'"));
     }
   }
   if (d.hand.empty() || d.close.empty() || d.lift_actuator.empty()) {
-    fail(source, where("needs 'hand', 'close' and 'lift'"));
+    mujoco::refuse(source, where("needs 'hand', 'close' and 'lift'"));
   }
   return d;
 }
@@ -90,11 +86,7 @@ std::optional<DriveConfig> parse_drive_config(const std::string& json_text,
 }
 
 std::optional<DriveConfig> load_drive_config(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open the config file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_drive_config(text.str(), path);
+  return parse_drive_config(mujoco::read_config_file(path), path);
 }
 
 }  // namespace graspcd::grasp

@@ -23,19 +23,28 @@ struct GripSides {
   bool opposing = false;
 };
 
+// The hand geom of contact `c` when it is between a hand geom and an object geom (as above), else
+// -1.
+int hand_geom(const mjModel* m, const mjContact& c, const std::vector<char>& is_object_geom,
+              int support_root) {
+  const bool object1 = is_object_geom[static_cast<std::size_t>(c.geom1)] != 0;
+  const bool object2 = is_object_geom[static_cast<std::size_t>(c.geom2)] != 0;
+  if (object1 == object2) return -1;
+  const int hand = object1 ? c.geom2 : c.geom1;
+  const int body = m->geom_bodyid[hand];
+  if (body == 0 || m->body_rootid[body] == support_root) return -1;
+  return hand;
+}
+
 GripSides grip_sides(const mjModel* m, const mjData* d, const std::vector<char>& is_object_geom,
                      int support_root) {
   std::vector<std::pair<int, Vec3>> pushes;  // hand geom, summed normal into the object
   for (int i = 0; i < d->ncon; ++i) {
     const mjContact& c = d->contact[i];
-    const bool object1 = is_object_geom[static_cast<std::size_t>(c.geom1)] != 0;
-    const bool object2 = is_object_geom[static_cast<std::size_t>(c.geom2)] != 0;
-    if (object1 == object2) continue;
-    const int hand = object1 ? c.geom2 : c.geom1;
-    const int body = m->geom_bodyid[hand];
-    if (body == 0 || m->body_rootid[body] == support_root) continue;
+    const int hand = hand_geom(m, c, is_object_geom, support_root);
+    if (hand < 0) continue;
     Vec3 n(c.frame[0], c.frame[1], c.frame[2]);
-    if (object1) n = -n;
+    if (c.geom2 == hand) n = -n;  // the frame's normal points from geom1 (the object) to geom2
     auto at = std::find_if(pushes.begin(), pushes.end(),
                            [hand](const std::pair<int, Vec3>& p) { return p.first == hand; });
     if (at == pushes.end()) {
@@ -65,16 +74,21 @@ std::optional<Vec3> grip_point(const mjModel* m, const mjData* d,
   int n = 0;
   for (int i = 0; i < d->ncon; ++i) {
     const mjContact& c = d->contact[i];
-    const bool object1 = is_object_geom[static_cast<std::size_t>(c.geom1)] != 0;
-    const bool object2 = is_object_geom[static_cast<std::size_t>(c.geom2)] != 0;
-    if (object1 == object2) continue;
-    const int body = m->geom_bodyid[object1 ? c.geom2 : c.geom1];
-    if (body == 0 || m->body_rootid[body] == support_root) continue;
+    if (hand_geom(m, c, is_object_geom, support_root) < 0) continue;
     sum += Vec3(c.pos[0], c.pos[1], c.pos[2]);
     ++n;
   }
   if (n == 0) return std::nullopt;
   return sum / n;
+}
+
+// Whether any hand geom (as in grip_sides) touches an object geom in d's contacts.
+bool hand_touches_object(const mjModel* m, const mjData* d, const std::vector<char>& is_object_geom,
+                         int support_root) {
+  for (int i = 0; i < d->ncon; ++i) {
+    if (hand_geom(m, d->contact[i], is_object_geom, support_root) >= 0) return true;
+  }
+  return false;
 }
 
 // Stops the grasp when MuJoCo found a bad number in the state or the controls during the last
@@ -262,7 +276,7 @@ void HandRun::watch_object() {
     if (cause != nullptr) watch_.ejected = Ejection{d_->time, speed, cause};
   }
   if (watch_.contact_on) {
-    if (grip_point(m_, d_, is_object_geom_, support_root())) {
+    if (hand_touches_object(m_, d_, is_object_geom_, support_root())) {
       watch_.release_time = -1;
     } else if (watch_.release_time < 0) {
       watch_.release_time = d_->time;

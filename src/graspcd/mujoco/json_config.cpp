@@ -1,8 +1,11 @@
 #include "graspcd/mujoco/json_config.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <regex>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -97,6 +100,18 @@ nlohmann::json parse_json_config(const std::string& text, const std::string& sou
   }
   refuse_duplicate_keys(text, source);
   return j;
+}
+
+std::string read_config_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    refuse(path, "not a regular file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) refuse(path, "cannot open the config file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 }  // namespace graspcd::mujoco

@@ -16,4 +16,9 @@ namespace graspcd::mujoco {
 // A and B)".
 nlohmann::json parse_json_config(const std::string& text, const std::string& source);
 
+// The text of the config file `path`, read in one place for the pair config and its "grasp"
+// section. Throws InputError (input_error.h) "PATH: not a regular file" for a folder, a FIFO or a
+// device, and "PATH: cannot open the config file".
+std::string read_config_file(const std::string& path);
+
 }  // namespace graspcd::mujoco

@@ -4,9 +4,7 @@
 #include <mujoco/mujoco.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <stdexcept>
 
 #include "graspcd/mujoco/input_error.h"
@@ -111,15 +109,7 @@ std::string pair_config_path(const std::string& scene_path) {
 }
 
 RegistryConfig load_registry_config(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
-    refuse(path, "not a regular file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) refuse(path, "cannot open the config file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_registry_config(text.str(), path);
+  return parse_registry_config(read_config_file(path), path);
 }
 
 }  // namespace graspcd::mujoco
