@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -172,6 +173,23 @@ TEST_F(ConcaveRobotiq, MugHandlePinchIsHeldAndTheHullCannotStart) {
   EXPECT_LE(std::abs(g.left - g.right), kPadLagSteps) << g.left << " " << g.right;
   expect_validated(path);
   expect_native_refused(path, "mug");
+}
+
+// A scene that starts from a keyframe is no template for a new object: the keyframe holds the
+// mug's pose, which the new object's placement would not replace. One line naming the template
+// and the keyframe's line, exit code 2.
+TEST_F(ConcaveRobotiq, AKeyframedSceneIsRefusedAsATemplate) {
+  const std::string path = scene("concave_robotiq_mug_handle");
+  SKIP_WITHOUT_MODELS(path);
+  const fs::path cup = fs::path(GRASPCD_MODELS_DIR) / "objects/mujoco/cube_cup.obj";
+  const testing::Outcome r =
+      graspcd("grasp --object '" + cup.string() + "' --hand '" + path + "' --max-steps 1");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(path + ":"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("template scene: a template with a <keyframe> cannot take a new object"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
 // Why one pad used to touch first: not the gripper. On the centred cup the two pads stay mirror
