@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -168,6 +169,10 @@ TEST_F(ConcaveRobotiq, MugHandlePinchIsHeldAndTheHullCannotStart) {
   SKIP_WITHOUT_MODELS(path);
   const Grasped g = grasp(path);
   expect_held(g.result);
+  // Hung from its handle, the mug turns about 10 degrees about the pinch: "held yes, tilted 10°".
+  EXPECT_GT(g.result.tilt_final_deg, 5.0);
+  EXPECT_LT(g.result.tilt_final_deg, 20.0);
+  EXPECT_EQ(tilt_note(g.result).rfind("tilted ", 0), 0u) << tilt_note(g.result);
   ASSERT_GT(g.left, 0);
   ASSERT_GT(g.right, 0);
   EXPECT_LE(std::abs(g.left - g.right), kPadLagSteps) << g.left << " " << g.right;
