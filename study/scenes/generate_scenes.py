@@ -32,7 +32,10 @@ hull), a can with rounded edges and a bowl (non-convex); and a C-block (the boun
 5 mm cubes, non-convex: a slot open toward fingers 1-3). Examples: 1 the cup, 2 the can, 3 the
 C-block (finger 2 enters its slot, where MuJoCo's convex hull is solid), each as body `object`
 centred under the hand, resting on the floor; hand_triangles.xml has the cup under the hand and the
-other objects aside (bodies object_can, object_bowl, object_cblock).
+other objects aside (bodies object_can, object_bowl, object_cblock). Concave grasps: the thumb
+inside a thin-walled open box pinches its wall against fingers 1-3 (concave_project_thinbox.xml,
+mesh thinbox.obj), and the can lifted off the floor of the plastic bowl of ../shared/models, used
+by path (concave_bowl_lift.xml: no floor; the can against the bowl is a pair of the config too).
 
 Contact filter: fingers and palm contype 2 conaffinity 0, objects contype 1 conaffinity 3, floor
 contype 1 conaffinity 1, arm links 0/0: fingers touch objects but not each other, the palm or the
@@ -398,11 +401,12 @@ def header(title, lines):
     return out
 
 
-def geometry_comment(kind):
+def geometry_comment(kind, floor=True):
     seg = ", ".join("%s %.3f" % (s, SEG_LEN[s]) for s in SEG_NAMES)
     lines = [
         "",
-        "Units: metres, radians. z up; the floor (table) is the plane z = 0.",
+        "Units: metres, radians. z up; %s" % ("the floor (table) is the plane z = 0." if floor else
+                                             "no floor (the object's support is named below)."),
         "Arm: pedestal at (%.2f, 0, 0); arm1 (hinge z) at height %.3f; arm2 (hinge y) %.3f above;"
         % (PEDESTAL_X, ARM1_Z, LINK1),
         "  link2 %.3f along +x to arm3 (hinge y); link3 %.3f along +x to the wrist at (0, 0, %.3f)."
@@ -592,7 +596,8 @@ BOWL_LIFT_PAIRS = ('{\n  "method": "sat",\n  "pairs": [\n'
 
 
 def bowl_lift_scene():
-    lines = geometry_comment("closed rounded-box meshes, edge radius %.3f" % SEG_ROUND) + [
+    lines = geometry_comment("closed rounded-box meshes, edge radius %.3f" % SEG_ROUND,
+                             floor=False) + [
         "",
         "Concave support: the can (body object) stands inside the plastic bowl of ../shared/models",
         "  (objects/prl_assets/plastic_bowl_visual.obj, 17.2 cm wide, 7.6 cm tall, 720 faces; used",
