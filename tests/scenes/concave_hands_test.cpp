@@ -8,11 +8,13 @@
 // For each, graspcd grips, lifts and holds (grasp --json: gripped, held, the tilt its verdict
 // names), validate finds no missed and no false contact, and MuJoCo's convex hulls (--native)
 // cannot do it: refused at the start (the hull holds the thumb, the can), or, for the mug, the
-// distal phalanx stops on the hull's face over the handle's hole and the mug is thrown out.
+// distal phalanx stops on the hull's face over the handle's hole and the mug is thrown out;
+// without the middle finger's curl the hand lifts nothing (the hook carries the mug).
 // The scenes with ../shared/models are skipped with a message where it is absent; the
 // project's scene always runs. Release pass only (ctest label "slow"): whole grasps.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -165,6 +167,24 @@ TEST_F(ConcaveHands, TheShadowHandHooksTheMugThroughItsHandle) {
   }
   const std::string narrow = write("fingers.pairs.json", config.dump(1));
   expect_validated(scene, "--config '" + narrow + "'");
+}
+
+// The hook carries the mug: the same drive without the middle finger's curl (rh_A_MFJ0), the
+// braces and the proximal phalanx alone, lifts nothing.
+TEST_F(ConcaveHands, WithoutTheHookTheBracesLiftNothing) {
+  const std::string scene = real_scene("concave_shadow_mug_hook");
+  if (scene.empty()) GTEST_SKIP() << "real models not found in " << GRASPCD_MODELS_DIR;
+  nlohmann::json config = load(fs::path(scene).replace_extension(".pairs.json"));
+  nlohmann::json& close = config["grasp"]["close"];
+  const auto before = close.size();
+  close.erase(std::remove_if(close.begin(), close.end(),
+                             [](const nlohmann::json& c) { return c["actuator"] == "rh_A_MFJ0"; }),
+              close.end());
+  ASSERT_EQ(close.size(), before - 1);
+  const std::string braces = write("braces.pairs.json", config.dump(1));
+  const nlohmann::json g = json_of("grasp '" + scene + "' --config '" + braces + "' --json");
+  EXPECT_FALSE(g["held"].get<bool>());
+  EXPECT_LT(g["object_rise"].get<double>(), 0.01);
 }
 
 // The flat middle finger starts below the hull; curling, its distal phalanx stops on the hull's
