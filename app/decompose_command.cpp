@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -25,6 +24,7 @@ namespace {
 
 struct DecomposeOptions {
   decompose::DecomposeOptions run;
+  std::string engine = "hacd";
   bool json = false;
 };
 
@@ -55,8 +55,9 @@ void print_text(const decompose::Manifest& m, const decompose::DecomposeOptions&
   std::cout << out.str();
 }
 
-void run_decompose(const DecomposeOptions& o, const CLI::App& app) {
-  const bool vhacd = o.run.engine == decompose::Engine::kVhacd;
+void run_decompose(DecomposeOptions& o, const CLI::App& app) {
+  const bool vhacd = o.engine == "vhacd";
+  o.run.engine = vhacd ? decompose::Engine::kVhacd : decompose::Engine::kHacd;
   if (vhacd && app.count("--simplify") > 0) {
     throw UsageError("decompose: --simplify is for --engine hacd (V-HACD voxelizes the mesh)");
   }
@@ -93,12 +94,11 @@ Command add_decompose_command(CLI::App& parent) {
   app->add_option("MESH", options->run.mesh, "The mesh: OBJ or binary STL")->required();
   app->add_option("--out", options->run.out, "The folder for the pieces and the fragment")
       ->required();
-  app->add_option("--engine", options->run.engine,
+  app->add_option("--engine", options->engine,
                   "hacd: HACD (Debian's libHACD); vhacd: V-HACD 4 (node and the npm package "
                   "vhacd-js, installed by ./run build)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, decompose::Engine>{
-          {"hacd", decompose::Engine::kHacd}, {"vhacd", decompose::Engine::kVhacd}}))
-      ->default_str("hacd");
+      ->check(CLI::IsMember({"hacd", "vhacd"}))
+      ->capture_default_str();
   app->add_option("--pieces", options->run.pieces,
                   "At most this many convex pieces (HACD's clusters, V-HACD's hulls)")
       ->check(CLI::Range(1, 1024))
