@@ -71,7 +71,14 @@ Command add_decompose_command(CLI::App& parent) {
   auto options = std::make_shared<DecomposeOptions>();
   CLI::App* app = parent.add_subcommand(
       "decompose", "Approximate convex decomposition (HACD) of a mesh, as OBJ pieces and MJCF");
-  app->add_option("MESH", options->run.mesh, "The mesh: OBJ or binary STL")->required();
+  app->add_option("MESH", options->run.mesh,
+                  "The mesh: OBJ, STL, OFF, PLY, glTF/GLB or COLLADA (docs/objects.md)")
+      ->required();
+  app->add_option("--scale", options->run.scale,
+                  "Multiply MESH's coordinates by S (file units to metres: 0.001 for "
+                  "millimetres); the pieces and every length reported are then in metres")
+      ->type_name("S")
+      ->check(number_in_range(1e-6, 1e3));
   app->add_option("--out", options->run.out, "The folder for the pieces and the fragment")
       ->required();
   app->add_option("--pieces", options->run.pieces, "At most this many convex pieces")
@@ -101,7 +108,8 @@ Command add_decompose_command(CLI::App& parent) {
       "piece is the hull of its cluster's vertices of MESH, so the pieces follow MESH's surface "
       "(the Hausdorff distance is against MESH). A cluster no face of MESH joins gives no piece. "
       "A mesh of at most F faces is not decimated (reported).\n"
-      "Written into DIR: STEM_piece_K.obj (K = 0, 1, ...; in MESH's own coordinates and scale), "
+      "Written into DIR: STEM_piece_K.obj (K = 0, 1, ...; in MESH's own coordinates, times "
+      "--scale when given), "
       "STEM.xml (an MJCF fragment MuJoCo 2.2 includes: <mujocoinclude> with the <mesh> assets, "
       "files relative to DIR, and a <body name=\"STEM\"> with one <geom> per piece) and "
       "decomposition.json (the JSON document below; graspcd grasp --decomposed DIR reads it).\n"
@@ -109,7 +117,10 @@ Command add_decompose_command(CLI::App& parent) {
       "pieces' surfaces to MESH's surface with its error bound (CGAL 5.5's "
       "bounded_error_Hausdorff_distance; faces of a piece inside the object count too), and for "
       "a closed mesh the volume the pieces add (the sum of their volumes minus MESH's; overlaps "
-      "between pieces count twice).\n"
+      "between pieces count twice); a loss of more than 10% of MESH's volume (pieces that do not "
+      "fill "
+      "it, e.g. thin slabs along its faces) is the warning 'decompose_volume_lost', a gain (pieces "
+      "closing a cavity) is reported only.\n"
       "Text output: lines 'pieces N (at most M)', with --simplify 'simplify_faces F0 -> F1 (at "
       "most F) in S s' or 'simplify_faces F0 (at most F: not decimated)', 'seconds S' (HACD "
       "and the hulls; with --simplify after the decimation), 'hausdorff_m D +- B', "

@@ -2,18 +2,17 @@
 // graspcd), PLY, glTF/GLB and COLLADA (Assimp, in a child process). Each is written here from one
 // small mesh (by hand for the text formats, by Assimp's exporter for the others) and must load as
 // the OBJ of the same mesh does; bad files are one line naming the file.
-#include <assimp/scene.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
-#include <assimp/Exporter.hpp>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "graspcd/io/mesh_io.h"
+#include "support/mesh_export.h"
 #include "support/temp_dir.h"
 
 namespace graspcd::io {
@@ -48,47 +47,13 @@ std::vector<std::array<Corner, 3>> triangles_of(const TriangleMesh& m, double sc
   return out;
 }
 
-// The mesh as one Assimp scene (one mesh, one material, the root node holding it).
-std::unique_ptr<aiScene> scene_of(const TriangleMesh& m, const aiMatrix4x4& root = aiMatrix4x4()) {
-  auto scene = std::make_unique<aiScene>();
-  scene->mRootNode = new aiNode("root");
-  scene->mRootNode->mTransformation = root;
-  scene->mRootNode->mMeshes = new unsigned[1]{0};
-  scene->mRootNode->mNumMeshes = 1;
-  scene->mMaterials = new aiMaterial* [1] { new aiMaterial() };
-  scene->mNumMaterials = 1;
-  auto* mesh = new aiMesh();
-  mesh->mName = "box";
-  mesh->mMaterialIndex = 0;
-  mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
-  mesh->mNumVertices = static_cast<unsigned>(m.vertices.size());
-  mesh->mVertices = new aiVector3D[m.vertices.size()];
-  for (std::size_t i = 0; i < m.vertices.size(); ++i) {
-    const Vec3& v = m.vertices[i];
-    mesh->mVertices[i] =
-        aiVector3D(static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()));
-  }
-  mesh->mNumFaces = static_cast<unsigned>(m.faces.size());
-  mesh->mFaces = new aiFace[m.faces.size()];
-  for (std::size_t f = 0; f < m.faces.size(); ++f) {
-    mesh->mFaces[f].mNumIndices = 3;
-    mesh->mFaces[f].mIndices = new unsigned[3];
-    for (int k = 0; k < 3; ++k) mesh->mFaces[f].mIndices[k] = static_cast<unsigned>(m.faces[f][k]);
-  }
-  scene->mMeshes = new aiMesh* [1] { mesh };
-  scene->mNumMeshes = 1;
-  return scene;
-}
-
 class MeshImportTest : public testing::TempDirTest {
  protected:
   // The mesh exported by Assimp in `format` (its exporter id) as `name`.
   std::string exported(const std::string& name, const char* format, const TriangleMesh& m,
                        const aiMatrix4x4& root = aiMatrix4x4()) {
     const std::string path = (dir_ / name).string();
-    Assimp::Exporter exporter;
-    const std::unique_ptr<aiScene> scene = scene_of(m, root);
-    EXPECT_EQ(exporter.Export(scene.get(), format, path), AI_SUCCESS) << exporter.GetErrorString();
+    EXPECT_EQ(testing::export_mesh(m, format, path, root), "");
     return path;
   }
   std::string obj_of(const TriangleMesh& m) {

@@ -13,7 +13,8 @@
 namespace graspcd::decompose {
 
 struct DecomposeOptions {
-  std::string mesh;            // OBJ or binary STL
+  std::string mesh;            // any format io::load_mesh reads
+  double scale = 1;            // its coordinates multiplied by this (file units to metres)
   std::string out;             // the folder of the pieces, the fragment and the manifest (created)
   int pieces = 16;             // at most this many pieces (HACD's cluster count)
   int simplify = 0;            // 0: HACD on the mesh itself; F: on a copy of at most F faces
@@ -35,6 +36,11 @@ class BoundError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
 };
+
+// The pieces may hold less volume than the closed mesh they come from (e.g. a cube cut into thin
+// slabs along its faces): more than this fraction lost is warned about ("decompose_volume_lost").
+// A gain is reported, not warned: pieces that close a cavity (a cup's) gain by design.
+inline constexpr double kMaxVolumeLoss = 0.1;
 
 struct DecomposeRun {
   Manifest manifest;
