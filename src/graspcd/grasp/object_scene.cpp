@@ -288,6 +288,7 @@ ObjectScene place_object(const TriangleMesh& mesh, const ObjectPlacement& placem
     out.scale = std::numeric_limits<double>::infinity();
     if (width > 0) out.scale = (*room.fit)[0] / width;
     if (extent[2] > 0) out.scale = std::min(out.scale, (*room.fit)[1] / extent[2]);
+    out.scale *= placement.fit_fraction;
   }
   const double s = out.scale;
   out.size = {s * extent[0], s * extent[1], s * extent[2]};

@@ -34,11 +34,14 @@ namespace graspcd::grasp {
 inline constexpr double kSupportGap = 0.5e-3;
 
 struct ObjectPlacement {
-  std::string file;        // the user's mesh (any format io::load_mesh reads)
-  double scale = 1;        // file units -> m; the file's units are kept by default
-  bool fit = false;        // scale to the template's graspcd_fit instead
-  std::string up = "z";    // the file axis pointing up: x, y, z, -x, -y or -z
-  double yaw_degrees = 0;  // then a turn about the up direction
+  std::string file;  // the user's mesh (any format io::load_mesh reads)
+  double scale = 1;  // file units -> m; the file's units are kept by default
+  bool fit = false;  // scale to the template's graspcd_fit instead
+  // With `fit`: the fitted scale times this (0 < f <= 1), the margin the hand needs to close on
+  // the object (docs/objects.md, "--fit and each hand's margin").
+  double fit_fraction = 1;
+  std::string up = "z";                       // the file axis pointing up: x, y, z, -x, -y or -z
+  double yaw_degrees = 0;                     // then a turn about the up direction
   std::optional<std::array<double, 4>> pose;  // w x y z: the object's rotation, instead of up/yaw
 };
 

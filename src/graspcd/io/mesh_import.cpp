@@ -3,12 +3,14 @@
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <assimp/Importer.hpp>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
@@ -167,6 +169,14 @@ ImportedMesh import_in_child(const std::string& path, const std::string& format,
   }
   if (child == 0) {
     ::close(fds[0]);
+    // Assimp's own messages (an ai_assert's, its logger's) would add lines to the one error line:
+    // the child's stdout and stderr go nowhere.
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (null >= 0) {
+      ::dup2(null, 1);
+      ::dup2(null, 2);
+      ::close(null);
+    }
     std::string bytes;
     try {
       bytes = encode(import_in_process(path, format));
@@ -228,11 +238,17 @@ ImportedMesh import_in_child(const std::string& path, const std::string& format,
   return out;
 }
 
+std::atomic<double> g_import_timeout{kImportTimeout};
+
 }  // namespace
+
+void set_import_timeout(double seconds) { g_import_timeout = seconds; }
+double import_timeout() { return g_import_timeout; }
 
 ImportedMesh import_with_assimp(const std::string& path, const std::string& format, bool isolated,
                                 double timeout_seconds) {
   if (!isolated) return import_in_process(path, format);
+  if (timeout_seconds < 0) timeout_seconds = import_timeout();
   return import_in_child(path, format, timeout_seconds);
 }
 

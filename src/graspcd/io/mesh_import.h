@@ -32,7 +32,15 @@ struct ImportedMesh {
 // or a file without any triangle come back with `error` set; the caller words it.
 // In a child process (fork) when `isolated`: a crash or a hang of the reader (killed after
 // `timeout_seconds`) is then an error, not the caller's end.
+// A negative timeout: the process-wide one (import_timeout).
 ImportedMesh import_with_assimp(const std::string& path, const std::string& format,
-                                bool isolated = true, double timeout_seconds = 60);
+                                bool isolated = true, double timeout_seconds = -1);
+
+// The time load_mesh gives the child process that reads a file through Assimp before it is killed
+// and the file refused ("FILE: the import library did not finish reading it in N s"); default
+// kImportTimeout. Process-wide (the fuzz target shortens it).
+inline constexpr double kImportTimeout = 60;
+void set_import_timeout(double seconds);
+double import_timeout();
 
 }  // namespace graspcd::io

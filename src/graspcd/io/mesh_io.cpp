@@ -536,6 +536,25 @@ TriangleMesh load_off(const std::string& path) {
 // PLY, glTF/GLB and COLLADA through Assimp (mesh_import.h), in a child process, its error words
 // naming the file and where Assimp found the fault.
 TriangleMesh load_with_assimp(const std::string& path, const std::string& ext, MeshStats& s) {
+  // The file must be what its extension says: Assimp, when the extension's reader refuses a file,
+  // tries every other reader on its content (a ".gltf" holding an OFF text would be read as OFF).
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot open");
+    std::string head(4096, '\0');
+    in.read(&head[0], static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    const std::size_t first = head.find_first_not_of(" \t\r\n");
+    if (ext == "ply" && head.rfind("ply", 0) != 0) {
+      fail(path, "not a PLY file (it does not start with 'ply')", 1);
+    } else if (ext == "glb" && head.rfind("glTF", 0) != 0) {
+      fail(path, "not a GLB file (it does not start with 'glTF')");
+    } else if (ext == "gltf" && (first == std::string::npos || head[first] != '{')) {
+      fail(path, "not a glTF file (a .gltf file is a JSON object, starting with '{')");
+    } else if (ext == "dae" && head.find("<COLLADA") == std::string::npos) {
+      fail(path, "not a COLLADA file (no <COLLADA> in its first 4096 bytes)");
+    }
+  }
   ImportedMesh imported = import_with_assimp(path, ext);
   if (!imported.error.empty()) {
     std::string where;
