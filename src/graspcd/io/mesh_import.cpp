@@ -6,6 +6,8 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -41,6 +43,9 @@ ImportedMesh import_in_process(const std::string& path, const std::string& forma
       importer.ReadFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices);
   if (scene == nullptr) {
     out.error = first_line(importer.GetErrorString());
+    if (out.error.find("bad_alloc") != std::string::npos) {
+      out.error = "the import library (Assimp) ran out of memory reading it";
+    }
     if (out.error.empty()) out.error = "Assimp cannot read it";
     return out;
   }
@@ -152,6 +157,36 @@ bool decode(const std::string& b, ImportedMesh& m) {
   return r.ok && r.at == b.size();
 }
 
+// The child's address space is limited (setrlimit RLIMIT_AS) to kImportMemoryBase plus
+// kImportMemoryPerByte times the file's size, so that a file on which Assimp allocates without end
+// (the fuzzer found a COLLADA file taking more than 3 GB) fails in the child with bad_alloc rather
+// than exhaust the machine. Not under AddressSanitizer, whose shadow memory the limit would deny.
+constexpr std::uint64_t kImportMemoryBase = std::uint64_t{4} << 30;
+constexpr std::uint64_t kImportMemoryPerByte = 64;
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define GRASPCD_IMPORT_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define GRASPCD_IMPORT_ASAN 1
+#endif
+
+void limit_memory(const std::string& path) {
+#ifndef GRASPCD_IMPORT_ASAN
+  struct stat info {};
+  const std::uint64_t size =
+      ::stat(path.c_str(), &info) == 0 ? static_cast<std::uint64_t>(info.st_size) : 0;
+  const std::uint64_t bytes = kImportMemoryBase + kImportMemoryPerByte * size;
+  rlimit limit{};
+  limit.rlim_cur = limit.rlim_max = static_cast<rlim_t>(bytes);
+  ::setrlimit(RLIMIT_AS, &limit);
+#else
+  (void)path;
+#endif
+}
+
 ImportedMesh import_in_child(const std::string& path, const std::string& format,
                              double timeout_seconds) {
   ImportedMesh out;
@@ -171,6 +206,7 @@ ImportedMesh import_in_child(const std::string& path, const std::string& format,
     ::close(fds[0]);
     // Assimp's own messages (an ai_assert's, its logger's) would add lines to the one error line:
     // the child's stdout and stderr go nowhere.
+    limit_memory(path);
     const int null = ::open("/dev/null", O_WRONLY);
     if (null >= 0) {
       ::dup2(null, 1);
@@ -180,6 +216,10 @@ ImportedMesh import_in_child(const std::string& path, const std::string& format,
     std::string bytes;
     try {
       bytes = encode(import_in_process(path, format));
+    } catch (const std::bad_alloc&) {
+      ImportedMesh failed;
+      failed.error = "the import library (Assimp) ran out of memory reading it";
+      bytes = encode(failed);
     } catch (const std::exception& e) {
       ImportedMesh failed;
       failed.error = first_line(e.what());

@@ -111,7 +111,8 @@ void scale_mesh(const std::string& path, double scale, TriangleMesh* mesh);
 // (MuJoCo's, for the meshes a scene names) will read: an OBJ's byte-order mark, vertex lines
 // (the number grammar: no nan, inf or out-of-range coordinate, which MuJoCo would read as 0 or
 // inf) and face lines (at least 3 vertices, every index naming a vertex); a binary STL's size and
-// its coordinates. Other formats are left to their reader. Throws InputError as load_mesh does.
+// its coordinates, and an ASCII STL refused (MuJoCo 2.2 reads binary STL only). Other formats
+// are left to their reader. Throws InputError as load_mesh does.
 void check_mesh_file(const std::string& path);
 
 }  // namespace graspcd::io
