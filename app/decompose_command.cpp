@@ -14,6 +14,7 @@
 
 #include "command.h"
 #include "graspcd/decompose/mesh_decomposition.h"
+#include "object_placement.h"
 
 namespace graspcd::cli {
 
@@ -78,7 +79,7 @@ Command add_decompose_command(CLI::App& parent) {
                   "Multiply MESH's coordinates by S (file units to metres: 0.001 for "
                   "millimetres); the pieces and every length reported are then in metres")
       ->type_name("S")
-      ->check(number_in_range(1e-6, 1e3));
+      ->check(number_in_range(kMinScale, kMaxScale));
   app->add_option("--out", options->run.out, "The folder for the pieces and the fragment")
       ->required();
   app->add_option("--pieces", options->run.pieces, "At most this many convex pieces")

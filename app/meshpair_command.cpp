@@ -20,6 +20,7 @@
 #include "graspcd/io/text_input.h"
 #include "graspcd/version/envelope.h"
 #include "method.h"
+#include "object_placement.h"
 
 namespace graspcd::cli {
 
@@ -154,7 +155,7 @@ Command add_meshpair_command(CLI::App& parent) {
                   "Multiply both meshes' coordinates by S (file units to metres: 0.001 for "
                   "millimetres); the poses' translations are then in metres")
       ->type_name("S")
-      ->check(number_in_range(1e-6, 1e3));
+      ->check(number_in_range(kMinScale, kMaxScale));
   add_method_options(*app, options->method);
   app->add_flag("--first-contact", options->first_contact,
                 "Stop at the first intersecting triangle pair (PAIRS is then 0 or 1)");
