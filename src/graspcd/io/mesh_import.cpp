@@ -161,9 +161,6 @@ bool decode(const std::string& b, ImportedMesh& m) {
 // kImportMemoryPerByte times the file's size, so that a file on which Assimp allocates without end
 // (the fuzzer found a COLLADA file taking more than 3 GB) fails in the child with bad_alloc rather
 // than exhaust the machine. Not under AddressSanitizer, whose shadow memory the limit would deny.
-constexpr std::uint64_t kImportMemoryBase = std::uint64_t{4} << 30;
-constexpr std::uint64_t kImportMemoryPerByte = 64;
-
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)
 #define GRASPCD_IMPORT_ASAN 1
@@ -175,6 +172,8 @@ constexpr std::uint64_t kImportMemoryPerByte = 64;
 
 void limit_memory(const std::string& path) {
 #ifndef GRASPCD_IMPORT_ASAN
+  constexpr std::uint64_t kImportMemoryBase = std::uint64_t{4} << 30;
+  constexpr std::uint64_t kImportMemoryPerByte = 64;
   struct stat info {};
   const std::uint64_t size =
       ::stat(path.c_str(), &info) == 0 ? static_cast<std::uint64_t>(info.st_size) : 0;
