@@ -17,6 +17,7 @@
 #include "command.h"
 #include "graspcd/decompose/mesh_decomposition.h"
 #include "graspcd/decompose/vhacd.h"
+#include "object_placement.h"
 
 namespace graspcd::cli {
 
@@ -91,7 +92,14 @@ Command add_decompose_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "decompose",
       "Approximate convex decomposition (HACD or V-HACD 4) of a mesh, as OBJ pieces and MJCF");
-  app->add_option("MESH", options->run.mesh, "The mesh: OBJ or binary STL")->required();
+  app->add_option("MESH", options->run.mesh,
+                  "The mesh: OBJ, STL, OFF, PLY, glTF/GLB or COLLADA (docs/objects.md)")
+      ->required();
+  app->add_option("--scale", options->run.scale,
+                  "Multiply MESH's coordinates by S (file units to metres: 0.001 for "
+                  "millimetres); the pieces and every length reported are then in metres")
+      ->type_name("S")
+      ->check(number_in_range(kMinScale, kMaxScale));
   app->add_option("--out", options->run.out, "The folder for the pieces and the fragment")
       ->required();
   app->add_option("--engine", options->engine,
@@ -151,7 +159,8 @@ Command add_decompose_command(CLI::App& parent) {
       "--resolution and --timeout for vhacd. Choose vhacd for a large or scanned mesh (its "
       "time grows with the voxels, not the faces; no --simplify needed) and for hulls close to "
       "the solid; hacd needs no node and follows the mesh's own faces.\n"
-      "Written into DIR: STEM_piece_K.obj (K = 0, 1, ...; in MESH's own coordinates and scale), "
+      "Written into DIR: STEM_piece_K.obj (K = 0, 1, ...; in MESH's own coordinates, times "
+      "--scale when given), "
       "STEM.xml (an MJCF fragment MuJoCo 2.2 includes: <mujocoinclude> with the <mesh> assets, "
       "files relative to DIR, and a <body name=\"STEM\"> with one <geom> per piece) and "
       "decomposition.json (the JSON document below; graspcd grasp --decomposed DIR reads it).\n"
@@ -160,7 +169,10 @@ Command add_decompose_command(CLI::App& parent) {
       "pieces' surfaces to MESH's surface with its error bound (CGAL 5.5's "
       "bounded_error_Hausdorff_distance; faces of a piece inside the object count too), and for "
       "a closed mesh the volume the pieces add (the sum of their volumes minus MESH's; overlaps "
-      "between pieces count twice).\n"
+      "between pieces count twice); a loss of more than 10% of MESH's volume (pieces that do not "
+      "fill "
+      "it, e.g. thin slabs along its faces) is the warning 'decompose_volume_lost', a gain (pieces "
+      "closing a cavity) is reported only.\n"
       "Text output: lines 'engine E', 'pieces N (at most M)', with --simplify 'simplify_faces F0 "
       "-> F1 (at "
       "most F) in S s' or 'simplify_faces F0 (at most F: not decimated)', 'seconds S' (the engine "

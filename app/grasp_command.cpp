@@ -1,7 +1,7 @@
 // graspcd grasp SCENE.xml [--method M] [--cap N] [--switch N] [--native] [--json]
 // [--config PAIRS.json] [--max-steps N] [--quiet]: runs the grasp of paper section 9
 // (grasp/grasp.h) and prints, per grasp step, contacts and detection time, then a summary. graspcd
-// grasp --object FILE [--scale S] [--write-scene DIR]: the same with a user's OBJ or STL in the
+// grasp --object FILE [--scale S] [--write-scene DIR]: the same with a user's mesh in the
 // template scene (example 1's arm and hand, the cup swapped for FILE). graspcd grasp SCENE
 // --decomposed DIR: the object collides as its convex pieces (natively).
 
@@ -329,12 +329,17 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
                                                       &*decomposed)
                         : grasp::run_grasp(scene, grasp);
   } catch (const grasp::GraspInputError& e) {
+    // A refused object that is far too large says what its units likely are, on the same line.
+    const std::string hint =
+        object && !object->scene.units_hint.empty() ? "; " + object->scene.units_hint : "";
     if (object && e.file() == object->scene.scene) {
-      throw io::InputError(options.object, 0, "in the template scene: " + e.message());
+      throw io::InputError(options.object, 0, "in the template scene: " + e.message() + hint);
     }
-    throw io::InputError(e.file(), e.line(), e.message());
+    throw io::InputError(e.file(), e.line(), e.message() + hint);
   } catch (const mujoco::MujocoError& e) {
-    throw io::InputError(named(scene), 0, e.what());
+    const std::string hint =
+        object && !object->scene.units_hint.empty() ? "; " + object->scene.units_hint : "";
+    throw io::InputError(named(scene), 0, e.what() + hint);
   }
   if (object && !temp) result.scene = object->scene.scene;
   if (object && temp) result.scene = options.object;
@@ -357,7 +362,8 @@ Command add_grasp_command(CLI::App& parent) {
   CLI::Option* scene =
       app->add_option("SCENE", options->scene, "The scene: an MJCF file of mjcf/ (or --object)");
   app->add_option("--object", options->object,
-                  "A mesh (OBJ or binary STL) grasped in a template scene instead of SCENE")
+                  "A mesh (OBJ, STL, OFF, PLY, glTF/GLB or COLLADA) grasped in a template scene "
+                  "instead of SCENE")
       ->excludes(scene);
   add_placement_options(
       *app, options->placement,
@@ -478,8 +484,11 @@ Command add_grasp_command(CLI::App& parent) {
       "scene with its object replaced by FILE: project (mjcf/example1.xml: the project's arm and "
       "4-finger hand), robotiq (mjcf/real_robotiq_mug.xml: the Robotiq 2F-85) or shadow "
       "(mjcf/real_shadow_glass.xml: the Shadow hand; the last two need ../shared/models), or "
-      "any template scene file (docs/design.md, 'Object scenes'). FILE keeps its units "
-      "(--scale S multiplies them: 0.001 for millimetres) unless --fit scales it to the "
+      "any template scene file (docs/design.md, 'Object scenes'). FILE is an OBJ, STL (binary "
+      "or ASCII), OFF, PLY, glTF 2.0/GLB or COLLADA file (docs/objects.md); one MuJoCo 2.2 "
+      "cannot read is written into the scene's folder as STEM.converted.obj. FILE keeps its "
+      "units (glTF and COLLADA are in metres; --scale S multiplies them: 0.001 for "
+      "millimetres) unless --fit scales it to the "
       "template's room (project: 7 cm wide, 8 cm tall). The file's --up axis points against "
       "gravity, turned by --yaw degrees about it (or --pose W X Y Z); its lowest point along "
       "gravity is placed 0.5 mm above the template's support point, centred on it. Pairs and "
@@ -487,7 +496,10 @@ Command add_grasp_command(CLI::App& parent) {
       "'# object FILE at scale S (fitted|given), W x D x H m, in the HAND template' (JSON: "
       "'object': file, hand, scale, fitted, size, pos, quat, scene). --write-scene DIR keeps the "
       "scene (DIR/STEM.xml, its paths relative to DIR, and its .pairs.json) for graspcd "
-      "validate or study; a bad FILE is one line 'FILE: message', exit code 2.\n"
+      "validate or study; a bad FILE is one line 'FILE: message', exit code 2; an object more "
+      "than 1 m across is the warning 'mesh_units', and a refusal of its scene says on its line "
+      "what its units likely are ('...; the object is 60 m across at --scale 1: is the file in "
+      "millimetres? try --scale 0.001').\n"
       "--decomposed DIR: the route MuJoCo's documentation recommends for a non-convex object. "
       "DIR is a folder written by 'graspcd decompose MESH --out DIR'; every geom of SCENE whose "
       "mesh asset reads a file named as MESH keeps its mass but no longer collides, and one "

@@ -50,4 +50,10 @@ HandTemplate hand_template(const std::string& hand, const std::string& command) 
   return {hand, std::nullopt, {}};
 }
 
+double fit_fraction(const std::string& hand) {
+  if (hand == "robotiq") return kRobotiqFitFraction;
+  if (hand == "shadow") return kShadowFitFraction;
+  return 1;
+}
+
 }  // namespace graspcd::cli

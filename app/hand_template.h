@@ -24,4 +24,11 @@ struct HandTemplate {
 // when robotiq's or shadow's hand is not found.
 HandTemplate hand_template(const std::string& hand, const std::string& command);
 
+// The fraction of its room a --fit object fills in the hand's template (grasp::ObjectPlacement::
+// fit_fraction), measured per hand (docs/objects.md, "--fit and each hand's margin"): project 1,
+// robotiq kRobotiqFitFraction, shadow kShadowFitFraction; 1 for a template file of the user's.
+inline constexpr double kRobotiqFitFraction = 0.9;
+inline constexpr double kShadowFitFraction = 0.9;
+double fit_fraction(const std::string& hand);
+
 }  // namespace graspcd::cli

@@ -20,6 +20,7 @@
 #include "graspcd/io/text_input.h"
 #include "graspcd/version/envelope.h"
 #include "method.h"
+#include "object_placement.h"
 
 namespace graspcd::cli {
 
@@ -35,6 +36,7 @@ struct MeshpairOptions {
   int leaf_size = 1;
   std::string fit = "covariance";
   bool json = false;
+  double scale = 1;  // --scale S: both meshes' coordinates multiplied by S
 };
 
 // One pose's answer and the time of the query alone.
@@ -87,6 +89,8 @@ void run_meshpair(MeshpairOptions& options) {
   io::MeshStats stats_a, stats_b;
   TriangleMesh loaded_a = io::load_mesh(options.mesh_a, &stats_a);
   TriangleMesh loaded_b = io::load_mesh(options.mesh_b, &stats_b);
+  io::scale_mesh(options.mesh_a, options.scale, &loaded_a);
+  io::scale_mesh(options.mesh_b, options.scale, &loaded_b);
   // Mesh hygiene findings that change the answers or MuJoCo's view of the file (dropped
   // zero-area faces, an OBJ with several objects), one line each in the run's warnings; a closed
   // mesh whose faces point inward is turned right way out (containment reads their direction).
@@ -143,8 +147,15 @@ Command add_meshpair_command(CLI::App& parent) {
   auto options = std::make_shared<MeshpairOptions>();
   CLI::App* app =
       parent.add_subcommand("meshpair", "Mesh pairs with OBB trees: per pose, '1|0 PAIRS NS'");
-  app->add_option("A", options->mesh_a, "Mesh A: an OBJ or binary STL file")->required();
-  app->add_option("B", options->mesh_b, "Mesh B: an OBJ or binary STL file")->required();
+  app->add_option("A", options->mesh_a,
+                  "Mesh A: OBJ, STL, OFF, PLY, glTF/GLB or COLLADA (docs/objects.md)")
+      ->required();
+  app->add_option("B", options->mesh_b, "Mesh B: the same formats")->required();
+  app->add_option("--scale", options->scale,
+                  "Multiply both meshes' coordinates by S (file units to metres: 0.001 for "
+                  "millimetres); the poses' translations are then in metres")
+      ->type_name("S")
+      ->check(number_in_range(kMinScale, kMaxScale));
   add_method_options(*app, options->method);
   app->add_flag("--first-contact", options->first_contact,
                 "Stop at the first intersecting triangle pair (PAIRS is then 0 or 1)");
@@ -164,8 +175,10 @@ Command add_meshpair_command(CLI::App& parent) {
       "Per pose of mesh B in mesh A's frame, prints '1|0 PAIRS NS': whether the surfaces "
       "intersect, the number of intersecting triangle pairs (0 or 1 with --first-contact), and "
       "the time of the query alone in nanoseconds (after loading and building).\n"
-      "Meshes are read in double precision in their own file coordinates; OBJ polygons are "
-      "triangulated and all objects concatenated. On load, equal vertices are welded and "
+      "Meshes are read in their own file coordinates (times --scale), OBJ, STL and OFF in "
+      "double precision, PLY, glTF and COLLADA through Assimp in single precision; polygons are "
+      "triangulated and all objects or meshes of a file concatenated. On load, equal vertices are "
+      "welded and "
       "zero-area faces (segments, points) dropped; dropped faces and an OBJ with several "
       "objects (MuJoCo 2.2 keeps only the first) are each one line 'warning: FILE: ...' on "
       "stderr.\n"

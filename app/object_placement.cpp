@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "command.h"
+#include "hand_template.h"
 
 namespace graspcd::cli {
 
@@ -96,6 +97,7 @@ grasp::ObjectPlacement object_placement(const PlacementOptions& options, const s
   placement.file = file;
   placement.scale = options.scale;
   placement.fit = options.fit;
+  placement.fit_fraction = fit_fraction(options.hand);
   placement.up = options.up;
   placement.yaw_degrees = options.yaw;
   if (!options.pose.empty()) {

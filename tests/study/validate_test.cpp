@@ -508,7 +508,7 @@ TEST_F(ValidateTest, ObjectSetBadUsageIsOneLineAndExitCodeTwo) {
   const std::vector<Case> cases = {
       {"validate --objects '" + (dir_ / "none").string() + "'", "none: not a folder of objects"},
       {"validate --objects '" + (dir_ / "empty").string() + "'",
-       "empty: no OBJ or STL file in the folder"},
+       "empty: no mesh file in the folder (.obj, .stl, .off, .ply, .gltf, .glb, .dae)"},
       {"validate --objects " + one + " '" + kMjcf + "example1.xml'", "give one of SCENE"},
       {"validate --objects " + one + " --shard 2/2", "--shard expects i/n with 0 <= i < n"},
       {"validate --objects " + one + " --fit --scale 2", "--scale and --fit exclude each other"},

@@ -1,6 +1,7 @@
 #include "graspcd/decompose/mesh_decomposition.h"
 
 #include <filesystem>
+#include <iomanip>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -26,6 +27,13 @@ namespace graspcd::decompose {
 namespace {
 
 namespace fs = std::filesystem;
+
+// A --scale as a header line prints it (6 significant digits).
+std::string scale_text(double scale) {
+  std::ostringstream out;
+  out << std::setprecision(6) << scale;
+  return out.str();
+}
 
 double bounding_diagonal(const TriangleMesh& mesh) {
   Vec3 lo = mesh.vertices.front(), hi = lo;
@@ -164,7 +172,11 @@ DecomposeRun decompose_mesh(const DecomposeOptions& o) {
   }
   // The mesh as graspcd reads it: a bad file is one line naming it.
   io::MeshStats stats;
-  const TriangleMesh mesh = io::load_mesh(o.mesh, &stats);
+  const TriangleMesh mesh = [&] {
+    TriangleMesh loaded = io::load_mesh(o.mesh, &stats);
+    io::scale_mesh(o.mesh, o.scale, &loaded);
+    return loaded;
+  }();
   const double finest = kMinBoundFraction * bounding_diagonal(mesh);
   // (The slack accepts the finest bound as the message prints it, to 6 digits.)
   if (o.hausdorff_bound > 0 && !(o.hausdorff_bound >= finest * (1 - 1e-5))) {
@@ -198,6 +210,14 @@ DecomposeRun decompose_mesh(const DecomposeOptions& o) {
   const exact::BoundedHausdorff h = exact::one_sided_hausdorff(hulls, mesh, bound);
   m.hausdorff = {h.distance, h.error_bound, seconds_since(h_start)};
   if (stats.closedness.closed()) m.volume = added_volume(hulls, mesh, o.mesh);
+  if (m.volume && m.volume->added_fraction < -kMaxVolumeLoss) {
+    std::ostringstream w;
+    w << std::setprecision(3) << o.mesh << ": the pieces hold " << -100 * m.volume->added_fraction
+      << "% less volume than the mesh (" << m.volume->pieces << " of " << m.volume->original
+      << " m^3; more than " << 100 * kMaxVolumeLoss
+      << "% lost): they do not fill it; try fewer --pieces";
+    warnings().add("decompose_volume_lost", w.str());
+  }
 
   const std::string stem = fs::path(o.mesh).stem().string();
   DecompositionFiles files;
@@ -206,7 +226,9 @@ DecomposeRun decompose_mesh(const DecomposeOptions& o) {
         d.pieces, o.out, stem,
         "graspcd decompose: " + std::to_string(d.pieces.size()) + " convex pieces (" +
             (o.engine == Engine::kVhacd ? "V-HACD" : "HACD") + ") of " +
-            fs::path(o.mesh).filename().string() + ", in its own coordinates and scale");
+            fs::path(o.mesh).filename().string() +
+            (o.scale == 1 ? std::string(", in its own coordinates and scale")
+                          : ", in its own coordinates times the scale " + scale_text(o.scale)));
   } catch (const std::runtime_error& e) {
     throw io::InputError(o.out, 0, e.what());
   }

@@ -19,7 +19,8 @@ enum class Engine { kHacd, kVhacd };
 const char* engine_name(Engine engine);
 
 struct DecomposeOptions {
-  std::string mesh;  // OBJ or binary STL
+  std::string mesh;  // any format io::load_mesh reads
+  double scale = 1;  // its coordinates multiplied by this (file units to metres)
   std::string out;   // the folder of the pieces, the fragment and the manifest (created)
   Engine engine = Engine::kHacd;
   int pieces = 16;             // at most this many pieces (HACD's clusters, V-HACD's hulls)
@@ -45,6 +46,11 @@ class BoundError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
 };
+
+// The pieces may hold less volume than the closed mesh they come from (e.g. a cube cut into thin
+// slabs along its faces): more than this fraction lost is warned about ("decompose_volume_lost").
+// A gain is reported, not warned: pieces that close a cavity (a cup's) gain by design.
+inline constexpr double kMaxVolumeLoss = 0.1;
 
 struct DecomposeRun {
   Manifest manifest;

@@ -243,12 +243,34 @@ Eigen::Quaterniond object_rotation(const ObjectPlacement& placement, const Vec3&
   return q;
 }
 
+// What the object's size (its largest extent, m, at `scale`) says about the file's units, when it
+// is larger than kLargeObject: a hint for the user ("" otherwise), worded in the scale given.
+// A file of a format without a unit (OBJ, STL, OFF, PLY) is most likely in millimetres when the
+// object comes out more than 10 m across at scale 1, in centimetres when 1 to 10 m; a glTF or
+// COLLADA file is in metres (by definition, or by its <unit>), said as such.
+std::string units_hint(double size, double scale, bool fitted, const io::MeshStats& stats) {
+  if (!(size > kLargeObject) || fitted) return "";
+  std::ostringstream w;
+  w << std::setprecision(3) << "the object is " << size << " m across at --scale "
+    << std::setprecision(6) << scale << ": ";
+  if (stats.in_metres) {
+    w << "the " << stats.format << " file says metres; if it was modelled in other units, give "
+      << "--scale (0.001 for millimetres)";
+    return w.str();
+  }
+  const double file_size = size / scale;  // in file units
+  const bool mm = file_size > 10 * kLargeObject;
+  w << "is the file in "
+    << (mm ? "millimetres? try --scale 0.001" : "centimetres? try --scale 0.01");
+  return w.str();
+}
+
 // The object turned, scaled (given or fitted to the room) and placed: its lowest point
 // kSupportGap above the support point, centred on it across gravity. Warns when it comes out
 // larger than kLargeObject. The scene and pairs paths are left empty.
 ObjectScene place_object(const TriangleMesh& mesh, const ObjectPlacement& placement,
                          const GravityFrame& f, const TemplateRoom& room, const TemplateParts& t,
-                         const std::string& template_path) {
+                         const std::string& template_path, const io::MeshStats& stats) {
   const Eigen::Quaterniond q = object_rotation(placement, f.up);
   const Mat3 R = q.toRotationMatrix();
   // The turned mesh's extent in (e1, e2, up), unscaled.
@@ -273,15 +295,14 @@ ObjectScene place_object(const TriangleMesh& mesh, const ObjectPlacement& placem
     out.scale = std::numeric_limits<double>::infinity();
     if (width > 0) out.scale = (*room.fit)[0] / width;
     if (extent[2] > 0) out.scale = std::min(out.scale, (*room.fit)[1] / extent[2]);
+    out.scale *= placement.fit_fraction;
   }
   const double s = out.scale;
   out.size = {s * extent[0], s * extent[1], s * extent[2]};
-  if (std::max(out.size[0], out.size[1]) > kLargeObject || out.size[2] > kLargeObject) {
-    std::ostringstream w;
-    w << placement.file << ": at scale " << s << " the object is " << std::setprecision(3)
-      << std::max({out.size[0], out.size[1], out.size[2]})
-      << " m across: if the file is not in metres, give --scale (0.001 for millimetres)";
-    warnings().add("mesh_units", w.str(), "mesh");
+  out.units_hint =
+      units_hint(std::max({out.size[0], out.size[1], out.size[2]}), s, placement.fit, stats);
+  if (!out.units_hint.empty()) {
+    warnings().add("mesh_units", placement.file + ": " + out.units_hint, "mesh");
   }
   const Vec3 centre = 0.5 * s * (lo + hi);
   const Vec3 pos =
@@ -444,7 +465,7 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
   const TemplateParts t = read_template(doc, template_path);
   const GravityFrame frame = gravity_frame(t.root, template_path);
   const TemplateRoom room = template_room(t, default_fit, template_path);
-  ObjectScene out = place_object(mesh, placement, frame, room, t, template_path);
+  ObjectScene out = place_object(mesh, placement, frame, room, t, template_path, stats);
 
   const fs::path target = fs::path(dir);
   fs::create_directories(target);
@@ -456,6 +477,10 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
   if (!flipped.empty()) {
     warnings().add("mesh_inside_out", flipped, "mesh");
     object_file = (target / (stem + ".outward.obj")).string();
+    io::write_obj(object_file, mesh);
+  } else if (stats.format != "OBJ" && stats.format != "binary STL") {
+    // MuJoCo 2.2 reads OBJ and binary STL only: the mesh as graspcd read it, as an OBJ.
+    object_file = (target / (stem + ".converted.obj")).string();
     io::write_obj(object_file, mesh);
   }
   const fs::path mesh_folder = rewrite_paths(t, template_path, target, moved);

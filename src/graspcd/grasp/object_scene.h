@@ -5,7 +5,9 @@
 //  - that mesh asset's file replaced by the user's mesh and its scale set (the asset is renamed
 //    "object_mesh", the geom "object"); a closed mesh whose faces all point inward (negative
 //    signed volume, io::turn_right_way_out) is written turned right way out as STEM.outward.obj
-//    beside the scene, which the asset names instead, with the warning "mesh_inside_out";
+//    beside the scene, which the asset names instead, with the warning "mesh_inside_out"; a mesh
+//    in a format MuJoCo 2.2 does not read (anything but OBJ and binary STL: io::load_mesh) is
+//    written as STEM.converted.obj beside the scene (as graspcd read it, in its file units);
 //  - the object body turned (the file's `up` axis along -gravity, then `yaw` about it, or the
 //    quaternion `pose`) and placed with its lowest point along gravity kSupportGap above the
 //    support point, centred on it across gravity;
@@ -32,11 +34,14 @@ namespace graspcd::grasp {
 inline constexpr double kSupportGap = 0.5e-3;
 
 struct ObjectPlacement {
-  std::string file;        // the user's mesh (OBJ or binary STL)
-  double scale = 1;        // file units -> m; the file's units are kept by default
-  bool fit = false;        // scale to the template's graspcd_fit instead
-  std::string up = "z";    // the file axis pointing up: x, y, z, -x, -y or -z
-  double yaw_degrees = 0;  // then a turn about the up direction
+  std::string file;  // the user's mesh (any format io::load_mesh reads)
+  double scale = 1;  // file units -> m; the file's units are kept by default
+  bool fit = false;  // scale to the template's graspcd_fit instead
+  // With `fit`: the fitted scale times this (0 < f <= 1), the margin the hand needs to close on
+  // the object (docs/objects.md, "--fit and each hand's margin").
+  double fit_fraction = 1;
+  std::string up = "z";                       // the file axis pointing up: x, y, z, -x, -y or -z
+  double yaw_degrees = 0;                     // then a turn about the up direction
   std::optional<std::array<double, 4>> pose;  // w x y z: the object's rotation, instead of up/yaw
 };
 
@@ -56,6 +61,10 @@ struct ObjectScene {
   std::array<double, 3> size{};  // the placed object's extent: across gravity (2), along it, m
   std::array<double, 3> pos{};   // the object body's position
   std::array<double, 4> quat{};  // and rotation (w x y z)
+  // When the placed object is larger than 1 m (and not fitted): what that says about the file's
+  // units, e.g. "the object is 60 m across at --scale 1: is the file in millimetres? try --scale
+  // 0.001"; also the warning "mesh_units". A refusal of the scene adds it to its line.
+  std::string units_hint;
 };
 
 // Writes the scene into `dir` (created). `hand` names the template in the header (e.g.

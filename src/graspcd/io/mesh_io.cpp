@@ -24,6 +24,7 @@
 
 #include "graspcd/core/mesh_hygiene.h"
 #include "graspcd/core/tolerances.h"
+#include "graspcd/io/mesh_import.h"
 
 namespace graspcd::io {
 
@@ -324,7 +325,252 @@ double read_f32_le(const unsigned char* p) {
   return static_cast<double>(value);
 }
 
-TriangleMesh load_stl(const std::string& path) {
+// The words of a text line up to a '#' when `comments` (OFF), blank-separated.
+std::vector<std::string> words_of(const std::string& line, bool comments) {
+  std::vector<std::string> out;
+  const std::size_t end = comments ? std::min(line.find('#'), line.size()) : line.size();
+  std::size_t pos = 0;
+  while (pos < end) {
+    while (pos < end && std::isspace(static_cast<unsigned char>(line[pos]))) ++pos;
+    std::size_t stop = pos;
+    while (stop < end && !std::isspace(static_cast<unsigned char>(line[stop]))) ++stop;
+    if (stop > pos) out.push_back(line.substr(pos, stop - pos));
+    pos = stop;
+  }
+  return out;
+}
+
+// A coordinate read with the command line's number grammar (text_input.h), at its line.
+double coordinate(const std::string& path, const std::string& which, const std::string& token,
+                  std::size_t line) {
+  try {
+    return parse_number(token);
+  } catch (const ValueError& e) {
+    fail(path, which + ": " + e.what(), line);
+  }
+}
+
+// ASCII STL, read here in double precision with line numbers (Assimp reads floats and names no
+// line): "solid [name]", then per facet "facet normal nx ny nz", "outer loop", three
+// "vertex x y z", "endloop", "endfacet"; "endsolid [name]". Several solids in one file are
+// concatenated (the multi-object rule of OBJ). The normals are not used; keywords are
+// case-insensitive. Every facet gets its own three vertices (load_mesh welds them).
+TriangleMesh load_ascii_stl(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open");
+  TriangleMesh mesh;
+  enum class State { kOutside, kSolid, kFacet, kLoop, kEndLoop };
+  State state = State::kOutside;
+  std::size_t facet_line = 0;
+  int corners = 0;
+  std::string line;
+  const auto lower = [](std::string w) {
+    std::transform(w.begin(), w.end(), w.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return w;
+  };
+  std::size_t line_number = 1;
+  for (; read_line(in, line, path, line_number); ++line_number) {
+    const std::vector<std::string> w = words_of(line, false);
+    if (w.empty()) continue;
+    const std::string key = lower(w[0]);
+    const std::string facet = "facet " + std::to_string(mesh.faces.size() + 1);
+    const auto expect = [&](const char* what) {
+      fail(path, "ASCII STL: expected " + std::string(what) + ", found \"" + w[0] + "\"",
+           line_number);
+    };
+    switch (state) {
+      case State::kOutside:
+        if (key != "solid") expect("'solid'");
+        state = State::kSolid;
+        break;
+      case State::kSolid:
+        if (key == "endsolid") {
+          state = State::kOutside;
+        } else if (key == "facet") {
+          if (w.size() != 5 || lower(w[1]) != "normal") {
+            fail(path, facet + ": expected 'facet normal nx ny nz'", line_number);
+          }
+          state = State::kFacet;
+          facet_line = line_number;
+        } else {
+          expect("'facet' or 'endsolid'");
+        }
+        break;
+      case State::kFacet:
+        if (key != "outer" || w.size() != 2 || lower(w[1]) != "loop") expect("'outer loop'");
+        state = State::kLoop;
+        corners = 0;
+        break;
+      case State::kLoop:
+        if (key == "vertex") {
+          if (w.size() != 4) {
+            fail(path,
+                 facet + ": expected 'vertex x y z', got " + std::to_string(w.size() - 1) +
+                     " numbers",
+                 line_number);
+          }
+          if (corners == 3) fail(path, facet + ": more than 3 vertices", line_number);
+          const std::string which = facet + " vertex " + std::to_string(corners + 1);
+          const Vec3 p(coordinate(path, which, w[1], line_number),
+                       coordinate(path, which, w[2], line_number),
+                       coordinate(path, which, w[3], line_number));
+          try {
+            check_vertex(path, which, p);
+          } catch (const InputError& e) {
+            fail(path, e.message(), line_number);
+          }
+          mesh.vertices.push_back(p);
+          ++corners;
+        } else if (key == "endloop") {
+          if (corners != 3) {
+            fail(path, facet + ": " + std::to_string(corners) + " vertices (a facet needs 3)",
+                 line_number);
+          }
+          const auto n = static_cast<std::int32_t>(mesh.vertices.size());
+          mesh.faces.push_back({n - 3, n - 2, n - 1});
+          state = State::kEndLoop;
+        } else {
+          expect("'vertex' or 'endloop'");
+        }
+        break;
+      case State::kEndLoop:
+        if (key != "endfacet") expect("'endfacet'");
+        state = State::kSolid;
+        break;
+    }
+  }
+  if (in.bad()) fail(path, "read error");
+  if (state == State::kOutside && line_number == 1) fail(path, "empty file");
+  if (state != State::kOutside && state != State::kSolid) {
+    fail(path, "ASCII STL: the file ends inside facet " + std::to_string(mesh.faces.size() + 1),
+         facet_line);
+  }
+  return mesh;
+}
+
+// OFF (Object File Format), read here in double precision with line numbers: "OFF" (or its
+// variants COFF, NOFF, CNOFF: colours and normals after the coordinates are ignored), then
+// "V F E", V vertex lines "x y z ...", F face lines "n i1 ... in ..." (0-based indices; colours
+// after them ignored). '#' starts a comment. A face of n > 3 vertices is triangulated as a fan
+// from its first vertex (exact for a convex face, as OFF writers give).
+TriangleMesh load_off(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open");
+  std::string line;
+  std::size_t line_number = 0;
+  std::vector<std::string> w;
+  // The next line with words, or false at the end.
+  const auto next = [&]() {
+    while (read_line(in, line, path, line_number + 1)) {
+      ++line_number;
+      w = words_of(line, true);
+      if (!w.empty()) return true;
+    }
+    return false;
+  };
+  if (!next()) fail(path, "empty file (an OFF file starts with 'OFF')");
+  if (line_number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0)
+    fail(path, "UTF-8 byte-order mark", 1);
+  const std::string head = w[0];
+  const bool known = head == "OFF" || head == "COFF" || head == "NOFF" || head == "CNOFF";
+  if (!known) fail(path, "expected 'OFF' first, found \"" + head + "\"", line_number);
+  w.erase(w.begin());
+  if (w.empty() && !next()) fail(path, "no 'V F E' counts after 'OFF'", line_number);
+  if (w.size() < 2) fail(path, "expected the counts 'V F E'", line_number);
+  const auto count = [&](const std::string& token, const char* what) {
+    char* end = nullptr;
+    errno = 0;
+    const long long x = std::strtoll(token.c_str(), &end, 10);
+    if (token.empty() || *end != '\0' || errno == ERANGE || x < 0 ||
+        x > std::numeric_limits<std::int32_t>::max()) {
+      fail(path, std::string("bad ") + what + " \"" + token + "\"", line_number);
+    }
+    return static_cast<std::size_t>(x);
+  };
+  const std::size_t nv = count(w[0], "vertex count");
+  const std::size_t nf = count(w[1], "face count");
+  TriangleMesh mesh;
+  for (std::size_t i = 0; i < nv; ++i) {
+    const std::string which = "vertex " + std::to_string(i);
+    if (!next()) fail(path, "the file ends at " + which + " (" + std::to_string(nv) + " declared)");
+    if (w.size() < 3) fail(path, which + ": expected x y z", line_number);
+    const Vec3 p(coordinate(path, which, w[0], line_number),
+                 coordinate(path, which, w[1], line_number),
+                 coordinate(path, which, w[2], line_number));
+    try {
+      check_vertex(path, which, p);
+    } catch (const InputError& e) {
+      fail(path, e.message(), line_number);
+    }
+    mesh.vertices.push_back(p);
+  }
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::string which = "face " + std::to_string(f);
+    if (!next()) fail(path, "the file ends at " + which + " (" + std::to_string(nf) + " declared)");
+    const std::size_t n = count(w[0], "face size");
+    if (n < 3)
+      fail(path, which + ": " + std::to_string(n) + " vertices (a face needs 3)", line_number);
+    if (w.size() < n + 1) {
+      fail(path,
+           which + ": " + std::to_string(n) + " vertices declared, " +
+               std::to_string(w.size() - 1) + " given",
+           line_number);
+    }
+    std::vector<std::int32_t> ids(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t id = count(w[k + 1], "vertex index");
+      if (id >= nv) {
+        fail(path,
+             which + ": vertex index " + std::to_string(id) + " out of range (" +
+                 std::to_string(nv) + " vertices, counted from 0)",
+             line_number);
+      }
+      ids[k] = static_cast<std::int32_t>(id);
+    }
+    for (std::size_t k = 1; k + 1 < n; ++k) mesh.faces.push_back({ids[0], ids[k], ids[k + 1]});
+  }
+  return mesh;
+}
+
+// PLY, glTF/GLB and COLLADA through Assimp (mesh_import.h), in a child process, its error words
+// naming the file and where Assimp found the fault.
+TriangleMesh load_with_assimp(const std::string& path, const std::string& ext, MeshStats& s) {
+  // The file must be what its extension says: Assimp, when the extension's reader refuses a file,
+  // tries every other reader on its content (a ".gltf" holding an OFF text would be read as OFF).
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot open");
+    std::string head(4096, '\0');
+    in.read(&head[0], static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    const std::size_t first = head.find_first_not_of(" \t\r\n");
+    if (ext == "ply" && head.rfind("ply", 0) != 0) {
+      fail(path, "not a PLY file (it does not start with 'ply')", 1);
+    } else if (ext == "glb" && head.rfind("glTF", 0) != 0) {
+      fail(path, "not a GLB file (it does not start with 'glTF')");
+    } else if (ext == "gltf" && (first == std::string::npos || head[first] != '{')) {
+      fail(path, "not a glTF file (a .gltf file is a JSON object, starting with '{')");
+    } else if (ext == "dae" && head.find("<COLLADA") == std::string::npos) {
+      fail(path, "not a COLLADA file (no <COLLADA> in its first 4096 bytes)");
+    }
+  }
+  ImportedMesh imported = import_with_assimp(path, ext);
+  if (!imported.error.empty()) {
+    std::string where;
+    if (imported.error_mesh > 0) where = "mesh " + std::to_string(imported.error_mesh) + " ";
+    if (imported.error_face > 0) where += "face " + std::to_string(imported.error_face) + " ";
+    if (!where.empty()) where.back() = ':', where += ' ';
+    fail(path, where + imported.error);
+  }
+  for (std::size_t i = 0; i < imported.mesh.vertices.size(); ++i) {
+    check_vertex(path, "vertex " + std::to_string(i + 1), imported.mesh.vertices[i]);
+  }
+  s.parts = std::move(imported.parts);
+  return std::move(imported.mesh);
+}
+
+TriangleMesh load_stl(const std::string& path, bool* ascii = nullptr) {
   constexpr std::uint64_t kHeaderBytes = 84;  // 80-byte header + uint32 triangle count
   constexpr std::uint64_t kRecordBytes = 50;  // normal, 3 vertices (12 floats), uint16 attribute
   std::ifstream in(path, std::ios::binary);
@@ -335,16 +581,21 @@ TriangleMesh load_stl(const std::string& path) {
 
   // Size check; an ASCII STL begins with "solid" and (almost surely) fails it.
   const bool starts_solid = bytes.size() >= 5 && std::memcmp(bytes.data(), "solid", 5) == 0;
-  const char* const ascii = "ASCII STL is not supported; convert it to binary STL";
   if (bytes.size() < kHeaderBytes) {
-    if (starts_solid) fail(path, ascii);
+    if (starts_solid) {
+      if (ascii != nullptr) *ascii = true;
+      return load_ascii_stl(path);
+    }
     fail(path, "too short for a binary STL (" + std::to_string(bytes.size()) +
                    " bytes; header and count take 84)");
   }
   const std::uint64_t count = read_u32_le(bytes.data() + 80);
   const std::uint64_t expected = kHeaderBytes + kRecordBytes * count;
   if (bytes.size() != expected) {
-    if (starts_solid) fail(path, ascii);
+    if (starts_solid) {
+      if (ascii != nullptr) *ascii = true;
+      return load_ascii_stl(path);
+    }
     std::ostringstream out;
     out << "binary STL size mismatch: the header says " << count << " triangles (" << expected
         << " bytes) but the file has " << bytes.size() << " bytes";
@@ -382,10 +633,20 @@ TriangleMesh load_mesh(const std::string& path, MeshStats* stats) {
   s = MeshStats{};
   if (ext == "obj") {
     read = load_obj(path, s.obj_objects);
+    s.format = "OBJ";
   } else if (ext == "stl") {
-    read = load_stl(path);
+    bool ascii = false;
+    read = load_stl(path, &ascii);
+    s.format = ascii ? "ASCII STL" : "binary STL";
+  } else if (ext == "off") {
+    read = load_off(path);
+    s.format = "OFF";
+  } else if (ext == "ply" || ext == "gltf" || ext == "glb" || ext == "dae") {
+    read = load_with_assimp(path, ext, s);
+    s.format = ext == "ply" ? "PLY" : ext == "dae" ? "COLLADA" : "glTF";
+    s.in_metres = ext != "ply";
   } else {
-    fail(path, "unknown mesh format (expected a .obj or .stl file)");
+    fail(path, "unknown mesh format (" + std::string(kMeshFormats) + ")");
   }
   if (read.faces.empty()) fail(path, "the mesh has no faces");
 
@@ -436,6 +697,17 @@ void write_obj(const std::string& path, const TriangleMesh& mesh) {
   if (!out) throw std::runtime_error("cannot write " + path);
 }
 
+void scale_mesh(const std::string& path, double scale, TriangleMesh* mesh) {
+  if (scale == 1) return;
+  std::ostringstream at;
+  at << "at --scale " << scale << " vertex ";
+  for (std::size_t i = 0; i < mesh->vertices.size(); ++i) {
+    Vec3& v = mesh->vertices[i];
+    v *= scale;
+    check_vertex(path, at.str() + std::to_string(i + 1), v);
+  }
+}
+
 void check_mesh_file(const std::string& path) {
   require_readable(path);
   const std::string ext = lower_extension(path);
@@ -443,7 +715,9 @@ void check_mesh_file(const std::string& path) {
     std::vector<std::string> objects;
     if (read_obj_vertex_lines(path, objects).empty()) fail(path, "no vertex in the OBJ file");
   } else if (ext == "stl") {
-    load_stl(path);
+    bool ascii = false;
+    load_stl(path, &ascii);
+    if (ascii) fail(path, "an ASCII STL, which MuJoCo 2.2 cannot read (it reads binary STL)");
   }
 }
 

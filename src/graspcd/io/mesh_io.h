@@ -1,5 +1,6 @@
-// Mesh files: Wavefront OBJ (tinyobjloader, double precision) and binary STL, read in their own
-// file coordinates into a TriangleMesh.
+// Mesh files, read in their own file coordinates into a TriangleMesh: Wavefront OBJ
+// (tinyobjloader, double precision), STL (binary and ASCII), OFF, and through Assimp 5.2 (in a
+// child process: mesh_import.h) PLY, glTF 2.0 (.gltf, .glb) and COLLADA (.dae).
 #pragma once
 
 #include <cstddef>
@@ -12,6 +13,9 @@
 #include "graspcd/io/text_input.h"
 
 namespace graspcd::io {
+
+// The formats load_mesh reads, as an error message names them.
+inline constexpr const char* kMeshFormats = "expected .obj, .stl, .ply, .off, .gltf, .glb or .dae";
 
 // Facts about a loaded mesh that the caller may want to report (mesh_warnings() words them).
 struct MeshStats {
@@ -28,6 +32,14 @@ struct MeshStats {
   Closedness closedness;
   // OBJ: the names of the file's objects ('o' lines), in order. MuJoCo 2.2 loads only the first.
   std::vector<std::string> obj_objects;
+  // The format read ("OBJ", "binary STL", "ASCII STL", "OFF", "PLY", "glTF", "COLLADA").
+  std::string format;
+  // True when the format fixes the unit as the metre (glTF by definition; COLLADA, scaled to
+  // metres by its <unit meter>): a size in it is a size in metres, whatever the user expects.
+  bool in_metres = false;
+  // The meshes of a file read through Assimp (their names, "" when unnamed), concatenated in
+  // this order as an OBJ's objects are.
+  std::vector<std::string> parts;
 };
 
 // One line per finding of a load, each starting with "PATH: ": vertices welded, zero-area faces
@@ -53,8 +65,12 @@ std::string turn_right_way_out(const std::string& path, const MeshStats& stats, 
 // exactly). Throws std::runtime_error when the file cannot be written.
 void write_obj(const std::string& path, const TriangleMesh& mesh);
 
-// Loads an OBJ (".obj") or binary STL (".stl") file; the format comes from the extension, case
-// insensitive.
+// Loads a mesh file; the format comes from the extension, case insensitive: ".obj", ".stl"
+// (binary, or ASCII when the file starts with "solid" and its size is not a binary STL's),
+// ".off", ".ply", ".gltf", ".glb", ".dae". Every format gets the same checks (finite
+// coordinates in the exact-arithmetic range, faces of at least 3 vertices naming vertices of the
+// file) and the same hygiene (below); a file of several meshes or objects is one mesh, all of
+// them concatenated.
 //  - OBJ: every object and group is concatenated into one mesh; polygons are triangulated
 //    (tinyobjloader's triangulation); normals, texture coordinates and materials are ignored.
 //    Coordinates are the doubles tinyobjloader's own number parser gives (its double build). That
@@ -68,7 +84,14 @@ void write_obj(const std::string& path, const TriangleMesh& mesh);
 //    tinyobjloader's values must then equal those to within its rounding (relative 1e-12), or
 //    the line is reported.
 //  - STL: binary only (80-byte header, uint32 count, 50-byte records; the file size must be
-//    84 + 50 * count). An ASCII STL is rejected.
+//    84 + 50 * count).
+//  - ASCII STL and OFF: read here (double precision, the number grammar of the command line),
+//    an error naming its line; OFF polygons are triangulated as fans.
+//  - PLY (ASCII and binary), glTF 2.0 and GLB, COLLADA: Assimp 5.2 (single precision floats,
+//    node transforms applied, polygons triangulated, COLLADA's axes kept and its unit turned to
+//    metres), in a child process, so that a crash or a hang of Assimp on a hostile file is one
+//    error ("FILE: the import library (Assimp) crashed reading it (signal 11, ...)"). Assimp
+//    names no line: an error names the mesh and face when it is a face of fewer than 3 vertices.
 // Hygiene (core/mesh_hygiene.h), after reading either format: equal vertices are welded, and
 // zero-area faces are dropped (docs/design.md "Semantics"); `stats` says what was done, and maps
 // every loaded face to its face id in the file. A mesh whose faces all have zero area is an error.
@@ -79,11 +102,17 @@ void write_obj(const std::string& path, const TriangleMesh& mesh);
 // tolerances.h, and a mesh without faces.
 TriangleMesh load_mesh(const std::string& path, MeshStats* stats = nullptr);
 
+// The mesh multiplied by `scale` (--scale: file units to metres), every coordinate checked again
+// for the exact-arithmetic range: "FILE: at --scale S vertex N has coordinate ...". A scale of 1
+// leaves the mesh as it is.
+void scale_mesh(const std::string& path, double scale, TriangleMesh* mesh);
+
 // The checks of load_mesh that come before any mesh is built, for a mesh file another reader
 // (MuJoCo's, for the meshes a scene names) will read: an OBJ's byte-order mark, vertex lines
 // (the number grammar: no nan, inf or out-of-range coordinate, which MuJoCo would read as 0 or
 // inf) and face lines (at least 3 vertices, every index naming a vertex); a binary STL's size and
-// its coordinates. Other formats are left to their reader. Throws InputError as load_mesh does.
+// its coordinates, and an ASCII STL refused (MuJoCo 2.2 reads binary STL only). Other formats
+// are left to their reader. Throws InputError as load_mesh does.
 void check_mesh_file(const std::string& path);
 
 }  // namespace graspcd::io

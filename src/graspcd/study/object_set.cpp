@@ -28,7 +28,11 @@ bool is_object_file(const fs::path& p) {
   std::string ext = p.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".obj" || ext == ".stl";
+  // The formats io::load_mesh reads (a glTF's .bin buffers are not objects).
+  for (const char* known : {".obj", ".stl", ".off", ".ply", ".gltf", ".glb", ".dae"}) {
+    if (ext == known) return true;
+  }
+  return false;
 }
 
 json settings_json(const ObjectSetOptions& o, const std::vector<TesterSpec>& testers) {
@@ -155,7 +159,9 @@ std::vector<std::string> find_object_files(const std::string& dir) {
       }
     }
   }
-  if (files.empty()) throw io::InputError(dir, 0, "no OBJ or STL file in the folder");
+  if (files.empty())
+    throw io::InputError(dir, 0,
+                         "no mesh file in the folder (.obj, .stl, .off, .ply, .gltf, .glb, .dae)");
   std::sort(files.begin(), files.end());
   files.erase(std::unique(files.begin(), files.end()), files.end());
   return files;
@@ -199,13 +205,16 @@ json validate_object_set(const ObjectSetOptions& options, const std::vector<Test
     } catch (const io::InputError& e) {
       rows.push_back(refused_row(object, e.what()));
     } catch (const grasp::GraspInputError& e) {
-      // The scene is a temporary file: the error names the user's object.
+      // The scene is a temporary file: the error names the user's object. An object far too
+      // large says what its units likely are (grasp::ObjectScene::units_hint).
+      const std::string hint = scene.units_hint.empty() ? "" : "; " + scene.units_hint;
       const std::string error = e.file() == scene.scene
-                                    ? file + ": in the template scene: " + e.message()
-                                    : std::string(e.what());
+                                    ? file + ": in the template scene: " + e.message() + hint
+                                    : std::string(e.what()) + hint;
       rows.push_back(refused_row(object, error));
     } catch (const mujoco::MujocoError& e) {
-      rows.push_back(refused_row(object, file + ": " + e.what()));
+      const std::string hint = scene.units_hint.empty() ? "" : "; " + scene.units_hint;
+      rows.push_back(refused_row(object, file + ": " + e.what() + hint));
     }
     if (rows.back()["status"] == "refused") {
       warnings().add("object_refused", rows.back()["error"].get<std::string>(), "scene");

@@ -1,0 +1,294 @@
+#include "graspcd/io/mesh_import.h"
+
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <assimp/Importer.hpp>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace graspcd::io {
+
+namespace {
+
+// The first line of a message, trimmed.
+std::string first_line(const std::string& text) {
+  std::string line = text.substr(0, text.find('\n'));
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  return line;
+}
+
+ImportedMesh import_in_process(const std::string& path, const std::string& format) {
+  ImportedMesh out;
+  Assimp::Importer importer;
+  // The file's own axes: COLLADA's up_axis is not turned to Y-up (the user's --up says which axis
+  // is up). Assimp scales COLLADA by its <unit meter> (to metres) whatever is set.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+  // Points and lines are kept (aiProcess_SortByPType is not run) so that they can be refused.
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices);
+  if (scene == nullptr) {
+    out.error = first_line(importer.GetErrorString());
+    if (out.error.find("bad_alloc") != std::string::npos) {
+      out.error = "the import library (Assimp) ran out of memory reading it";
+    }
+    if (out.error.empty()) out.error = "Assimp cannot read it";
+    return out;
+  }
+  (void)format;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    if (mesh == nullptr) continue;
+    out.parts.emplace_back(mesh->mName.C_Str());
+    const std::size_t base = out.mesh.vertices.size();
+    if (base + mesh->mNumVertices >
+        static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+      out.error = "too many vertices";
+      return out;
+    }
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+      const aiVector3D& p = mesh->mVertices[v];
+      out.mesh.vertices.emplace_back(p.x, p.y, p.z);
+    }
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices != 3) {
+        out.error = (face.mNumIndices < 3 ? std::to_string(face.mNumIndices) +
+                                                " vertices (a point or a line; a face needs 3)"
+                                          : "a polygon Assimp did not triangulate");
+        out.error_mesh = m + 1;
+        out.error_face = f + 1;
+        return out;
+      }
+      std::array<std::int32_t, 3> t{};
+      for (int k = 0; k < 3; ++k) {
+        if (face.mIndices[k] >= mesh->mNumVertices) {
+          out.error = "vertex index " + std::to_string(face.mIndices[k]) + " out of range (" +
+                      std::to_string(mesh->mNumVertices) + " vertices)";
+          out.error_mesh = m + 1;
+          out.error_face = f + 1;
+          return out;
+        }
+        t[k] = static_cast<std::int32_t>(base + face.mIndices[k]);
+      }
+      out.mesh.faces.push_back(t);
+    }
+  }
+  return out;
+}
+
+// --- The child process's answer, through a pipe: a plain byte encoding of ImportedMesh.
+void put_u64(std::string& b, std::uint64_t x) { b.append(reinterpret_cast<const char*>(&x), 8); }
+void put_string(std::string& b, const std::string& s) {
+  put_u64(b, s.size());
+  b += s;
+}
+
+std::string encode(const ImportedMesh& m) {
+  std::string b;
+  put_string(b, m.error);
+  put_u64(b, m.error_mesh);
+  put_u64(b, m.error_face);
+  put_u64(b, m.parts.size());
+  for (const std::string& p : m.parts) put_string(b, p);
+  put_u64(b, m.mesh.vertices.size());
+  for (const Vec3& v : m.mesh.vertices) b.append(reinterpret_cast<const char*>(v.data()), 24);
+  put_u64(b, m.mesh.faces.size());
+  for (const auto& f : m.mesh.faces) b.append(reinterpret_cast<const char*>(f.data()), 12);
+  return b;
+}
+
+struct Reader {
+  const std::string& b;
+  std::size_t at = 0;
+  bool ok = true;
+  bool take(void* to, std::size_t n) {
+    if (!ok || n > b.size() - at) return ok = false;
+    std::memcpy(to, b.data() + at, n);
+    at += n;
+    return true;
+  }
+  std::uint64_t u64() {
+    std::uint64_t x = 0;
+    take(&x, 8);
+    return x;
+  }
+  std::string str() {
+    const std::uint64_t n = u64();
+    if (!ok || n > b.size() - at) {
+      ok = false;
+      return {};
+    }
+    std::string s = b.substr(at, n);
+    at += n;
+    return s;
+  }
+};
+
+bool decode(const std::string& b, ImportedMesh& m) {
+  Reader r{b};
+  m.error = r.str();
+  m.error_mesh = r.u64();
+  m.error_face = r.u64();
+  const std::uint64_t parts = r.u64();
+  for (std::uint64_t i = 0; r.ok && i < parts; ++i) m.parts.push_back(r.str());
+  const std::uint64_t nv = r.u64();
+  if (!r.ok || nv > (b.size() - r.at) / 24) return false;
+  m.mesh.vertices.resize(nv);
+  for (Vec3& v : m.mesh.vertices) r.take(v.data(), 24);
+  const std::uint64_t nf = r.u64();
+  if (!r.ok || nf > (b.size() - r.at) / 12) return false;
+  m.mesh.faces.resize(nf);
+  for (auto& f : m.mesh.faces) r.take(f.data(), 12);
+  return r.ok && r.at == b.size();
+}
+
+// The child's address space is limited (setrlimit RLIMIT_AS) to kImportMemoryBase plus
+// kImportMemoryPerByte times the file's size, so that a file on which Assimp allocates without end
+// (the fuzzer found a COLLADA file taking more than 3 GB) fails in the child with bad_alloc rather
+// than exhaust the machine. Not under AddressSanitizer, whose shadow memory the limit would deny.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define GRASPCD_IMPORT_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define GRASPCD_IMPORT_ASAN 1
+#endif
+
+void limit_memory(const std::string& path) {
+#ifndef GRASPCD_IMPORT_ASAN
+  constexpr std::uint64_t kImportMemoryBase = std::uint64_t{4} << 30;
+  constexpr std::uint64_t kImportMemoryPerByte = 64;
+  struct stat info {};
+  const std::uint64_t size =
+      ::stat(path.c_str(), &info) == 0 ? static_cast<std::uint64_t>(info.st_size) : 0;
+  const std::uint64_t bytes = kImportMemoryBase + kImportMemoryPerByte * size;
+  rlimit limit{};
+  limit.rlim_cur = limit.rlim_max = static_cast<rlim_t>(bytes);
+  ::setrlimit(RLIMIT_AS, &limit);
+#else
+  (void)path;
+#endif
+}
+
+ImportedMesh import_in_child(const std::string& path, const std::string& format,
+                             double timeout_seconds) {
+  ImportedMesh out;
+  int fds[2];
+  if (::pipe(fds) != 0) {
+    out.error = std::string("cannot start the reader: ") + std::strerror(errno);
+    return out;
+  }
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    out.error = std::string("cannot start the reader: ") + std::strerror(errno);
+    return out;
+  }
+  if (child == 0) {
+    ::close(fds[0]);
+    // Assimp's own messages (an ai_assert's, its logger's) would add lines to the one error line:
+    // the child's stdout and stderr go nowhere.
+    limit_memory(path);
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (null >= 0) {
+      ::dup2(null, 1);
+      ::dup2(null, 2);
+      ::close(null);
+    }
+    std::string bytes;
+    try {
+      bytes = encode(import_in_process(path, format));
+    } catch (const std::bad_alloc&) {
+      ImportedMesh failed;
+      failed.error = "the import library (Assimp) ran out of memory reading it";
+      bytes = encode(failed);
+    } catch (const std::exception& e) {
+      ImportedMesh failed;
+      failed.error = first_line(e.what());
+      bytes = encode(failed);
+    }
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+      const ssize_t n = ::write(fds[1], bytes.data() + done, bytes.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) ::_exit(3);
+      done += static_cast<std::size_t>(n);
+    }
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  std::string bytes;
+  char buffer[1 << 16];
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::milliseconds(static_cast<long>(timeout_seconds * 1000));
+  bool timed_out = false;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                          deadline - std::chrono::steady_clock::now())
+                          .count();
+    if (left <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd p{fds[0], POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(std::min<long>(left, 1000)));
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) continue;
+    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    bytes.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  if (timed_out) ::kill(child, SIGKILL);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (timed_out) {
+    out.error = "the import library did not finish reading it in " +
+                std::to_string(static_cast<long>(timeout_seconds)) + " s";
+  } else if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    const char* name = ::strsignal(sig);
+    out.error = "the import library (Assimp) crashed reading it (signal " + std::to_string(sig) +
+                (name ? std::string(", ") + name : std::string()) + ")";
+  } else if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !decode(bytes, out)) {
+    out = ImportedMesh{};
+    out.error = "the import library (Assimp) failed reading it (exit status " +
+                std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")";
+  }
+  return out;
+}
+
+std::atomic<double> g_import_timeout{kImportTimeout};
+
+}  // namespace
+
+void set_import_timeout(double seconds) { g_import_timeout = seconds; }
+double import_timeout() { return g_import_timeout; }
+
+ImportedMesh import_with_assimp(const std::string& path, const std::string& format, bool isolated,
+                                double timeout_seconds) {
+  if (!isolated) return import_in_process(path, format);
+  if (timeout_seconds < 0) timeout_seconds = import_timeout();
+  return import_in_child(path, format, timeout_seconds);
+}
+
+}  // namespace graspcd::io
