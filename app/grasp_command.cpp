@@ -51,6 +51,7 @@ struct GraspCliOptions {
   bool require_held = false;
   int max_steps = 400;
   double contact_reuse = 0;    // --contact-reuse M: the config's "contact_reuse" overridden
+  std::string manifold;        // --manifold support|moment[N]: the config's reduction overridden
   std::string object;          // --object FILE: a user's mesh in a template scene
   PlacementOptions placement;  // its placement (object_placement.h)
   std::string decomposed;      // --decomposed DIR: the object's collision by its convex pieces
@@ -282,6 +283,16 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   grasp.native = options.native;
   grasp.max_steps = options.max_steps;
   if (app.count("--contact-reuse") > 0) grasp.contact_reuse = options.contact_reuse;
+  if (app.count("--manifold") > 0) {
+    const auto choice = grasp::parse_manifold_choice(options.manifold);
+    if (!choice || options.native || !options.decomposed.empty()) {
+      throw UsageError(
+          "grasp: --manifold takes support or moment, optionally with the contacts "
+          "per pair 1-50 (moment4), and goes with graspcd's contacts, not --native");
+    }
+    grasp.reduction = choice->reduction;
+    grasp.max_contacts = choice->max_contacts;
+  }
   if (app.count("--method") > 0) grasp.method = options.method.method;
   if (app.count("--cap") > 0) grasp.cap = options.method.cap;
   if (app.count("--switch") > 0) grasp.switch_passes = options.method.switch_passes;
@@ -399,6 +410,12 @@ Command add_grasp_command(CLI::App& parent) {
   app->add_option("--max-steps", options->max_steps, "Most closing grasp steps")
       ->check(positive_number())
       ->capture_default_str();
+  app->add_option("--manifold", options->manifold,
+                  "The contacts per served pair: support (the support polygon, the default) or "
+                  "moment (each patch's net normal direction and moment about its centre of "
+                  "pressure kept: an anchor and support extremes), optionally followed by the "
+                  "contacts per pair (moment4: at most 4); overrides the config's \"reduction\" "
+                  "and \"max_contacts\"");
   app->add_option("--contact-reuse", options->contact_reuse,
                   "Metres in [0, 0.001]: reuse a touching pair's contacts, their depths "
                   "refreshed, while it moved less than this since its last exact query (faster; "

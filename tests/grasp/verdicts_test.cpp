@@ -264,5 +264,23 @@ TEST_F(EjectionVerdict, ASmallCanPassesBelowItsSupportFirst) {
   EXPECT_NEAR(r.ejected->speed, 9.81 * r.ejected->time, 0.05);
 }
 
+// grasp --manifold's choices (grasp_result.h): a reduction, optionally with the contacts per pair
+// 1 .. mjMAXCONPAIR; nothing else.
+TEST(ManifoldChoice, ParsesAReductionAndAnOptionalBudget) {
+  const auto moment4 = parse_manifold_choice("moment4");
+  ASSERT_TRUE(moment4);
+  EXPECT_EQ(moment4->reduction, ManifoldReduction::kMoment);
+  EXPECT_EQ(moment4->max_contacts, 4);
+  const auto support = parse_manifold_choice("support");
+  ASSERT_TRUE(support);
+  EXPECT_EQ(support->reduction, ManifoldReduction::kSupport);
+  EXPECT_FALSE(support->max_contacts);
+  EXPECT_EQ(parse_manifold_choice("moment50")->max_contacts, 50);
+  for (const char* bad : {"", "moment0", "moment51", "moment04", "moment-4", "moment4x", "fewest",
+                          "support123", "Moment"}) {
+    EXPECT_FALSE(parse_manifold_choice(bad)) << bad;
+  }
+}
+
 }  // namespace
 }  // namespace graspcd::grasp

@@ -81,7 +81,8 @@ TEST(RegistryConfig, ParsesEveryField) {
   const RegistryConfig c = parse_registry_config(
       R"({"method": "neurosat", "cap": 900, "switch": 40, "cache_slots": 64, "max_depth": 0.002,
           "max_contacts": 12, "max_patch_contacts": 3, "front_list": false,
-          "contact_reuse": 5e-5, "pairs": [{"a": "finger*", "b": "geom:cup"},
+          "contact_reuse": 5e-5, "reduction": "moment",
+          "pairs": [{"a": "finger*", "b": "geom:cup"},
                     {"a": "palm", "b": "cup", "max_contacts": 2, "max_patch_contacts": 1}]})",
       "x.json");
   EXPECT_EQ(c.method, Method::kNeuroSat);
@@ -93,6 +94,7 @@ TEST(RegistryConfig, ParsesEveryField) {
   EXPECT_EQ(c.manifold.max_per_patch, 3);
   EXPECT_FALSE(c.front_list);
   EXPECT_DOUBLE_EQ(c.contact_reuse, 5e-5);
+  EXPECT_EQ(c.manifold.reduction, ManifoldReduction::kMoment);
   ASSERT_EQ(c.patterns.size(), 2u);
   EXPECT_EQ(c.patterns[0].a, "finger*");
   EXPECT_EQ(c.patterns[0].b, "geom:cup");
@@ -105,6 +107,7 @@ TEST(RegistryConfig, ParsesEveryField) {
   EXPECT_EQ(d.manifold.max_per_pair, 8);
   EXPECT_TRUE(d.front_list);
   EXPECT_EQ(d.contact_reuse, 0.0);  // exact contacts every step unless asked
+  EXPECT_EQ(d.manifold.reduction, ManifoldReduction::kSupport);
 }
 
 // Each bad config gives one line that starts with the config's name.
@@ -131,6 +134,8 @@ TEST(RegistryConfig, ErrorsAreOneLineAndNameTheSource) {
            R"({"contact_reuse": -1e-5, "pairs": []})",                  // negative
            R"({"contact_reuse": 0.002, "pairs": []})",                  // above 1 mm
            R"({"contact_reuse": "5e-5", "pairs": []})",                 // not a number
+           R"({"reduction": "fewest", "pairs": []})",                   // unknown reduction
+           R"({"reduction": 4, "pairs": []})",                          // not a string
        }) {
     try {
       parse_registry_config(bad, "cfg/hand.json");

@@ -338,6 +338,133 @@ void spend_pair_budget(const std::vector<TriContact>& candidates,
   }
 }
 
+// ---- Moment reduction (build_contact_manifold, "Moment reduction")
+
+// A patch's proxy of its normal force: the net direction N, the size |F|, the centre of pressure c,
+// the central-axis point c* = c + N x M / |F| and the anchor's depth (the mean penetration).
+struct PatchWrench {
+  Vec3 normal = Vec3::UnitZ();
+  Vec3 centre = Vec3::Zero();
+  Vec3 axis_point = Vec3::Zero();
+  double anchor_depth = 0;
+};
+
+PatchWrench patch_wrench(const std::vector<TriContact>& candidates, const ContactPatch& patch,
+                         const std::vector<double>& along) {
+  double total = 0;
+  for (std::size_t i : patch.members) total += along[i];
+  const bool uniform = !(total > 0);  // every member only touches: all weights 1
+  const auto weight = [&](std::size_t i) { return uniform ? 1.0 : along[i]; };
+  Vec3 force = Vec3::Zero();
+  Vec3 moment_sum = Vec3::Zero();
+  double w_sum = 0;
+  double depth_sum = 0;
+  for (std::size_t i : patch.members) {
+    const double w = weight(i);
+    force += w * candidates[i].normal;
+    moment_sum += w * candidates[i].pos;
+    w_sum += w;
+    depth_sum += w * along[i];
+  }
+  PatchWrench out;
+  out.centre = moment_sum / w_sum;
+  Vec3 moment = Vec3::Zero();
+  for (std::size_t i : patch.members) {
+    moment += weight(i) * (candidates[i].pos - out.centre).cross(candidates[i].normal);
+  }
+  const double size = force.norm();
+  const bool has_direction = size > 0 && std::isfinite(size);
+  out.normal = has_direction ? Vec3(force / size) : patch.normal;
+  out.axis_point = has_direction ? Vec3(out.centre + out.normal.cross(moment) / size) : out.centre;
+  out.anchor_depth = depth_sum / w_sum;
+  return out;
+}
+
+// The points of one patch under the moment reduction: the anchor into `anchor` and the patch's
+// first `extremes` selected members (choose_points) into `out`, every one with the wrench's
+// normal, their depths fitted as build_contact_manifold describes ("Moment reduction").
+void fit_patch_points(const std::vector<TriContact>& candidates, const ContactPatch& patch,
+                      const PatchWrench& wrench, std::size_t extremes, TriContact& anchor,
+                      std::vector<TriContact>& out) {
+  const Vec3& nrm = wrench.normal;
+  const PlaneAxes axes = plane_axes(nrm);
+  const std::size_t first = out.size();
+  thread_local std::vector<Point2> offset;  // each extreme's position from c*, across N
+  offset.clear();
+  Point2 rhs{0, 0};  // minus the extremes' depth-weighted offsets: what the change must make
+  double g00 = 0, g01 = 0, g11 = 0;  // the Gram matrix of the offsets
+  for (std::size_t k = 0; k < extremes; ++k) {
+    const TriContact& c = candidates[patch.selected[k]];
+    const double depth = c.depth * std::clamp(c.normal.dot(nrm), 0.0, 1.0);
+    const Vec3 d = c.pos - wrench.axis_point;
+    const Point2 o{d.dot(axes.u), d.dot(axes.w)};
+    offset.push_back(o);
+    out.push_back(TriContact{c.pos, nrm, depth});
+    rhs[0] -= depth * o[0];
+    rhs[1] -= depth * o[1];
+    g00 += o[0] * o[0];
+    g01 += o[0] * o[1];
+    g11 += o[1] * o[1];
+  }
+  // The least change of the depths (delta_e = o_e . y with G y = rhs; the pseudo-inverse of a
+  // rank-one G for collinear extremes), clamped at 0.
+  const double trace = g00 + g11;
+  const double det = g00 * g11 - g01 * g01;
+  Point2 y{0, 0};
+  if (trace > 0 && det > 1e-12 * trace * trace) {
+    y = {(g11 * rhs[0] - g01 * rhs[1]) / det, (g00 * rhs[1] - g01 * rhs[0]) / det};
+  } else if (trace > 0) {
+    y = {(g00 * rhs[0] + g01 * rhs[1]) / (trace * trace),
+         (g01 * rhs[0] + g11 * rhs[1]) / (trace * trace)};
+  }
+  Point2 left{0, 0};  // the extremes' depth-weighted offset after the clamp
+  for (std::size_t k = 0; k < extremes; ++k) {
+    TriContact& c = out[first + k];
+    c.depth = std::max(0.0, c.depth + offset[k][0] * y[0] + offset[k][1] * y[1]);
+    left[0] += c.depth * offset[k][0];
+    left[1] += c.depth * offset[k][1];
+  }
+  anchor = TriContact{wrench.axis_point, nrm, wrench.anchor_depth};
+  if (wrench.anchor_depth > 0) {
+    anchor.pos -= (left[0] * axes.u + left[1] * axes.w) / wrench.anchor_depth;
+  }
+}
+
+// The pair's budget of `per_pair` points under the moment reduction into `contacts`, from
+// `patches` sorted deepest first: every patch's anchor, then the patches' extremes by patch area.
+void spend_moment_budget(const std::vector<TriContact>& candidates,
+                         const std::vector<ContactPatch>& patches, const std::vector<double>& along,
+                         std::size_t per_pair, std::vector<TriContact>& contacts) {
+  const std::size_t anchors = std::min(per_pair, patches.size());
+  thread_local std::vector<std::size_t> by_area, extremes;
+  by_area.clear();
+  for (std::size_t p = 0; p < anchors; ++p) by_area.push_back(p);
+  small_stable_sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) {
+    return patches[a].area > patches[b].area;
+  });
+  extremes.assign(anchors, 0);
+  std::size_t used = anchors;
+  for (std::size_t p : by_area) {
+    extremes[p] = std::min(patches[p].selected.size(), per_pair - used);
+    used += extremes[p];
+  }
+  thread_local std::vector<TriContact> further;  // the extremes, patch by patch in patch order
+  thread_local std::vector<std::size_t> start;   // each patch's first extreme in `further`
+  further.clear();
+  start.clear();
+  contacts.reserve(used);
+  for (std::size_t p = 0; p < anchors; ++p) {
+    const PatchWrench wrench = patch_wrench(candidates, patches[p], along);
+    start.push_back(further.size());
+    TriContact anchor;
+    fit_patch_points(candidates, patches[p], wrench, extremes[p], anchor, further);
+    contacts.push_back(anchor);
+  }
+  for (std::size_t p : by_area) {
+    for (std::size_t k = 0; k < extremes[p]; ++k) contacts.push_back(further[start[p] + k]);
+  }
+}
+
 }  // namespace
 
 std::vector<std::size_t> select_contacts(const std::vector<TriContact>& contacts, std::size_t k) {
@@ -409,10 +536,17 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
   adjacency.build(vertices_a, vertices_b);
   grow_patches(candidates, order, adjacency, options.patch_cosine, out.patches);
   along.assign(n, 0);
-  for (ContactPatch& patch : out.patches) choose_points(candidates, per_patch, patch, along);
+  const bool moment = options.reduction == ManifoldReduction::kMoment;
+  // The moment reduction's extremes leave one point of each patch to its anchor.
+  const std::size_t extremes = moment ? per_patch - 1 : per_patch;
+  for (ContactPatch& patch : out.patches) choose_points(candidates, extremes, patch, along);
   small_stable_sort(out.patches.begin(), out.patches.end(),
                     [](const ContactPatch& a, const ContactPatch& b) { return a.depth > b.depth; });
-  spend_pair_budget(candidates, out.patches, along, per_pair, out.contacts);
+  if (moment) {
+    spend_moment_budget(candidates, out.patches, along, per_pair, out.contacts);
+  } else {
+    spend_pair_budget(candidates, out.patches, along, per_pair, out.contacts);
+  }
   return out;
 }
 

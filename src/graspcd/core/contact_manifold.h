@@ -22,18 +22,32 @@ namespace graspcd {
 // Returns all indices, deepest first, when there are at most k.
 std::vector<std::size_t> select_contacts(const std::vector<TriContact>& contacts, std::size_t k);
 
+// How a patch's points are chosen (build_contact_manifold, step 2).
+enum class ManifoldReduction {
+  // The support polygon: the deepest member and the hull extremes, each with the seed's normal and
+  // its own depth along it (the default).
+  kSupport,
+  // The patch's net normal force and its moment kept (build_contact_manifold, "Moment
+  // reduction"): a centre-of-pressure anchor and support extremes, all with the net normal, their
+  // depths fitted so that the points' depth-weighted centre is the proxy's central-axis point.
+  kMoment,
+};
+
 struct ManifoldOptions {
   int max_per_patch = tol::kManifoldPatchContacts;  // points kept per patch (>= 1)
   int max_per_pair = tol::kManifoldPairContacts;    // points kept per geom pair (>= 1)
   double patch_cosine = tol::kPatchNormalCosine;    // see tolerances.h
+  ManifoldReduction reduction = ManifoldReduction::kSupport;
 };
 
 struct ContactPatch {
-  Vec3 normal = Vec3::UnitZ();        // the seed's (the deepest candidate's) normal, unit
-  double depth = 0;                   // the deepest member's depth along `normal`
-  double area = 0;                    // area of the kept points' convex hull across `normal`
-  std::vector<std::size_t> members;   // indices into the candidates, deepest first
-  std::vector<std::size_t> selected;  // the patch's chosen points (indices), in choice order
+  Vec3 normal = Vec3::UnitZ();       // the seed's (the deepest candidate's) normal, unit
+  double depth = 0;                  // the deepest member's depth along `normal`
+  double area = 0;                   // area of the kept points' convex hull across `normal`
+  std::vector<std::size_t> members;  // indices into the candidates, deepest first
+  // The patch's chosen points (indices), in choice order; under the moment reduction its support
+  // extremes (the anchor is no candidate).
+  std::vector<std::size_t> selected;
 };
 
 struct ContactManifold {
@@ -69,6 +83,36 @@ struct ContactManifold {
 // normal), so the points of a patch push along one direction. What is lost: the other candidates
 // (the full triangle-pair list stays with the caller: validate, meshpair and the study use it),
 // and patches beyond max_per_pair (the shallowest).
+//
+// Moment reduction (options.reduction == kMoment; patches as in step 1). Detection has geometry,
+// not forces, so each patch's normal force is given a proxy: member i (position p_i, unit normal
+// n_i, depth a_i along the seed's normal, step 2's) pushes with w_i = a_i along n_i (depth-
+// weighted normals; all w_i = 1 when every a_i is 0). The proxy's net force F = sum w_i n_i, its
+// direction N = F / |F| (the seed's normal when |F| vanishes), its centre of pressure
+// c = sum w_i p_i / sum w_i and its moment about c, M = sum w_i (p_i - c) x n_i. The patch gives
+// at most max_per_patch points, every one with normal N:
+//   - the anchor, at the proxy's central-axis point c* = c + N x M / |F| (the point about which
+//     the proxy's moment is least: only its torsion N (N . M) remains), with depth
+//     sum w_i a_i / sum w_i along N (the proxy's mean penetration);
+//   - up to max_per_patch - 1 support extremes (step 2's rule: the deepest member, then the hull
+//     extremes), each with its depth along N, then the least change of those depths (least
+//     squares, clamped at 0) that puts the extremes' depth-weighted centre at c* across N; what
+//     the clamp leaves, the anchor takes by moving across N (d * its offset from c* cancels it).
+// The pair's budget: every patch's anchor first (the deepest patch first), then the patches'
+// extremes, the patch of largest area first; a patch's depths are fitted to the extremes it keeps.
+// The bound the tests check: taking each kept point's depth d_j as its force along its normal,
+// (1) the patch's kept force sum d_j N has the proxy's direction N exactly (rounding only), and
+// (2) the kept points' moment about c per unit force, sum d_j (q_j - c) x N / sum d_j, equals the
+// proxy's, M / |F|, except for the torsion along N (which normals all along N cannot carry):
+//     | sum d_j (q_j - c) x N / sum d_j - M / |F| | = |N . M| / |F|
+//                                                  <= sum w_i |p_i - c| sin(n_i, N) / |F|,
+// exactly so (rounding aside) whenever the anchor's depth is positive. On a flat patch (all n_i
+// equal) both sides are 0: the kept points' depth-weighted centre is the centre of pressure. This
+// follows the reduction of Newton (newton-physics, contact_reduction / the hydroelastic reduction:
+// the aggregate force sum area * pressure * normal kept as the reduced normal, plus an anchor
+// contact at the centre of pressure), with the largest-area support points of Jolt Physics
+// (PruneContactPoints) and the minimum-moment point of a force system (Poinsot's central axis,
+// as Drake's ContactResultantForceCalculator places a resultant).
 ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates,
                                        const std::vector<Triangle>& faces_a,
                                        const std::vector<Triangle>& faces_b,

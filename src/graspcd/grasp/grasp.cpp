@@ -85,6 +85,8 @@ GraspConfig load_grasp_config(const mjModel* m, const std::string& config_path,
     if (options.switch_passes) config.detector.switch_passes = *options.switch_passes;
     if (options.front_list) config.front_list = *options.front_list;
     if (options.contact_reuse) config.contact_reuse = *options.contact_reuse;
+    if (options.reduction) config.manifold.reduction = *options.reduction;
+    if (options.max_contacts) config.manifold.max_per_pair = *options.max_contacts;
     out.registry = std::make_unique<mujoco::Registry>(m, config, config_path);
   } catch (const GraspInputError&) {
     throw;

@@ -1,6 +1,8 @@
 #include "graspcd/grasp/grasp_result.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,28 @@ const std::array<std::string, kFingerSegments>& finger_segment_names() {
     return out;
   }();
   return names;
+}
+
+std::optional<ManifoldChoice> parse_manifold_choice(const std::string& text) {
+  ManifoldChoice out;
+  std::string count;
+  if (text.rfind("support", 0) == 0) {
+    count = text.substr(7);
+  } else if (text.rfind("moment", 0) == 0) {
+    out.reduction = ManifoldReduction::kMoment;
+    count = text.substr(6);
+  } else {
+    return std::nullopt;
+  }
+  if (count.empty()) return out;
+  if (count.size() > 2 || count[0] == '0' ||
+      !std::all_of(count.begin(), count.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return std::nullopt;
+  }
+  const int n = std::stoi(count);
+  if (n > mjMAXCONPAIR) return std::nullopt;
+  out.max_contacts = n;
+  return out;
 }
 
 std::string tilt_note(const GraspResult& result) {

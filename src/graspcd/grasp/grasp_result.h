@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "graspcd/core/contact_manifold.h"
 #include "graspcd/core/separators.h"
 #include "graspcd/mujoco/input_error.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
@@ -52,7 +53,10 @@ struct GraspOptions {
   bool native = false;                  // MuJoCo's own collision, no registry
   std::optional<bool> front_list;       // overrides the config's "front_list" (registry.h)
   std::optional<double> contact_reuse;  // overrides the config's "contact_reuse" (registry.h)
-  int max_steps = 400;                  // most closing grasp steps
+  // Override the config's "reduction" and "max_contacts" (pair_config.h; parse_manifold_choice).
+  std::optional<ManifoldReduction> reduction;
+  std::optional<int> max_contacts;
+  int max_steps = 400;  // most closing grasp steps
   // 5 steps of 2 ms per grasp step: a target ramp of 0.3 rad/s, tracked with the velocity
   // feed-forward within a few 1e-4 rad at omega = 40 rad/s.
   int physics_steps_per_grasp_step = 5;
@@ -174,6 +178,15 @@ std::string push_note(const GraspResult& result);
 // the closing; `touching`: the hand geoms that touched it at the start of the lift; `opposing`:
 // two of them pushed from opposing sides then.
 void judge_grasp(bool ever_touched, int touching, bool opposing, GraspResult& result);
+
+// A manifold choice of `grasp --manifold`: "support" or "moment" (pair_config.h, "reduction"),
+// optionally followed by the contacts per pair, 1 .. mjMAXCONPAIR ("moment4"); the count is
+// absent when not given. std::nullopt for anything else.
+struct ManifoldChoice {
+  ManifoldReduction reduction = ManifoldReduction::kSupport;
+  std::optional<int> max_contacts;
+};
+std::optional<ManifoldChoice> parse_manifold_choice(const std::string& text);
 
 // The segment names in record order: finger1_A, finger1_B, ..., finger4_C.
 const std::array<std::string, kFingerSegments>& finger_segment_names();

@@ -79,6 +79,12 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
       c.manifold.max_per_pair = contact_budget(value, "max_contacts", source);
     } else if (field == "max_patch_contacts") {
       c.manifold.max_per_patch = contact_budget(value, "max_patch_contacts", source);
+    } else if (field == "reduction") {
+      if (!value.is_string() || (value != "support" && value != "moment")) {
+        refuse(source, "'reduction' must be \"support\" or \"moment\"");
+      }
+      c.manifold.reduction =
+          value == "moment" ? ManifoldReduction::kMoment : ManifoldReduction::kSupport;
     } else if (field == "front_list") {
       if (!value.is_boolean()) refuse(source, "'front_list' must be true or false");
       c.front_list = value.get<bool>();
