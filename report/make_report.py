@@ -913,7 +913,12 @@ def report(study, sweep, fig_dir, fig_rel, stress=None, perf=None):
     else:
         w("- Commit: not recorded (study.json written before graspcd 0.2.0).")
     jobs = study["table1"].get("jobs", 1)
-    w(f"- Timing: every method replays the same recorded grasp steps {study['repeats']} times;"
+    # Table 1's perceptron methods that run to their cap replay fewer times (study.json's
+    # "perceptron_repeats"; each cell's own count is its "repeats").
+    fewer = study.get("perceptron_repeats", study["repeats"])
+    w(f"- Timing: every method replays the same recorded grasp steps {study['repeats']} times"
+      + (f" (perceptron, perceptron-warm and perceptron-scaled {fewer} times, most of the"
+         " study's time)" if fewer != study["repeats"] else "") + ";"
       " times are medians with [min-max] over those repeats, wall clock of the queries alone"
       " (poses computed before the clock starts), each replay on one thread"
       + (f", {jobs} replays at a time (one per core; the box hand alone)." if jobs > 1 else "."))

@@ -1,6 +1,6 @@
-// Primitive geoms in the bridge. The tessellations (bridge/primitives.h): closed, outward, convex,
-// the box exact, curved primitives circumscribed (sampled points of the true surface never lie
-// outside the tessellation's solid) within their documented tolerance, which is nearly reached.
+// Primitive geoms in the bridge. The tessellations (graspcd/mujoco/primitives.h): closed, outward,
+// convex, the box exact, curved primitives circumscribed (sampled points of the true surface never
+// lie outside the tessellation's solid) within their documented tolerance, which is nearly reached.
 // Served pairs with primitives in MuJoCo: a tessellated primitive never misses a contact that the
 // true surfaces have and reports none beyond the tolerance; box-box pairs are exact and never
 // touch triangles (bit-for-bit MuJoCo's contacts); the box hand (mjcf/hand_boxes.xml) closes,

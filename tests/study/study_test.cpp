@@ -47,6 +47,8 @@ TEST_F(StudyTest, QuickStudyWritesTheReportAndEveryMethodAgreesWithCgal) {
   EXPECT_TRUE(rec["held"].get<bool>()) << "the recorded grasp lifts and holds the cup";
   const std::string truth = rec["truth_pairs_hash"];
   ASSERT_GE(study["table1"]["methods"].size(), 3u);
+  // The perceptron methods that run to their cap replay 2 times at most (--perceptron-repeats).
+  EXPECT_EQ(study["perceptron_repeats"].get<std::size_t>(), std::min<std::size_t>(repeats, 2));
   // The executable hands FCL's two trees to the study as Table 1's last rows (study.h, peers); a
   // build without FCL (GRASPCD_WITH_FCL=OFF) has no FCL row.
   const json& methods = study["table1"]["methods"];
@@ -62,6 +64,7 @@ TEST_F(StudyTest, QuickStudyWritesTheReportAndEveryMethodAgreesWithCgal) {
     EXPECT_EQ(x["pairs_hash"].get<std::string>(), truth) << m["name"];
     EXPECT_TRUE(x["agrees_with_cgal"].get<bool>()) << m["name"];
     EXPECT_EQ(x["repeats_ms"].size(), repeats) << "--quick: 3 repeats (1 when scaled down)";
+    EXPECT_EQ(x["repeats"].get<std::size_t>(), repeats) << m["name"];
     EXPECT_LE(x["min_ms"].get<double>(), x["median_ms"].get<double>());
     EXPECT_LE(x["median_ms"].get<double>(), x["max_ms"].get<double>());
   }
@@ -214,7 +217,8 @@ TEST_F(StudyTest, MergedShardsGiveTheAnswersOfOneUnshardedSweep) {
 TEST_F(StudyTest, BadOptionsAreOneLineErrorsWithExitCode2) {
   for (const char* args :
        {"study --shard 3/3", "study --shard 1", "study --shard a/b", "study --repeats 0",
-        "study --merge /nonexistent/shard.json", "study --no-table --no-sweep"}) {
+        "study --perceptron-repeats 0", "study --merge /nonexistent/shard.json",
+        "study --no-table --no-sweep"}) {
     const Outcome r = graspcd(args);
     EXPECT_EQ(r.exit_code, 2) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;

@@ -60,7 +60,7 @@ inline constexpr double kFrontMaxShift = 0.1;
 // Every kFrontPullUpPeriod-th restarted query pulls its front up where node pairs moved apart
 // (tree_query.h, pull_up_front): each attempt costs a box test whether or not it succeeds, so a
 // front is not pulled up at every step. Speed only: 32 was measured against 4, 16, 64 and never
-// over whole grasps (docs/performance.md, "Leaf pairs straight to the triangle test").
+// over whole grasps (docs/performance.md, "Fronts across steps").
 inline constexpr unsigned kFrontPullUpPeriod = 32;
 // front_motion (tree_query.h) bounds how far B's boxes moved between two poses; the bound is
 // computed in doubles from a few products and sums (rounding well below 1e-15 relative), so it is

@@ -126,7 +126,9 @@ FclQueryResult fcl_collide(const FclMesh& a, const FclMesh& b, const Pose& b_in_
   // fcl::collide dispatches BVHModel<OBBd> pairs to orientedMeshCollide, which is this traversal
   // on the models as built, nothing copied. For BVHModel<RSSd> pairs FCL 0.7's fcl::collide
   // takes the generic BVHCollideImpl, which copies both models, transforms B's vertices and
-  // rebuilds its tree on every call (FCL issue #38), so both go through the node here.
+  // rebuilds its tree on every call
+  // (https://github.com/flexible-collision-library/fcl/issues/38), so both go through the node
+  // here.
   if (a.bv() == FclBv::kObb) {
     out.bv_tests = traverse<fcl::detail::MeshCollisionTraversalNodeOBB<double>>(
         *a.impl_->obb, *b.impl_->obb, tf, request, result, list);

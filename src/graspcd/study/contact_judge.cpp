@@ -16,7 +16,7 @@ namespace graspcd::study {
 namespace {
 
 // A geom's triangles in its geom frame: a mesh's from MuJoCo's float vertices (as the bridge's
-// trees), a primitive's tessellation (bridge/primitives.h: a box exactly, curved ones
+// trees), a primitive's tessellation (graspcd/mujoco/primitives.h: a box exactly, curved ones
 // circumscribed within tessellation_tolerance).
 TriangleMesh geom_mesh(const mjModel* m, int g) {
   if (m->geom_type[g] != mjGEOM_MESH)

@@ -120,8 +120,13 @@ json recordings_json(const std::vector<Example>& ex, const Grasps& g) {
 void write_tables(const StudyOptions& o, const std::vector<Example>& ex, const Grasps& g,
                   const std::filesystem::path& out, const Clock::time_point start,
                   ReplayCache& cache, const Log& log) {
-  json study = {{"schema", kSchema},    {"created", now_utc()},      {"quick", o.quick},
-                {"repeats", o.repeats}, {"machine", machine_info()}, {"build", build_info()}};
+  json study = {{"schema", kSchema},
+                {"created", now_utc()},
+                {"quick", o.quick},
+                {"repeats", o.repeats},
+                {"perceptron_repeats", std::min(o.repeats, o.perceptron_repeats)},
+                {"machine", machine_info()},
+                {"build", build_info()}};
   study["recordings"] = recordings_json(ex, g);
   std::vector<std::vector<Pose>> poses;
   for (std::size_t e = 0; e < ex.size(); ++e)
@@ -163,6 +168,7 @@ void run_study(const StudyOptions& options, const Log& log) {
   StudyOptions o = options;
   if (o.mjcf_dir.empty()) o.mjcf_dir = graspcd::mjcf_dir();
   if (o.repeats < 1) throw std::runtime_error("--repeats must be >= 1");
+  if (o.perceptron_repeats < 1) throw std::runtime_error("--perceptron-repeats must be >= 1");
   if (o.jobs < 1) o.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (o.shard) o.table = false;
   const Clock::time_point start = Clock::now();

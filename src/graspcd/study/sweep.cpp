@@ -249,11 +249,14 @@ std::vector<std::vector<ReplayStats>> replay_points(const StudyOptions& o,
 
 // One sweep point against CGAL: its replays of every example (`stats`), summed.
 json point_json(const SweepConfig& c, std::size_t index, bool reuse,
-                const std::vector<const ReplayStats*>& stats, int repeats,
-                const std::vector<Example>& ex, const std::vector<Recording>& recs,
-                const std::vector<Answers>& truths,
+                const std::vector<const ReplayStats*>& stats, const std::vector<Example>& ex,
+                const std::vector<Recording>& recs, const std::vector<Answers>& truths,
                 const std::vector<std::unique_ptr<MeshScene>>& sc) {
-  std::vector<double> totals(static_cast<std::size_t>(repeats), 0.0);
+  // The timed repeats every example has: --repeats, or fewer for a point that Table 1's
+  // perceptron cells serve (StudyOptions::perceptron_repeats).
+  std::size_t repeats = stats.empty() ? 0 : stats.front()->total_ns.size();
+  for (const ReplayStats* st : stats) repeats = std::min(repeats, st->total_ns.size());
+  std::vector<double> totals(repeats, 0.0);
   ErrorStats sum;
   double position_weighted = 0;
   json per = json::array();
@@ -285,6 +288,7 @@ json point_json(const SweepConfig& c, std::size_t index, bool reuse,
   j["first_contact_mode"] = c.first_contact;
   j["value"] = c.value;
   j["index"] = index;
+  j["repeats"] = repeats;
   j["missed"] = sum.missed;
   j["false_contacts"] = sum.false_contacts;
   j["first_contact_step_error_max"] = sum.first_contact_error_max;
@@ -325,7 +329,7 @@ json run_sweep(const StudyOptions& o, const std::vector<Example>& all_examples,
     std::vector<const ReplayStats*> stats;
     for (std::size_t e = 0; e < ex.size(); ++e)
       stats.push_back(reuse ? &cache.at(c.table_method)[e] : &fresh[k][e]);
-    results.push_back(point_json(c, mine[k], reuse, stats, o.repeats, ex, recs, truths,
+    results.push_back(point_json(c, mine[k], reuse, stats, ex, recs, truths,
                                  scenes.scenes[SweepScenes::key_of(c)]));
   }
   log("sweep: " + std::to_string(mine.size()) + " points compared with CGAL");
