@@ -5,6 +5,10 @@
 // template scene (example 1's arm and hand, the cup swapped for FILE). graspcd grasp SCENE
 // --decomposed DIR: the object collides as its convex pieces (natively).
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <filesystem>
@@ -28,6 +32,7 @@
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/grasp/object_scene.h"
 #include "graspcd/io/mesh_io.h"
+#include "graspcd/io/output_files.h"
 #include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/registry.h"
@@ -55,6 +60,7 @@ struct GraspCliOptions {
   PlacementOptions placement;  // its placement (object_placement.h)
   std::string decomposed;      // --decomposed DIR: the object's collision by its convex pieces
   bool judge = false;          // --judge: every closing step's contacts against CGAL (the race)
+  bool force = false;          // --force: --write-scene may replace files graspcd did not write
 };
 
 namespace fs = std::filesystem;
@@ -63,7 +69,114 @@ struct ObjectRun {
   std::string file;  // the user's mesh, as given
   std::string hand;
   grasp::ObjectScene scene;
+  bool kept = false;  // --write-scene: scene names the kept file (else a removed temporary one)
 };
+
+// --write-scene DIR: the files the run leaves, DIR/STEM.xml, DIR/STEM.pairs.json and the folder
+// DIR/STEM.meshes. The scene is written and simulated in a private folder DIR/.graspcd-STEM-XXXXXX
+// (another run writing the same stem into DIR simulates its own), and its files are renamed into
+// place at the end, DIR locked (flock) meanwhile; the private folder is removed on errors and on
+// INT, TERM and HUP (io/output_files.h).
+struct SceneTargets {
+  fs::path dir;
+  std::string stem;
+  fs::path scene() const { return dir / (stem + ".xml"); }
+  fs::path pairs() const { return dir / (stem + ".pairs.json"); }
+  fs::path meshes() const { return dir / (stem + ".meshes"); }
+};
+
+// Whether `scene` is a scene graspcd generated: its header carries grasp::kGeneratedMarker.
+bool generated_by_graspcd(const fs::path& scene) {
+  std::ifstream in(scene, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head.find(grasp::kGeneratedMarker) != std::string::npos;
+}
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  return fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec);
+}
+
+// Before the work: the run never replaces a file it reads (the template, its pair config, the
+// object's mesh), and, without --force, none that graspcd did not write (a STEM.xml without the
+// marker, and the STEM.pairs.json and STEM.meshes beside it). One line 'FILE: message', exit 2.
+void check_scene_targets(const SceneTargets& t, const std::string& template_scene,
+                         const std::string& object_file, bool force) {
+  const fs::path template_pairs = fs::path(template_scene).replace_extension(".pairs.json");
+  std::error_code ec;
+  const bool ours = generated_by_graspcd(t.scene());
+  for (const fs::path& target : {t.scene(), t.pairs(), t.meshes()}) {
+    if (same_file(target, template_scene) || same_file(target, template_pairs)) {
+      throw io::InputError(target.string(), 0,
+                           "is the template this run reads: not overwritten (write the scene "
+                           "into another folder)");
+    }
+    const fs::path object = fs::absolute(object_file).lexically_normal();
+    const fs::path folder = fs::absolute(target).lexically_normal();
+    if (same_file(target, object_file) || object.string().rfind(folder.string() + "/", 0) == 0) {
+      throw io::InputError(target.string(), 0,
+                           "holds the object this run reads: not overwritten (write the scene "
+                           "into another folder)");
+    }
+    if (!force && fs::exists(fs::symlink_status(target, ec)) && !ours) {
+      throw io::InputError(
+          target.string(), 0,
+          "exists and graspcd did not write it (no '" + std::string(grasp::kGeneratedMarker) +
+              "' in " + t.scene().filename().string() + "): not overwritten; --force replaces it");
+    }
+  }
+}
+
+// The written files renamed from the private folder `work` into place, replacing graspcd's
+// earlier ones (moved into `work`, removed with it); DIR is locked meanwhile so that two runs
+// ending together leave one run's files, not a mix. Throws InputError naming the file.
+void keep_scene(const SceneTargets& t, const fs::path& work) {
+  const int lock = ::open(t.dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (lock >= 0) ::flock(lock, LOCK_EX);
+  const auto move = [&](const std::string& name, const std::string& old) {
+    const fs::path target = t.dir / name;
+    std::error_code ec;
+    if (fs::exists(fs::symlink_status(target, ec))) fs::rename(target, work / old, ec);
+    fs::rename(work / name, target, ec);
+    if (ec) {
+      if (lock >= 0) ::close(lock);
+      throw io::InputError(target.string(), 0, "cannot write: " + ec.message());
+    }
+  };
+  move(t.meshes().filename().string(), "replaced.meshes");
+  move(t.pairs().filename().string(), "replaced.pairs.json");
+  move(t.scene().filename().string(), "replaced.xml");
+  if (lock >= 0) ::close(lock);
+}
+
+// The run's warnings with the temporary files named as the user knows them (`renames`: from ->
+// to, in order), and a hand's mesh said to be the hand's (the object's mesh is 'object_mesh').
+void name_user_files(const std::vector<std::pair<std::string, std::string>>& renames,
+                     const std::string& hand) {
+  const std::string hands = hand == "project" || hand == "robotiq" || hand == "shadow"
+                                ? "the " + hand + " hand's "
+                                : "the hand's ";
+  warnings().edit([&](Warning& w) {
+    for (const auto& [from, to] : renames) w.message = io::replace_all(w.message, from, to);
+    for (const char* lead : {"mesh ", "(mesh "}) {
+      const std::string key = std::string(lead);
+      for (std::size_t at = w.message.find(key); at != std::string::npos;
+           at = w.message.find(key, at + key.size())) {
+        const std::size_t quote = w.message.find('\'', at);
+        if (quote == std::string::npos || quote > at + key.size() + 12) continue;
+        if (w.message.compare(quote, 13, "'object_mesh'") == 0) continue;
+        if (at >= hands.size() && w.message.compare(at + (key[0] == '(' ? 1 : 0) - hands.size(),
+                                                    hands.size(), hands) == 0) {
+          continue;
+        }
+        w.message.insert(at + (key[0] == '(' ? 1 : 0), hands);
+        at += hands.size();
+      }
+    }
+  });
+}
 
 std::string segments_text(const grasp::GraspResult& g, const grasp::GraspStepRecord& r) {
   std::string out;
@@ -242,10 +355,14 @@ void print_json(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
       {"reused_calls", r.reused_calls}};
   if (object) {
     const grasp::ObjectScene& o = object->scene;
-    doc["object"] = {{"file", object->file}, {"hand", object->hand},
-                     {"scale", o.scale},     {"fitted", o.fitted},
-                     {"size", o.size},       {"pos", o.pos},
-                     {"quat", o.quat},       {"scene", object->scene.scene}};
+    doc["object"] = {{"file", object->file},
+                     {"hand", object->hand},
+                     {"scale", o.scale},
+                     {"fitted", o.fitted},
+                     {"size", o.size},
+                     {"pos", o.pos},
+                     {"quat", o.quat},
+                     {"scene", object->kept ? nlohmann::json(o.scene) : nlohmann::json()}};
   }
   if (decomposed) {
     doc["decomposed"] = {{"dir", dir},
@@ -266,6 +383,9 @@ void check_usage(const GraspCliOptions& options, const CLI::App& app) {
   check_placement_options(app, "grasp", "--object", !options.object.empty());
   if (app.count("--contact-reuse") > 0 && (options.native || !options.decomposed.empty())) {
     throw UsageError("grasp: --contact-reuse goes with graspcd's contacts, not --native");
+  }
+  if (options.force && options.placement.write_scene.empty()) {
+    throw UsageError("grasp: --force goes with --write-scene");
   }
   if (!options.decomposed.empty() && !options.object.empty()) {
     throw UsageError(
@@ -293,15 +413,36 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   // (grasp::run_decomposed_grasp).
   std::optional<grasp::DecomposedScene> decomposed;
   if (!options.decomposed.empty()) decomposed.emplace();
+  std::optional<SceneTargets> targets;
+  std::optional<io::RemoveIfEmpty> created;  // --write-scene: DIR, when this run created it
+  io::CleanupGuard work;  // --write-scene: the private folder the scene is written in
+  // Temporary names -> the user's, for the messages and warnings.
+  std::vector<std::pair<std::string, std::string>> renames;
   if (!options.object.empty()) {
     const PlacementOptions& p = options.placement;
     const HandTemplate hand = hand_template(p.hand, "grasp");
-    if (p.write_scene.empty()) temp.emplace();
+    const std::string template_pairs =
+        fs::path(hand.scene).replace_extension(".pairs.json").string();
+    const std::string stem = fs::path(options.object).stem().string();
+    fs::path folder;
+    if (p.write_scene.empty()) {
+      temp.emplace();
+      folder = temp->path();
+    } else {
+      // Checked before the work: a folder that cannot be written, a file the run reads or one
+      // graspcd did not write.
+      if (io::prepare_output_folder(p.write_scene)) created.emplace(p.write_scene);
+      targets = SceneTargets{p.write_scene, stem};
+      check_scene_targets(*targets, hand.scene, options.object, options.force);
+      work = io::make_private_folder(p.write_scene, ".graspcd-" + stem, p.write_scene);
+      folder = work.path();
+    }
+    const std::string written = (folder / (stem + ".pairs.json")).string();
+    renames = {{written, template_pairs}, {(folder / (stem + ".xml")).string(), options.object}};
     object = ObjectRun{options.object, p.hand, {}};
     try {
-      object->scene = grasp::write_object_scene(
-          object_placement(p, options.object), hand.scene, p.hand,
-          temp ? temp->path().string() : p.write_scene, hand.fit, hand.moved);
+      object->scene = grasp::write_object_scene(object_placement(p, options.object), hand.scene,
+                                                p.hand, folder.string(), hand.fit, hand.moved);
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("grasp: ") + e.what());
     }
@@ -309,7 +450,10 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   }
   // Errors name the user's file, never the temporary scene (removed when this returns).
   const auto named = [&](const std::string& file) {
-    return object && file == object->scene.scene ? options.object : file;
+    for (const auto& [from, to] : renames) {
+      if (file == from) return to;
+    }
+    return file;
   };
   // --judge: built on the first closing step's model, with the object and support bodies of the
   // drive config the grasp reads (--config, else SCENE.pairs.json: for --decomposed the original
@@ -323,21 +467,39 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
       judge->judge_step(m, d, step);
     };
   }
+  // --write-scene: the written scene is kept whatever the grasp's outcome (a refused start
+  // state too: the user edits the scene), but not when the run is interrupted.
+  const auto keep_written = [&] {
+    if (!targets || object->kept) return;
+    keep_scene(*targets, work.path());
+    object->kept = true;
+    object->scene.scene = targets->scene().string();
+    object->scene.pairs = targets->pairs().string();
+    object->scene.meshes = targets->meshes().string();
+  };
   grasp::GraspResult result;
   try {
     result = decomposed ? grasp::run_decomposed_grasp(options.scene, options.decomposed, grasp,
                                                       &*decomposed)
                         : grasp::run_grasp(scene, grasp);
   } catch (const grasp::GraspInputError& e) {
-    if (object && e.file() == object->scene.scene) {
+    const bool in_scene = object && e.file() == object->scene.scene;
+    keep_written();
+    if (in_scene) {
       throw io::InputError(options.object, 0, "in the template scene: " + e.message());
     }
-    throw io::InputError(e.file(), e.line(), e.message());
+    throw io::InputError(named(e.file()), e.line(), e.message());
   } catch (const mujoco::MujocoError& e) {
+    keep_written();
     throw io::InputError(named(scene), 0, e.what());
   }
-  if (object && !temp) result.scene = object->scene.scene;
-  if (object && temp) result.scene = options.object;
+  if (object) {
+    keep_written();
+    result.scene = targets ? object->scene.scene : options.object;
+    // The warnings name the kept files, or the user's object and the template's pair config.
+    if (targets) renames = {{work.path().string(), targets->dir.string()}};
+    name_user_files(renames, options.placement.hand);
+  }
   std::optional<study::ContactJudgeSummary> judged;
   if (judge) judged = judge->summary();
   if (options.json) {
@@ -374,6 +536,9 @@ Command add_grasp_command(CLI::App& parent) {
        {Placement::kWriteScene,
         "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder and keep "
         "it (default: a temporary folder, removed)"}});
+  app->add_flag("--force", options->force,
+                "--write-scene: replace files in DIR that graspcd did not write (never the "
+                "template or the object the run reads)");
   app->add_flag("--require-held", options->require_held,
                 "Exit with code 1 when the object was not held");
   add_method_options(*app, options->method, MethodDefaults::kSceneConfig);
