@@ -254,12 +254,12 @@ void print_text(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
   out << std::setprecision(4) << "# gripped " << (r.gripped ? "yes" : "no") << "; held "
       << (r.held ? "yes" : "no") << (grasp::push_note(r).empty() ? "" : ", " + grasp::push_note(r))
       << (grasp::tilt_note(r).empty() ? "" : ", " + grasp::tilt_note(r))
-      << (r.reason.empty() ? "" : ": " + r.reason) << "; object z " << r.object_z_initial << " -> "
-      << r.object_z_gripped << " (before the lift) -> " << r.object_z_final << " m (final), rose "
-      << r.object_rise << " m of the hand's " << r.hand_travel << " m, lowest " << r.hold_min_z
-      << " m and drift " << r.hold_drift << " m in the hold; grip point rose " << r.grip_rise
-      << " m; tilt " << r.tilt_final_deg << " deg final, " << r.tilt_deg << " deg largest; fastest "
-      << r.max_speed << " m/s\n";
+      << (r.reason.empty() ? "" : ": " + r.reason) << "; object z (origin) " << r.object_z_initial
+      << " -> " << r.object_z_gripped << " (before the lift) -> " << r.object_z_final
+      << " m (final), rose " << r.object_rise << " m of the hand's " << r.hand_travel
+      << " m, lowest " << r.hold_min_z << " m and drift " << r.hold_drift
+      << " m in the hold; grip point rose " << r.grip_rise << " m; tilt " << r.tilt_final_deg
+      << " deg final, " << r.tilt_deg << " deg largest; fastest " << r.max_speed << " m/s\n";
   out << "# detection ns " << r.detection_ns_close << " closing, " << r.detection_ns_total
       << " total; " << r.physics_steps << " physics steps, " << std::setprecision(2) << r.sim_time
       << " s simulated, " << std::setprecision(4) << r.step_wall_ms << " ms per physics step; "
@@ -574,12 +574,16 @@ Command add_grasp_command(CLI::App& parent) {
       "Text output: a header line 'step contacts detection_ns box_tests triangle_tests object_z "
       "segments', then one line per grasp step: its number, the finger-object contacts after "
       "it, the tree query time in ns summed over its physics steps and all registered pairs "
-      "(0 with --native), the box and triangle tests, the object's height in m, and the "
+      "(0 with --native), the box and triangle tests, object_z (the height in m of the object "
+      "body's origin: with --object the point (0, 0, 0) of FILE as placed, not its lowest point "
+      "nor its centre of mass), and the "
       "segments in contact (comma-separated, '-' for none); --quiet leaves out the header and "
       "these lines. Then three summary lines starting with '#': the first-contact grasp step of "
       "each segment ('-' for never); 'gripped yes|no; "
       "held yes[, tilted N°]|no[: REASON]' (REASON 'ejected at t = T s (S m/s)' for an object "
-      "thrown out, grasp/grasp.h) with the object's heights, its rise and the hand's travel, "
+      "thrown out, grasp/grasp.h) with 'object z (origin)': the heights of the object body's "
+      "origin (as object_z) at the start, before the lift and at the end, its rise and the hand's "
+      "travel, "
       "its grip point's rise, its tilt since the lift (final and largest) and its top speed; the "
       "detection time of the closing steps and of the whole "
       "run, the physics steps, simulated seconds and wall ms per physics step, the "
@@ -597,7 +601,8 @@ Command add_grasp_command(CLI::App& parent) {
       "of the hold), slip_time (s, or null), pushed (m, the object's largest move over the "
       "squeeze and settling) and pushed_during_squeeze (more than 1 cm), dropped_at (s, or "
       "null), "
-      "object_z_initial, object_z_gripped, object_z_final, hold_min_z, hold_drift, grip_rise "
+      "object_z_initial, object_z_gripped, object_z_final (the object body's origin, as object_z), "
+      "hold_min_z, hold_drift, grip_rise "
       "(m, the rise of the object's grip point), tilt_deg and tilt_final_deg (the object's "
       "rotation since the start of the lift: the largest and the final, degrees), max_speed "
       "(the object's top speed, m/s), ejected ({t, speed, cause}: when, how fast and why the "
@@ -650,9 +655,21 @@ Command add_grasp_command(CLI::App& parent) {
       "gravity is placed 0.5 mm above the template's support point, centred on it. Pairs and "
       "drive: the template's .pairs.json. The output names FILE as the scene; its first line is "
       "'# object FILE at scale S (fitted|given), W x D x H m, in the HAND template' (JSON: "
-      "'object': file, hand, scale, fitted, size, pos, quat, scene). --write-scene DIR keeps the "
-      "scene (DIR/STEM.xml, its paths relative to DIR, and its .pairs.json) for graspcd "
-      "validate or study; a bad FILE is one line 'FILE: message', exit code 2.\n"
+      "'object': file, hand, scale, fitted, size, pos, quat, scene: the kept scene, null without "
+      "--write-scene). --write-scene DIR keeps the scene for graspcd validate or study: "
+      "DIR/STEM.xml, DIR/STEM.pairs.json and DIR/STEM.meshes/ (FILE's copy, and links to the "
+      "hand's meshes); FILE is named relative to DIR and the hand by absolute paths, so DIR can "
+      "be moved or copied (cp -r) and loads while the hand stays installed. The scene is written "
+      "and simulated in a private folder DIR/.graspcd-STEM-XXXXXX (two runs writing one stem "
+      "into DIR each simulate their own object) and renamed into place at the end (kept when the "
+      "start state is refused, so that it can be edited). Never replaced: the template and pair "
+      "config the run reads, FILE itself; replaced only with --force: a STEM.xml without the "
+      "marker line 'graspcd-generated: object scene' of graspcd's header, and a STEM.pairs.json "
+      "or STEM.meshes not beside such a STEM.xml. A DIR under a file or read-only, a missing "
+      "TMPDIR (without --write-scene), a bad FILE: one line 'FILE: message', exit code 2, before "
+      "the grasp. INT, TERM and HUP remove the temporary and private folders and exit with code "
+      "128 + the signal. Warnings name the user's files (the template's pair config for a "
+      "temporary scene) and call a hand's mesh the hand's.\n"
       "--decomposed DIR: the route MuJoCo's documentation recommends for a non-convex object. "
       "DIR is a folder written by 'graspcd decompose MESH --out DIR'; every geom of SCENE whose "
       "mesh asset reads a file named as MESH keeps its mass but no longer collides, and one "
