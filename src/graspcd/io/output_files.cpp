@@ -198,6 +198,8 @@ bool prepare_output_folder(const std::string& dir) {
 CleanupGuard make_private_folder(const fs::path& parent, const std::string& prefix,
                                  const std::string& named) {
   std::string pattern = (parent / (prefix + "-XXXXXX")).string();
+  // A signal between the folder's creation and its registration would leave it behind.
+  const SignalsBlocked blocked;
   if (mkdtemp(pattern.data()) == nullptr) {
     throw InputError(named, 0,
                      "cannot write into " + (parent.empty() ? std::string(".") : parent.string()) +
@@ -234,6 +236,7 @@ AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
                          (fs::exists(parent, ec) ? " is not a folder" : " does not exist"));
   }
   std::string hidden = (parent / ("." + path.filename().string() + ".graspcd-XXXXXX")).string();
+  const SignalsBlocked blocked;
   const int fd = mkstemp(hidden.data());
   if (fd < 0) throw InputError(target_, 0, "cannot write: " + error_text(errno));
   const mode_t mask = umask(0);
