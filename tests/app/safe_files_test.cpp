@@ -338,9 +338,9 @@ TEST_F(SafeFilesTest, AnOutputThatCannotBeWrittenIsOneLineNamingIt) {
                  "validate --out /dev/full");
   expect_refused(graspcd("validate " + scene + " --max-steps 1 --out " + file), file,
                  "validate --out FILE");
-  const std::string nowhere = (dir_ / "missing/t.json").string();
+  const std::string nowhere = file + "/t.json";
   expect_refused(graspcd("trajectory " + scene + " --out " + nowhere), nowhere,
-                 "trajectory --out in a missing folder");
+                 "trajectory --out under a file");
   expect_refused(graspcd("trajectory " + scene + " --out " + dir_.string()), dir_.string(),
                  "trajectory --out onto a folder");
   if (fs::is_directory(read_only)) {

@@ -231,9 +231,12 @@ AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
   }
   const fs::path parent = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   if (!fs::is_directory(parent, ec)) {
-    throw InputError(target_, 0,
-                     "cannot write: " + parent.string() +
-                         (fs::exists(parent, ec) ? " is not a folder" : " does not exist"));
+    // A missing folder is created (with its parents), unless a file is in the way.
+    try {
+      prepare_output_folder(parent.string());
+    } catch (const InputError& e) {
+      throw InputError(target_, 0, "cannot write: " + e.message() + " (" + parent.string() + ")");
+    }
   }
   std::string hidden = (parent / ("." + path.filename().string() + ".graspcd-XXXXXX")).string();
   const SignalsBlocked blocked;

@@ -73,8 +73,9 @@ std::filesystem::path temporary_folder();
 
 // An output file written whole or not at all: the bytes go to a hidden file beside `target`
 // (.NAME.graspcd-XXXXXX, created at construction: an unwritable folder is found before the
-// work), renamed over `target` by commit(). A `target` that exists and is not a regular file
-// (/dev/stdout, /dev/full) is written directly. Throws InputError naming `target`.
+// work), renamed over `target` by commit(); its folder is created when missing. A `target` that
+// exists and is not a regular file (/dev/stdout, /dev/full) is written directly. Throws
+// InputError naming `target`.
 class AtomicFile {
  public:
   explicit AtomicFile(std::string target);
