@@ -220,7 +220,7 @@ TEST_F(SafeFilesTest, AMovedSceneFolderLoads) {
   // The object is named relative to the scene's folder; no file the scene reads is named under
   // the folder it was written in.
   const std::string xml = read_file(dir_ / "far/away/scene/box.xml");
-  EXPECT_NE(xml.find("file=\"box.obj\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("file=\"object/box.obj\""), std::string::npos) << xml;
   const std::regex file_attribute(R"re(file="([^"]*)")re");
   for (auto it = std::sregex_iterator(xml.begin(), xml.end(), file_attribute);
        it != std::sregex_iterator(); ++it) {

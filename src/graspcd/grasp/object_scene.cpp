@@ -489,15 +489,18 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
   // inertia and graspcd's containment read the faces' direction, so the scene loads the mesh
   // turned right way out (STEM.outward.obj) instead.
   const std::string flipped = io::turn_right_way_out(placement.file, stats, &mesh, out.scale);
-  const fs::path object_file =
-      meshes /
-      (flipped.empty() ? fs::path(placement.file).filename().string() : stem + ".outward.obj");
+  // In its own folder STEM.meshes/object/, apart from the hand's linked files (the template's
+  // mesh folder may hold a file of the object's name, e.g. the cup's).
+  const fs::path object_folder = meshes / "object";
   std::error_code exists_ec;
-  if (fs::exists(fs::symlink_status(object_file, exists_ec))) {
+  if (fs::exists(fs::symlink_status(object_folder, exists_ec))) {
     throw template_error(template_path, t.asset,
-                         "the hand's mesh folder has a file named " +
-                             object_file.filename().string() + ", the object's name");
+                         "the hand's mesh folder has a file named 'object', the object's folder");
   }
+  fs::create_directories(object_folder);
+  const fs::path object_file =
+      object_folder /
+      (flipped.empty() ? fs::path(placement.file).filename().string() : stem + ".outward.obj");
   if (!flipped.empty()) {
     warnings().add("mesh_inside_out", flipped, "mesh");
     io::write_obj(object_file.string(), mesh);

@@ -5,12 +5,12 @@
 //  - that mesh asset's file replaced by the user's mesh and its scale set (the asset is renamed
 //    "object_mesh", the geom "object"); a closed mesh whose faces all point inward (negative
 //    signed volume, io::turn_right_way_out) is written turned right way out as
-//    STEM.meshes/STEM.outward.obj, which the asset names instead, with the warning
+//    STEM.meshes/object/STEM.outward.obj, which the asset names instead, with the warning
 //    "mesh_inside_out";
 //  - the object body turned (the file's `up` axis along -gravity, then `yaw` about it, or the
 //    quaternion `pose`) and placed with its lowest point along gravity kSupportGap above the
 //    support point, centred on it across gravity;
-//  - the object's mesh copied into the folder STEM.meshes beside the scene (its file name kept) and
+//  - the object's mesh copied into STEM.meshes/object/ beside the scene (its file name kept) and
 //  named
 //    relative to the scene, so that the scene's folder can be moved or copied;
 //  - every other file path (<include file>, <compiler texturedir>, and asset files when no
