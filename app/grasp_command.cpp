@@ -151,33 +151,6 @@ void keep_scene(const SceneTargets& t, const fs::path& work) {
   if (lock >= 0) ::close(lock);
 }
 
-// The run's warnings with the temporary files named as the user knows them (`renames`: from ->
-// to, in order), and a hand's mesh said to be the hand's (the object's mesh is 'object_mesh').
-void name_user_files(const std::vector<std::pair<std::string, std::string>>& renames,
-                     const std::string& hand) {
-  const std::string hands = hand == "project" || hand == "robotiq" || hand == "shadow"
-                                ? "the " + hand + " hand's "
-                                : "the hand's ";
-  warnings().edit([&](Warning& w) {
-    for (const auto& [from, to] : renames) w.message = io::replace_all(w.message, from, to);
-    for (const char* lead : {"mesh ", "(mesh "}) {
-      const std::string key = std::string(lead);
-      for (std::size_t at = w.message.find(key); at != std::string::npos;
-           at = w.message.find(key, at + key.size())) {
-        const std::size_t quote = w.message.find('\'', at);
-        if (quote == std::string::npos || quote > at + key.size() + 12) continue;
-        if (w.message.compare(quote, 13, "'object_mesh'") == 0) continue;
-        if (at >= hands.size() && w.message.compare(at + (key[0] == '(' ? 1 : 0) - hands.size(),
-                                                    hands.size(), hands) == 0) {
-          continue;
-        }
-        w.message.insert(at + (key[0] == '(' ? 1 : 0), hands);
-        at += hands.size();
-      }
-    }
-  });
-}
-
 std::string segments_text(const grasp::GraspResult& g, const grasp::GraspStepRecord& r) {
   std::string out;
   for (std::size_t s = 0; s < r.touching.size(); ++s) {

@@ -5,6 +5,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "graspcd/grasp/object_scene.h"
@@ -23,5 +24,11 @@ struct HandTemplate {
 // UsageError naming `command` for anything else, and one saying where the models were looked for
 // when robotiq's or shadow's hand is not found.
 HandTemplate hand_template(const std::string& hand, const std::string& command);
+
+// The run's warnings with the temporary files named as the user knows them (`renames`: from ->
+// to, in order), and a mesh of the hand (any mesh but the object's 'object_mesh') called the
+// hand's: "the shadow hand's mesh 12 'th_distal_pst' is not closed" (`hand`: --hand).
+void name_user_files(const std::vector<std::pair<std::string, std::string>>& renames,
+                     const std::string& hand);
 
 }  // namespace graspcd::cli

@@ -14,6 +14,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -384,6 +385,14 @@ int run_object_set(ValidateCliOptions& o, const CLI::App& app) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("validate: ") + e.what());
   }
+  // The objects' temporary scenes are gone: their pair configs are the template's.
+  const std::string template_pairs =
+      std::filesystem::path(hand.scene).replace_extension(".pairs.json").string();
+  const std::regex temporary_pairs(R"re(\S*/graspcd-object-[A-Za-z0-9]{6}/[^/ ]*\.pairs\.json)re");
+  warnings().edit([&](Warning& w) {
+    w.message = std::regex_replace(w.message, temporary_pairs, template_pairs);
+  });
+  name_user_files({}, o.placement.hand);
   if (!o.out_dir.empty()) {
     const study::Shard shard = options.shard.value_or(study::Shard{});
     const std::string name = shard.count > 1 ? "objects.shard-" + std::to_string(shard.index) +
