@@ -5,6 +5,10 @@
 // template scene (example 1's arm and hand, the cup swapped for FILE). graspcd grasp SCENE
 // --decomposed DIR: the object collides as its convex pieces (natively).
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <filesystem>
@@ -28,6 +32,7 @@
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/grasp/object_scene.h"
 #include "graspcd/io/mesh_io.h"
+#include "graspcd/io/output_files.h"
 #include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/registry.h"
@@ -56,6 +61,7 @@ struct GraspCliOptions {
   PlacementOptions placement;  // its placement (object_placement.h)
   std::string decomposed;      // --decomposed DIR: the object's collision by its convex pieces
   bool judge = false;          // --judge: every closing step's contacts against CGAL (the race)
+  bool force = false;          // --force: --write-scene may replace files graspcd did not write
 };
 
 namespace fs = std::filesystem;
@@ -64,7 +70,87 @@ struct ObjectRun {
   std::string file;  // the user's mesh, as given
   std::string hand;
   grasp::ObjectScene scene;
+  bool kept = false;  // --write-scene: scene names the kept file (else a removed temporary one)
 };
+
+// --write-scene DIR: the files the run leaves, DIR/STEM.xml, DIR/STEM.pairs.json and the folder
+// DIR/STEM.meshes. The scene is written and simulated in a private folder DIR/.graspcd-STEM-XXXXXX
+// (another run writing the same stem into DIR simulates its own), and its files are renamed into
+// place at the end, DIR locked (flock) meanwhile; the private folder is removed on errors and on
+// INT, TERM and HUP (io/output_files.h).
+struct SceneTargets {
+  fs::path dir;
+  std::string stem;
+  fs::path scene() const { return dir / (stem + ".xml"); }
+  fs::path pairs() const { return dir / (stem + ".pairs.json"); }
+  fs::path meshes() const { return dir / (stem + ".meshes"); }
+};
+
+// Whether `scene` is a scene graspcd generated: its header carries grasp::kGeneratedMarker.
+bool generated_by_graspcd(const fs::path& scene) {
+  std::ifstream in(scene, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head.find(grasp::kGeneratedMarker) != std::string::npos;
+}
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  return fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec);
+}
+
+// Before the work: the run never replaces a file it reads (the template, its pair config, the
+// object's mesh), and, without --force, none that graspcd did not write (a STEM.xml without the
+// marker, and the STEM.pairs.json and STEM.meshes beside it). One line 'FILE: message', exit 2.
+void check_scene_targets(const SceneTargets& t, const std::string& template_scene,
+                         const std::string& object_file, bool force) {
+  const fs::path template_pairs = fs::path(template_scene).replace_extension(".pairs.json");
+  std::error_code ec;
+  const bool ours = generated_by_graspcd(t.scene());
+  for (const fs::path& target : {t.scene(), t.pairs(), t.meshes()}) {
+    if (same_file(target, template_scene) || same_file(target, template_pairs)) {
+      throw io::InputError(target.string(), 0,
+                           "is the template this run reads: not overwritten (write the scene "
+                           "into another folder)");
+    }
+    const fs::path object = fs::absolute(object_file).lexically_normal();
+    const fs::path folder = fs::absolute(target).lexically_normal();
+    if (same_file(target, object_file) || object.string().rfind(folder.string() + "/", 0) == 0) {
+      throw io::InputError(target.string(), 0,
+                           "holds the object this run reads: not overwritten (write the scene "
+                           "into another folder)");
+    }
+    if (!force && fs::exists(fs::symlink_status(target, ec)) && !ours) {
+      throw io::InputError(
+          target.string(), 0,
+          "exists and graspcd did not write it (no '" + std::string(grasp::kGeneratedMarker) +
+              "' in " + t.scene().filename().string() + "): not overwritten; --force replaces it");
+    }
+  }
+}
+
+// The written files renamed from the private folder `work` into place, replacing graspcd's
+// earlier ones (moved into `work`, removed with it); DIR is locked meanwhile so that two runs
+// ending together leave one run's files, not a mix. Throws InputError naming the file.
+void keep_scene(const SceneTargets& t, const fs::path& work) {
+  const int lock = ::open(t.dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (lock >= 0) ::flock(lock, LOCK_EX);
+  const auto move = [&](const std::string& name, const std::string& old) {
+    const fs::path target = t.dir / name;
+    std::error_code ec;
+    if (fs::exists(fs::symlink_status(target, ec))) fs::rename(target, work / old, ec);
+    fs::rename(work / name, target, ec);
+    if (ec) {
+      if (lock >= 0) ::close(lock);
+      throw io::InputError(target.string(), 0, "cannot write: " + ec.message());
+    }
+  };
+  move(t.meshes().filename().string(), "replaced.meshes");
+  move(t.pairs().filename().string(), "replaced.pairs.json");
+  move(t.scene().filename().string(), "replaced.xml");
+  if (lock >= 0) ::close(lock);
+}
 
 std::string segments_text(const grasp::GraspResult& g, const grasp::GraspStepRecord& r) {
   std::string out;
@@ -142,12 +228,12 @@ void print_text(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
   out << std::setprecision(4) << "# gripped " << (r.gripped ? "yes" : "no") << "; held "
       << (r.held ? "yes" : "no") << (grasp::push_note(r).empty() ? "" : ", " + grasp::push_note(r))
       << (grasp::tilt_note(r).empty() ? "" : ", " + grasp::tilt_note(r))
-      << (r.reason.empty() ? "" : ": " + r.reason) << "; object z " << r.object_z_initial << " -> "
-      << r.object_z_gripped << " (before the lift) -> " << r.object_z_final << " m (final), rose "
-      << r.object_rise << " m of the hand's " << r.hand_travel << " m, lowest " << r.hold_min_z
-      << " m and drift " << r.hold_drift << " m in the hold; grip point rose " << r.grip_rise
-      << " m; tilt " << r.tilt_final_deg << " deg final, " << r.tilt_deg << " deg largest; fastest "
-      << r.max_speed << " m/s\n";
+      << (r.reason.empty() ? "" : ": " + r.reason) << "; object z (origin) " << r.object_z_initial
+      << " -> " << r.object_z_gripped << " (before the lift) -> " << r.object_z_final
+      << " m (final), rose " << r.object_rise << " m of the hand's " << r.hand_travel
+      << " m, lowest " << r.hold_min_z << " m and drift " << r.hold_drift
+      << " m in the hold; grip point rose " << r.grip_rise << " m; tilt " << r.tilt_final_deg
+      << " deg final, " << r.tilt_deg << " deg largest; fastest " << r.max_speed << " m/s\n";
   out << "# detection ns " << r.detection_ns_close << " closing, " << r.detection_ns_total
       << " total; " << r.physics_steps << " physics steps, " << std::setprecision(2) << r.sim_time
       << " s simulated, " << std::setprecision(4) << r.step_wall_ms << " ms per physics step; "
@@ -243,10 +329,14 @@ void print_json(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
       {"reused_calls", r.reused_calls}};
   if (object) {
     const grasp::ObjectScene& o = object->scene;
-    doc["object"] = {{"file", object->file}, {"hand", object->hand},
-                     {"scale", o.scale},     {"fitted", o.fitted},
-                     {"size", o.size},       {"pos", o.pos},
-                     {"quat", o.quat},       {"scene", object->scene.scene}};
+    doc["object"] = {{"file", object->file},
+                     {"hand", object->hand},
+                     {"scale", o.scale},
+                     {"fitted", o.fitted},
+                     {"size", o.size},
+                     {"pos", o.pos},
+                     {"quat", o.quat},
+                     {"scene", object->kept ? nlohmann::json(o.scene) : nlohmann::json()}};
   }
   if (decomposed) {
     doc["decomposed"] = {{"dir", dir},
@@ -267,6 +357,9 @@ void check_usage(const GraspCliOptions& options, const CLI::App& app) {
   check_placement_options(app, "grasp", "--object", !options.object.empty());
   if (app.count("--contact-reuse") > 0 && (options.native || !options.decomposed.empty())) {
     throw UsageError("grasp: --contact-reuse goes with graspcd's contacts, not --native");
+  }
+  if (options.force && options.placement.write_scene.empty()) {
+    throw UsageError("grasp: --force goes with --write-scene");
   }
   if (!options.decomposed.empty() && !options.object.empty()) {
     throw UsageError(
@@ -304,15 +397,36 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   // (grasp::run_decomposed_grasp).
   std::optional<grasp::DecomposedScene> decomposed;
   if (!options.decomposed.empty()) decomposed.emplace();
+  std::optional<SceneTargets> targets;
+  std::optional<io::RemoveIfEmpty> created;  // --write-scene: DIR, when this run created it
+  io::CleanupGuard work;  // --write-scene: the private folder the scene is written in
+  // Temporary names -> the user's, for the messages and warnings.
+  std::vector<std::pair<std::string, std::string>> renames;
   if (!options.object.empty()) {
     const PlacementOptions& p = options.placement;
     const HandTemplate hand = hand_template(p.hand, "grasp");
-    if (p.write_scene.empty()) temp.emplace();
+    const std::string template_pairs =
+        fs::path(hand.scene).replace_extension(".pairs.json").string();
+    const std::string stem = fs::path(options.object).stem().string();
+    fs::path folder;
+    if (p.write_scene.empty()) {
+      temp.emplace();
+      folder = temp->path();
+    } else {
+      // Checked before the work: a folder that cannot be written, a file the run reads or one
+      // graspcd did not write.
+      if (io::prepare_output_folder(p.write_scene)) created.emplace(p.write_scene);
+      targets = SceneTargets{p.write_scene, stem};
+      check_scene_targets(*targets, hand.scene, options.object, options.force);
+      work = io::make_private_folder(p.write_scene, ".graspcd-" + stem, p.write_scene);
+      folder = work.path();
+    }
+    const std::string written = (folder / (stem + ".pairs.json")).string();
+    renames = {{written, template_pairs}, {(folder / (stem + ".xml")).string(), options.object}};
     object = ObjectRun{options.object, p.hand, {}};
     try {
-      object->scene = grasp::write_object_scene(
-          object_placement(p, options.object), hand.scene, p.hand,
-          temp ? temp->path().string() : p.write_scene, hand.fit, hand.moved);
+      object->scene = grasp::write_object_scene(object_placement(p, options.object), hand.scene,
+                                                p.hand, folder.string(), hand.fit, hand.moved);
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("grasp: ") + e.what());
     }
@@ -320,7 +434,10 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   }
   // Errors name the user's file, never the temporary scene (removed when this returns).
   const auto named = [&](const std::string& file) {
-    return object && file == object->scene.scene ? options.object : file;
+    for (const auto& [from, to] : renames) {
+      if (file == from) return to;
+    }
+    return file;
   };
   // --judge: built on the first closing step's model, with the object and support bodies of the
   // drive config the grasp reads (--config, else SCENE.pairs.json: for --decomposed the original
@@ -334,6 +451,16 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
       judge->judge_step(m, d, step);
     };
   }
+  // --write-scene: the written scene is kept whatever the grasp's outcome (a refused start
+  // state too: the user edits the scene), but not when the run is interrupted.
+  const auto keep_written = [&] {
+    if (!targets || object->kept) return;
+    keep_scene(*targets, work.path());
+    object->kept = true;
+    object->scene.scene = targets->scene().string();
+    object->scene.pairs = targets->pairs().string();
+    object->scene.meshes = targets->meshes().string();
+  };
   grasp::GraspResult result;
   try {
     result = decomposed ? grasp::run_decomposed_grasp(options.scene, options.decomposed, grasp,
@@ -343,17 +470,25 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
     // A refused object that is far too large says what its units likely are, on the same line.
     const std::string hint =
         object && !object->scene.units_hint.empty() ? "; " + object->scene.units_hint : "";
-    if (object && e.file() == object->scene.scene) {
+    const bool in_scene = object && e.file() == object->scene.scene;
+    keep_written();
+    if (in_scene) {
       throw io::InputError(options.object, 0, "in the template scene: " + e.message() + hint);
     }
-    throw io::InputError(e.file(), e.line(), e.message() + hint);
+    throw io::InputError(named(e.file()), e.line(), e.message() + hint);
   } catch (const mujoco::MujocoError& e) {
     const std::string hint =
         object && !object->scene.units_hint.empty() ? "; " + object->scene.units_hint : "";
+    keep_written();
     throw io::InputError(named(scene), 0, e.what() + hint);
   }
-  if (object && !temp) result.scene = object->scene.scene;
-  if (object && temp) result.scene = options.object;
+  if (object) {
+    keep_written();
+    result.scene = targets ? object->scene.scene : options.object;
+    // The warnings name the kept files, or the user's object and the template's pair config.
+    if (targets) renames = {{work.path().string(), targets->dir.string()}};
+    name_user_files(renames, options.placement.hand);
+  }
   std::optional<study::ContactJudgeSummary> judged;
   if (judge) judged = judge->summary();
   if (options.json) {
@@ -391,6 +526,9 @@ Command add_grasp_command(CLI::App& parent) {
        {Placement::kWriteScene,
         "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder and keep "
         "it (default: a temporary folder, removed)"}});
+  app->add_flag("--force", options->force,
+                "--write-scene: replace files in DIR that graspcd did not write (never the "
+                "template or the object the run reads)");
   app->add_flag("--require-held", options->require_held,
                 "Exit with code 1 when the object was not held");
   add_method_options(*app, options->method, MethodDefaults::kSceneConfig);
@@ -432,12 +570,16 @@ Command add_grasp_command(CLI::App& parent) {
       "Text output: a header line 'step contacts detection_ns box_tests triangle_tests object_z "
       "segments', then one line per grasp step: its number, the finger-object contacts after "
       "it, the tree query time in ns summed over its physics steps and all registered pairs "
-      "(0 with --native), the box and triangle tests, the object's height in m, and the "
+      "(0 with --native), the box and triangle tests, object_z (the height in m of the object "
+      "body's origin: with --object the point (0, 0, 0) of FILE as placed, not its lowest point "
+      "nor its centre of mass), and the "
       "segments in contact (comma-separated, '-' for none); --quiet leaves out the header and "
       "these lines. Then three summary lines starting with '#': the first-contact grasp step of "
       "each segment ('-' for never); 'gripped yes|no; "
       "held yes[, tilted N°]|no[: REASON]' (REASON 'ejected at t = T s (S m/s)' for an object "
-      "thrown out, grasp/grasp.h) with the object's heights, its rise and the hand's travel, "
+      "thrown out, grasp/grasp.h) with 'object z (origin)': the heights of the object body's "
+      "origin (as object_z) at the start, before the lift and at the end, its rise and the hand's "
+      "travel, "
       "its grip point's rise, its tilt since the lift (final and largest) and its top speed; the "
       "detection time of the closing steps and of the whole "
       "run, the physics steps, simulated seconds and wall ms per physics step, the "
@@ -455,7 +597,8 @@ Command add_grasp_command(CLI::App& parent) {
       "of the hold), slip_time (s, or null), pushed (m, the object's largest move over the "
       "squeeze and settling) and pushed_during_squeeze (more than 1 cm), dropped_at (s, or "
       "null), "
-      "object_z_initial, object_z_gripped, object_z_final, hold_min_z, hold_drift, grip_rise "
+      "object_z_initial, object_z_gripped, object_z_final (the object body's origin, as object_z), "
+      "hold_min_z, hold_drift, grip_rise "
       "(m, the rise of the object's grip point), tilt_deg and tilt_final_deg (the object's "
       "rotation since the start of the lift: the largest and the final, degrees), max_speed "
       "(the object's top speed, m/s), ejected ({t, speed, cause}: when, how fast and why the "
@@ -511,12 +654,24 @@ Command add_grasp_command(CLI::App& parent) {
       "gravity is placed 0.5 mm above the template's support point, centred on it. Pairs and "
       "drive: the template's .pairs.json. The output names FILE as the scene; its first line is "
       "'# object FILE at scale S (fitted|given), W x D x H m, in the HAND template' (JSON: "
-      "'object': file, hand, scale, fitted, size, pos, quat, scene). --write-scene DIR keeps the "
-      "scene (DIR/STEM.xml, its paths relative to DIR, and its .pairs.json) for graspcd "
-      "validate or study; a bad FILE is one line 'FILE: message', exit code 2; an object more "
-      "than 1 m across is the warning 'mesh_units', and a refusal of its scene says on its line "
-      "what its units likely are ('...; the object is 60 m across at --scale 1: is the file in "
-      "millimetres? try --scale 0.001').\n"
+      "'object': file, hand, scale, fitted, size, pos, quat, scene: the kept scene, null without "
+      "--write-scene). --write-scene DIR keeps the scene for graspcd validate or study: "
+      "DIR/STEM.xml, DIR/STEM.pairs.json and DIR/STEM.meshes/ (FILE's copy, and links to the "
+      "hand's meshes); FILE is named relative to DIR and the hand by absolute paths, so DIR can "
+      "be moved or copied (cp -r) and loads while the hand stays installed. The scene is written "
+      "and simulated in a private folder DIR/.graspcd-STEM-XXXXXX (two runs writing one stem "
+      "into DIR each simulate their own object) and renamed into place at the end (kept when the "
+      "start state is refused, so that it can be edited). Never replaced: the template and pair "
+      "config the run reads, FILE itself; replaced only with --force: a STEM.xml without the "
+      "marker line 'graspcd-generated: object scene' of graspcd's header, and a STEM.pairs.json "
+      "or STEM.meshes not beside such a STEM.xml. A DIR under a file or read-only, a missing "
+      "TMPDIR (without --write-scene), a bad FILE: one line 'FILE: message', exit code 2, before "
+      "the grasp. INT, TERM and HUP remove the temporary and private folders and exit with code "
+      "128 + the signal. Warnings name the user's files (the template's pair config for a "
+      "temporary scene) and call a hand's mesh the hand's. An object more than 1 m across is the "
+      "warning 'mesh_units', and a refusal of its scene says on its line what its units likely "
+      "are ('...; the object is 60 m across at --scale 1: is the file in millimetres? try --scale "
+      "0.001').\n"
       "--decomposed DIR: the route MuJoCo's documentation recommends for a non-convex object. "
       "DIR is a folder written by 'graspcd decompose MESH --out DIR'; every geom of SCENE whose "
       "mesh asset reads a file named as MESH keeps its mass but no longer collides, and one "

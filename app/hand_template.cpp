@@ -4,6 +4,8 @@
 #include <system_error>
 
 #include "command.h"
+#include "graspcd/core/warnings.h"
+#include "graspcd/io/output_files.h"
 #include "graspcd/version/data_dirs.h"
 
 namespace graspcd::cli {
@@ -54,6 +56,31 @@ double fit_fraction(const std::string& hand) {
   if (hand == "robotiq") return kRobotiqFitFraction;
   if (hand == "shadow") return kShadowFitFraction;
   return 1;
+}
+
+void name_user_files(const std::vector<std::pair<std::string, std::string>>& renames,
+                     const std::string& hand) {
+  const std::string hands = hand == "project" || hand == "robotiq" || hand == "shadow"
+                                ? "the " + hand + " hand's "
+                                : "the hand's ";
+  warnings().edit([&](Warning& w) {
+    for (const auto& [from, to] : renames) w.message = io::replace_all(w.message, from, to);
+    for (const char* lead : {"mesh ", "(mesh "}) {
+      const std::string key = std::string(lead);
+      for (std::size_t at = w.message.find(key); at != std::string::npos;
+           at = w.message.find(key, at + key.size())) {
+        const std::size_t quote = w.message.find('\'', at);
+        if (quote == std::string::npos || quote > at + key.size() + 12) continue;
+        if (w.message.compare(quote, 13, "'object_mesh'") == 0) continue;
+        if (at >= hands.size() && w.message.compare(at + (key[0] == '(' ? 1 : 0) - hands.size(),
+                                                    hands.size(), hands) == 0) {
+          continue;
+        }
+        w.message.insert(at + (key[0] == '(' ? 1 : 0), hands);
+        at += hands.size();
+      }
+    }
+  });
 }
 
 }  // namespace graspcd::cli

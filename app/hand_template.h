@@ -5,6 +5,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "graspcd/grasp/object_scene.h"
@@ -30,5 +31,11 @@ HandTemplate hand_template(const std::string& hand, const std::string& command);
 inline constexpr double kRobotiqFitFraction = 0.9;
 inline constexpr double kShadowFitFraction = 0.9;
 double fit_fraction(const std::string& hand);
+
+// The run's warnings with the temporary files named as the user knows them (`renames`: from ->
+// to, in order), and a mesh of the hand (any mesh but the object's 'object_mesh') called the
+// hand's: "the shadow hand's mesh 12 'th_distal_pst' is not closed" (`hand`: --hand).
+void name_user_files(const std::vector<std::pair<std::string, std::string>>& renames,
+                     const std::string& hand);
 
 }  // namespace graspcd::cli

@@ -15,6 +15,7 @@
 
 #include "command.h"
 #include "graspcd/core/warnings.h"
+#include "graspcd/io/output_files.h"
 #include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/version.h"
@@ -128,6 +129,8 @@ int main(int argc, char** argv) {
   graspcd::mujoco::route_mujoco_warnings();
   // MuJoCo's errors become exceptions: one line naming the scene, exit 2, destructors run.
   graspcd::mujoco::route_mujoco_errors();
+  // INT, TERM and HUP remove the run's temporary files and partial outputs, exit 128 + signal.
+  graspcd::io::install_cleanup_handlers();
   CLI::App app{"graspcd: exact OBB-tree collision detection for robotic grasping.", "graspcd"};
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text(),

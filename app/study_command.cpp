@@ -10,6 +10,7 @@
 #include "graspcd/io/text_input.h"
 #include "graspcd/peer/fcl_querier.h"
 #include "graspcd/study/study.h"
+#include "progress.h"
 
 namespace graspcd::cli {
 
@@ -26,9 +27,11 @@ struct StudyCliOptions {
 
 void run_study_command(StudyCliOptions& o, const CLI::App& app) {
   o.repeats_given = app.count("--repeats");
-  const auto log = [](const std::string& line) { std::cerr << "[study] " << line << std::endl; };
+  Progress progress("study");
+  const auto log = [&progress](const std::string& line) { progress.update(line); };
   if (!o.merge.empty()) {
     study::merge_shards(o.merge, o.study.out_dir, log);
+    progress.done("merged " + std::to_string(o.merge.size()) + " shards into " + o.study.out_dir);
     return;
   }
   if (!o.shard.empty()) {
@@ -50,6 +53,7 @@ void run_study_command(StudyCliOptions& o, const CLI::App& app) {
   } catch (const grasp::GraspInputError& e) {
     throw io::InputError(e.file(), e.line(), e.message());
   }
+  progress.done("wrote " + o.study.out_dir);
 }
 
 }  // namespace

@@ -1,15 +1,21 @@
 // graspcd trajectory SCENE.xml --out FILE [--methods M,...] [--repeats N] [--max-steps N]: one
 // grasp as a trajectory file for the viewer and the figures (src/graspcd/study/trajectory.h).
+#include <chrono>
+#include <iomanip>
 #include <iostream>
 #include <memory>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "command.h"
 #include "graspcd/grasp/grasp.h"
+#include "graspcd/io/output_files.h"
 #include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/study/trajectory.h"
+#include "progress.h"
 
 namespace graspcd::cli {
 
@@ -29,14 +35,28 @@ void run_trajectory_command(TrajectoryCliOptions& o) {
     if (!m) throw UsageError("--methods: unknown method '" + name + "'");
     o.options.methods.push_back(*m);
   }
+  // --out: a file that cannot be written is found before the simulation; the trajectory goes to
+  // a hidden file beside it, renamed over it at the end (io/output_files.h).
+  io::AtomicFile out(o.out);
+  const auto started = std::chrono::steady_clock::now();
+  Progress progress("trajectory");
+  progress.update(o.scene + ": recording the grasp, then replaying it with " +
+                  std::to_string(o.options.methods.size()) + " method(s) ...");
   try {
-    study::export_grasp(o.scene, o.out, o.options);
+    study::export_grasp(o.scene, out.write_path(), o.options);
   } catch (const grasp::GraspInputError& e) {
     throw io::InputError(e.file(), e.line(), e.message());
   } catch (const mujoco::MujocoError& e) {
     throw io::InputError(o.scene, 0, e.what());
+  } catch (const std::runtime_error& e) {
+    if (std::string(e.what()).rfind(out.write_path() + ":", 0) != 0) throw;
+    throw io::InputError(o.out, 0, "cannot write");
   }
-  std::cerr << "[trajectory] wrote " << o.out << std::endl;
+  out.commit();
+  std::ostringstream done;
+  done << "wrote " << o.out << " in " << std::setprecision(3)
+       << std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() << " s";
+  progress.done(done.str());
 }
 
 }  // namespace
@@ -64,6 +84,11 @@ Command add_trajectory_command(CLI::App& parent) {
       "of each step per method, and the OBB trees' boxes at depths 0-3. graspcd study writes one "
       "per example into OUT/trajectories/; report/viewer-src/build.mjs bundles such files into "
       "one HTML page, report/draw_figures.py draws the report's pictures from them.\n"
+      "The file is written whole or not at all: a hidden file beside it (.NAME.graspcd-XXXXXX), "
+      "created before the simulation (an --out that cannot be written is one line 'FILE: "
+      "message', exit code 2, at once), renamed to FILE at the end, removed on an error or on "
+      "INT, TERM and HUP. Progress: on a terminal, one line on stderr rewritten as the work "
+      "goes; otherwise one final line '[trajectory] wrote FILE in S s'.\n"
       "Examples:\n"
       "  graspcd trajectory mjcf/example1.xml --out /tmp/example1.json\n"
       "  graspcd trajectory mjcf/example3.xml --methods sat,neurosat --repeats 3 --out e3.json"));

@@ -13,6 +13,8 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -21,6 +23,7 @@
 #include "graspcd/core/warnings.h"
 #include "graspcd/exact/exact.h"
 #include "graspcd/grasp/grasp.h"
+#include "graspcd/io/output_files.h"
 #include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/input_error.h"
 #include "graspcd/mujoco/model_loading.h"
@@ -33,6 +36,7 @@
 #include "hand_template.h"
 #include "method.h"
 #include "object_placement.h"
+#include "progress.h"
 
 namespace graspcd::cli {
 
@@ -332,6 +336,7 @@ void write_json_file(const std::filesystem::path& path, nlohmann::json doc) {
   add_envelope(doc);
   std::ofstream out(path);
   out << doc.dump(1) << '\n';
+  out.flush();
   if (!out) throw io::InputError(path.string(), 0, "cannot write the file");
 }
 
@@ -372,13 +377,22 @@ int run_object_set(ValidateCliOptions& o, const CLI::App& app) {
       throw UsageError(std::string("validate: ") + e.what());
     }
   }
-  options.log = [](const std::string& line) { std::cerr << "[validate] " << line << std::endl; };
+  Progress progress("validate");
+  options.log = [&progress](const std::string& line) { progress.update(line); };
   nlohmann::json doc;
   try {
     doc = study::validate_object_set(options, testers);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("validate: ") + e.what());
   }
+  // The objects' temporary scenes are gone: their pair configs are the template's.
+  const std::string template_pairs =
+      std::filesystem::path(hand.scene).replace_extension(".pairs.json").string();
+  const std::regex temporary_pairs(R"re(\S*/graspcd-object-[A-Za-z0-9]{6}/[^/ ]*\.pairs\.json)re");
+  warnings().edit([&](Warning& w) {
+    w.message = std::regex_replace(w.message, temporary_pairs, template_pairs);
+  });
+  name_user_files({}, o.placement.hand);
   if (!o.out_dir.empty()) {
     const study::Shard shard = options.shard.value_or(study::Shard{});
     const std::string name = shard.count > 1 ? "objects.shard-" + std::to_string(shard.index) +
@@ -386,6 +400,7 @@ int run_object_set(ValidateCliOptions& o, const CLI::App& app) {
                                              : "objects.json";
     write_json_file(std::filesystem::path(o.out_dir) / name, doc);
   }
+  progress.done("checked the objects of " + o.objects);
   print_object_set(doc, o.json);
   return object_set_exit_code(doc);
 }
@@ -406,6 +421,9 @@ int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
   if (o.objects.empty() && app.count("--shard") > 0) {
     throw UsageError("validate: --shard goes with --objects");
   }
+  // --out: checked (and created) before the work; left out again when nothing was written in it.
+  std::optional<io::RemoveIfEmpty> created;
+  if (!o.out_dir.empty() && io::prepare_output_folder(o.out_dir)) created.emplace(o.out_dir);
   if (!o.merge.empty()) return run_object_merge(o);
   if (!o.objects.empty()) return run_object_set(o, app);
   const std::vector<study::TesterSpec> testers = testers_of(o, app, o.scene);
@@ -414,8 +432,11 @@ int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
   options.max_steps = o.steps;
   options.out_dir = o.out_dir;
   options.decomposed_dir = o.decomposed;
-  options.on_step = [](int step) {
-    if (step % 50 == 0) std::cerr << "[validate] grasp step " << step << " checked" << std::endl;
+  Progress progress("validate");
+  int checked = 0;
+  options.on_step = [&](int step) {
+    checked = step;
+    progress.update(o.scene + ": grasp step " + std::to_string(step) + " checked");
   };
   study::ValidationReport report;
   try {
@@ -425,6 +446,7 @@ int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
   } catch (const mujoco::MujocoError& e) {
     throw io::InputError(o.scene, 0, e.what());
   }
+  progress.done("checked " + o.scene + ": " + std::to_string(checked) + " grasp steps");
   if (report.steps_with_contact == 0) {
     warnings().add("validate_no_contact",
                    o.scene +

@@ -35,7 +35,9 @@ TEST_F(StudyTest, QuickStudyWritesTheReportAndEveryMethodAgreesWithCgal) {
   const Outcome r = graspcd("study --quick --out '" + out.string() + "'" +
                             (repeats == 3 ? "" : " --repeats " + std::to_string(repeats)));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find("[study] recorded example1"), std::string::npos) << "progress on stderr";
+  // Not a terminal: no progress lines, one final line on stderr.
+  EXPECT_EQ(r.err.find("[study] recorded example1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("[study] wrote " + out.string() + "\n"), std::string::npos) << r.err;
   for (const char* f : {"study.json", "table1.csv", "box_hand.csv", "sweep.json", "sweep.csv"})
     EXPECT_GT(fs::file_size(out / f), 100u) << f;
 

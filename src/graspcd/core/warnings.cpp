@@ -36,6 +36,11 @@ bool WarningSink::empty() const {
   return warnings_.empty();
 }
 
+void WarningSink::edit(const std::function<void(Warning&)>& change) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  for (Warning& w : warnings_) change(w);
+}
+
 void WarningSink::clear() {
   const std::lock_guard<std::mutex> lock(mutex_);
   warnings_.clear();

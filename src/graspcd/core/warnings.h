@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -37,6 +38,8 @@ class WarningSink {
   std::vector<Warning> list() const;
   bool empty() const;
   void clear();
+  // Changes every warning in place (e.g. a temporary file's name replaced by the user's).
+  void edit(const std::function<void(Warning&)>& change);
 
  private:
   mutable std::mutex mutex_;

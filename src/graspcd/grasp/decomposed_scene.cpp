@@ -17,6 +17,7 @@
 
 #include "graspcd/decompose/manifest.h"
 #include "graspcd/grasp/grasp.h"
+#include "graspcd/io/output_files.h"
 #include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/registry.h"
 
@@ -66,18 +67,6 @@ tinyxml2::XMLElement* sibling_copy(tinyxml2::XMLElement* from, tinyxml2::XMLElem
   from->Parent()->InsertAfterChild(after, copy);
   return copy;
 }
-
-// The written scene, removed however the grasp returns.
-struct RemovedOnExit {
-  explicit RemovedOnExit(std::string p) : path(std::move(p)) {}
-  RemovedOnExit(const RemovedOnExit&) = delete;
-  RemovedOnExit& operator=(const RemovedOnExit&) = delete;
-  ~RemovedOnExit() {
-    std::error_code ignored;
-    fs::remove(path, ignored);
-  }
-  std::string path;
-};
 
 }  // namespace
 
@@ -160,7 +149,8 @@ GraspResult run_decomposed_grasp(const std::string& scene_path,
                                  const std::string& decomposition_dir, GraspOptions options,
                                  DecomposedScene* written) {
   const DecomposedScene scene = write_decomposed_scene(scene_path, decomposition_dir);
-  const RemovedOnExit remove{scene.scene};
+  // Removed on return, on errors and on INT, TERM and HUP (io/output_files.h).
+  const io::CleanupGuard remove{scene.scene};
   if (written != nullptr) *written = scene;
   options.native = true;
   if (options.config_path.empty()) options.config_path = mujoco::pair_config_path(scene_path);

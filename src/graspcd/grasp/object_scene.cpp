@@ -18,6 +18,7 @@
 #include "graspcd/core/geometry.h"
 #include "graspcd/core/warnings.h"
 #include "graspcd/io/mesh_io.h"
+#include "graspcd/io/output_files.h"
 #include "graspcd/io/text_input.h"
 
 namespace graspcd::grasp {
@@ -312,11 +313,15 @@ ObjectScene place_object(const TriangleMesh& mesh, const ObjectPlacement& placem
   return out;
 }
 
-// Every file path of the template made relative to `target` (the new scene's folder): <include
-// file>, <compiler meshdir/texturedir/assetdir>, and, when no meshdir is set, the asset files but
-// the object's. Returns the folder the object's mesh file is named relative to.
+// Every file path of the template made absolute (the hand stays where it is installed or shared):
+// <include file>, <compiler texturedir>, the asset files but the object's when no meshdir is set.
+// A meshdir (or assetdir) becomes the folder `meshes` beside the scene, which holds a link
+// (absolute) to every file of the template's mesh folder, so that the hand's meshes load from
+// there and the object's mesh, copied into it, is named relative to the scene. Returns the folder
+// the object's mesh file is named relative to (`target` or `meshes`).
 fs::path rewrite_paths(const TemplateParts& t, const std::string& template_path,
-                       const fs::path& target, const std::vector<TemplatePath>& moved) {
+                       const fs::path& target, const fs::path& meshes,
+                       const std::vector<TemplatePath>& moved) {
   const fs::path template_dir = fs::absolute(template_path).parent_path();
   // A path as the template writes it, made a file: beside the template, or under a moved folder,
   // that folder's links resolved (the scene names files by relative paths, and a ".." after a
@@ -326,10 +331,10 @@ fs::path rewrite_paths(const TemplateParts& t, const std::string& template_path,
       if (path.compare(0, m.from.size(), m.from) == 0) {
         std::error_code ec;
         const fs::path to = fs::weakly_canonical(m.to, ec);
-        return (ec ? fs::path(m.to) : to) / path.substr(m.from.size());
+        return ((ec ? fs::path(m.to) : to) / path.substr(m.from.size())).lexically_normal();
       }
     }
-    return template_dir / path;
+    return (template_dir / path).lexically_normal();
   };
   std::vector<tinyxml2::XMLElement*> compilers;
   collect(t.root, "compiler", compilers);
@@ -338,15 +343,27 @@ fs::path rewrite_paths(const TemplateParts& t, const std::string& template_path,
     for (const char* a : {"meshdir", "texturedir", "assetdir"}) {
       if (!c->Attribute(a)) continue;
       if (std::string(a) != "texturedir") meshdir = c->Attribute(a);
-      c->SetAttribute(a, relative_to(resolved(c->Attribute(a)), target).c_str());
+      c->SetAttribute(a, resolved(c->Attribute(a)).string().c_str());
+    }
+    if (c->Attribute("assetdir")) {
+      if (!c->Attribute("texturedir")) c->SetAttribute("texturedir", c->Attribute("assetdir"));
+      c->DeleteAttribute("assetdir");
+      c->SetAttribute("meshdir", "");
     }
   }
+  // MuJoCo 2.2 reads an <include file> relative to the scene's folder even when it is absolute:
+  // the included file is linked into `meshes` and named there.
+  fs::create_directories(meshes);
   std::vector<tinyxml2::XMLElement*> includes;
   collect(t.root, "include", includes);
   for (tinyxml2::XMLElement* inc : includes) {
-    if (inc->Attribute("file")) {
-      inc->SetAttribute("file", relative_to(resolved(inc->Attribute("file")), target).c_str());
-    }
+    if (!inc->Attribute("file")) continue;
+    const fs::path file = resolved(inc->Attribute("file"));
+    const fs::path link = meshes / file.filename();
+    std::error_code ec;
+    fs::create_symlink(file, link, ec);
+    if (ec) throw io::InputError(link.string(), 0, "cannot link the hand's file: " + ec.message());
+    inc->SetAttribute("file", relative_to(link, target).c_str());
   }
   if (meshdir.empty()) {
     for (const char* kind : {"mesh", "texture", "hfield", "skin"}) {
@@ -354,12 +371,29 @@ fs::path rewrite_paths(const TemplateParts& t, const std::string& template_path,
       collect(t.root, kind, files);
       for (tinyxml2::XMLElement* f : files) {
         if (f->Attribute("file") && f != t.asset) {
-          f->SetAttribute("file", relative_to(resolved(f->Attribute("file")), target).c_str());
+          f->SetAttribute("file", resolved(f->Attribute("file")).string().c_str());
         }
       }
     }
+    return target;
   }
-  return meshdir.empty() ? target : resolved(meshdir);
+  // The hand's mesh folder linked file by file into `meshes`, named relative to the scene.
+  const fs::path hand_meshes = resolved(meshdir);
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(hand_meshes, ec)) {
+    fs::create_symlink(e.path(), meshes / e.path().filename(), ec);
+    if (ec)
+      throw io::InputError(meshes.string(), 0, "cannot link the hand's meshes: " + ec.message());
+  }
+  if (ec) {
+    throw io::InputError(hand_meshes.string(), 0, "cannot read the hand's meshes: " + ec.message());
+  }
+  for (tinyxml2::XMLElement* c : compilers) {
+    if (c->Attribute("meshdir")) {
+      c->SetAttribute("meshdir", (meshes.filename().string() + "/").c_str());
+    }
+  }
+  return meshes;
 }
 
 // The object in the template: its mesh (`file`, named relative to `mesh_folder`), scale, place
@@ -400,7 +434,7 @@ void raise_size(tinyxml2::XMLDocument& doc, tinyxml2::XMLElement* root) {
 // The header of the new scene: what it is and how it was made.
 std::string scene_header(const std::string& template_path, const std::string& hand,
                          const ObjectPlacement& placement, const ObjectScene& out,
-                         const Vec3& support) {
+                         const Vec3& support, const std::string& stem) {
   std::ostringstream header;
   header << "\n  Generated by graspcd (the grasp command given an object file) from the template "
          << fs::absolute(template_path).lexically_normal().string() << " (hand: " << hand
@@ -418,9 +452,15 @@ std::string scene_header(const std::string& template_path, const std::string& ha
   header << ";\n    its lowest point " << short_number(kSupportGap)
          << " m above the support point (" << numbers(support.data(), 3)
          << "), centred on it across gravity.\n"
-         << "  Every path is relative to this file's folder. Pairs and the drive: "
-         << fs::path(placement.file).stem().string()
-         << ".pairs.json beside it.\n  Edit freely: graspcd grasp on this file reruns the grasp.\n";
+         << "  The object's mesh is in " << stem
+         << ".meshes/ beside this file (with links to the hand's meshes when the hand has a mesh\n"
+            "  folder); the hand's files are named by absolute paths. The folder can be moved or "
+            "copied\n  (cp -r) and loads as long as the hand stays where it is. Pairs and the "
+            "drive: "
+         << stem << ".pairs.json beside it.\n  Edit freely: graspcd grasp on this file reruns "
+         << "the grasp.\n  " << kGeneratedMarker
+         << " (the write-scene option of graspcd grasp replaces this file, its .pairs.json and "
+            "its .meshes folder).\n";
   return header.str();
 }
 
@@ -470,42 +510,55 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
   const fs::path target = fs::path(dir);
   fs::create_directories(target);
   const std::string stem = fs::path(placement.file).stem().string();
-  // A closed mesh whose faces point inward: MuJoCo's inertia and graspcd's containment read the
-  // faces' direction, so the scene loads the mesh turned right way out, written beside it.
-  std::string object_file = placement.file;
+  const fs::path meshes = target / (stem + ".meshes");
+  const fs::path mesh_folder = rewrite_paths(t, template_path, target, meshes, moved);
+  // The object's mesh moves with the scene: copied into STEM.meshes/ under its own file name (a
+  // decomposition of it finds it by that name). A closed mesh whose faces point inward: MuJoCo's
+  // inertia and graspcd's containment read the faces' direction, so the scene loads the mesh
+  // turned right way out (STEM.outward.obj) instead.
   const std::string flipped = io::turn_right_way_out(placement.file, stats, &mesh, out.scale);
+  // In its own folder STEM.meshes/object/, apart from the hand's linked files (the template's
+  // mesh folder may hold a file of the object's name, e.g. the cup's).
+  const fs::path object_folder = meshes / "object";
+  std::error_code exists_ec;
+  if (fs::exists(fs::symlink_status(object_folder, exists_ec))) {
+    throw template_error(template_path, t.asset,
+                         "the hand's mesh folder has a file named 'object', the object's folder");
+  }
+  fs::create_directories(object_folder);
+  // MuJoCo 2.2 reads OBJ and binary STL only: any other format is the mesh as graspcd read it,
+  // written as STEM.converted.obj (in its file units).
+  const bool convert = stats.format != "OBJ" && stats.format != "binary STL";
+  const fs::path object_file =
+      object_folder / (!flipped.empty() ? stem + ".outward.obj"
+                       : convert        ? stem + ".converted.obj"
+                                        : fs::path(placement.file).filename().string());
   if (!flipped.empty()) {
     warnings().add("mesh_inside_out", flipped, "mesh");
-    object_file = (target / (stem + ".outward.obj")).string();
-    io::write_obj(object_file, mesh);
-  } else if (stats.format != "OBJ" && stats.format != "binary STL") {
-    // MuJoCo 2.2 reads OBJ and binary STL only: the mesh as graspcd read it, as an OBJ.
-    object_file = (target / (stem + ".converted.obj")).string();
-    io::write_obj(object_file, mesh);
+    io::write_obj(object_file.string(), mesh);
+  } else if (convert) {
+    io::write_obj(object_file.string(), mesh);
+  } else {
+    std::error_code ec;
+    fs::copy_file(placement.file, object_file, ec);
+    if (ec) throw io::InputError(placement.file, 0, "cannot copy the mesh: " + ec.message());
   }
-  const fs::path mesh_folder = rewrite_paths(t, template_path, target, moved);
-  set_object(t, object_file, mesh_folder, out);
+  set_object(t, object_file.string(), mesh_folder, out);
   raise_size(doc, t.root);
-  replace_comments(doc, t.root, scene_header(template_path, hand, placement, out, room.support));
+  replace_comments(doc, t.root,
+                   scene_header(template_path, hand, placement, out, room.support, stem));
 
   out.scene = (target / (stem + ".xml")).string();
   out.pairs = (target / (stem + ".pairs.json")).string();
+  out.meshes = meshes.string();
   save_scene(doc, template_path, out);
   return out;
 }
 
-TempFolder::TempFolder() {
-  std::string pattern = (fs::temp_directory_path() / "graspcd-object-XXXXXX").string();
-  if (mkdtemp(pattern.data()) == nullptr) {
-    throw std::runtime_error("cannot create a temporary folder in " +
-                             fs::temp_directory_path().string());
-  }
-  path_ = pattern;
-}
+TempFolder::TempFolder()
+    : guard_(io::make_private_folder(io::temporary_folder(), "graspcd-object",
+                                     io::temporary_folder().string())) {}
 
-TempFolder::~TempFolder() {
-  std::error_code ignored;
-  fs::remove_all(path_, ignored);
-}
+const std::filesystem::path& TempFolder::path() const { return guard_.path(); }
 
 }  // namespace graspcd::grasp

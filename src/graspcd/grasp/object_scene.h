@@ -4,15 +4,20 @@
 // joint and one mesh geom. The new scene is the template read and written by tinyxml2 with:
 //  - that mesh asset's file replaced by the user's mesh and its scale set (the asset is renamed
 //    "object_mesh", the geom "object"); a closed mesh whose faces all point inward (negative
-//    signed volume, io::turn_right_way_out) is written turned right way out as STEM.outward.obj
-//    beside the scene, which the asset names instead, with the warning "mesh_inside_out"; a mesh
-//    in a format MuJoCo 2.2 does not read (anything but OBJ and binary STL: io::load_mesh) is
-//    written as STEM.converted.obj beside the scene (as graspcd read it, in its file units);
+//    signed volume, io::turn_right_way_out) is written turned right way out as
+//    STEM.meshes/object/STEM.outward.obj, which the asset names instead, with the warning
+//    "mesh_inside_out"; a mesh in a format MuJoCo 2.2 does not read (anything but OBJ and binary
+//    STL: io::load_mesh) is written as STEM.meshes/object/STEM.converted.obj (as graspcd read it,
+//    in its file units);
 //  - the object body turned (the file's `up` axis along -gravity, then `yaw` about it, or the
 //    quaternion `pose`) and placed with its lowest point along gravity kSupportGap above the
 //    support point, centred on it across gravity;
-//  - every file path (<include file>, <compiler meshdir/texturedir/assetdir>, and asset files
-//    when no meshdir is set) rewritten relative to the new scene's folder;
+//  - the object's mesh copied into STEM.meshes/object/ beside the scene (its file name kept) and
+//    named relative to the scene, so that the scene's folder can be moved or copied;
+//  - every other file path (<include file>, <compiler texturedir>, and asset files when no
+//    meshdir is set) made absolute: the hand stays where it is installed or shared; a meshdir
+//    (or assetdir) becomes STEM.meshes/, which holds an absolute link to every file of the
+//    template's mesh folder;
 //  - <size nconmax njmax> raised to at least 1000 and 4000 (the contacts of a fine mesh);
 //  - the template's comments replaced by a header saying what the scene is and how it was made.
 // The template may carry its placement in <custom>: <numeric name="graspcd_support" data="x y z"/>
@@ -26,6 +31,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "graspcd/io/output_files.h"
 
 namespace graspcd::grasp {
 
@@ -53,9 +60,14 @@ struct TemplatePath {
   std::string to;
 };
 
+// The marker line of a generated scene's header comment: graspcd recognises its own scenes by it
+// (grasp --write-scene replaces a scene only when it carries the marker, or with --force).
+inline constexpr const char* kGeneratedMarker = "graspcd-generated: object scene";
+
 struct ObjectScene {
-  std::string scene;  // DIR/STEM.xml
-  std::string pairs;  // DIR/STEM.pairs.json
+  std::string scene;   // DIR/STEM.xml
+  std::string pairs;   // DIR/STEM.pairs.json
+  std::string meshes;  // DIR/STEM.meshes: the object's mesh, links to the hand's
   double scale = 1;
   bool fitted = false;
   std::array<double, 3> size{};  // the placed object's extent: across gravity (2), along it, m
@@ -78,18 +90,17 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
                                const std::vector<TemplatePath>& moved = {});
 
 // A temporary folder for a scene that the user keeps not (grasp --object without --write-scene,
-// validate --objects): created under the system's temporary folder, removed with everything in
-// it when this goes out of scope. Throws std::runtime_error when it cannot be created.
+// validate --objects): graspcd-object-XXXXXX created under the system's temporary folder ($TMPDIR,
+// else /tmp), removed with everything in it when this goes out of scope, and on INT, TERM and HUP
+// (io/output_files.h). Throws io::InputError naming the temporary folder when it cannot be
+// created.
 class TempFolder {
  public:
   TempFolder();
-  ~TempFolder();
-  TempFolder(const TempFolder&) = delete;
-  TempFolder& operator=(const TempFolder&) = delete;
-  const std::filesystem::path& path() const { return path_; }
+  const std::filesystem::path& path() const;
 
  private:
-  std::filesystem::path path_;
+  io::CleanupGuard guard_;
 };
 
 }  // namespace graspcd::grasp

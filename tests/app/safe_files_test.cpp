@@ -1,0 +1,373 @@
+// The files graspcd writes (docs/bad-input.md, "Output files"): grasp --write-scene never replaces
+// the run's own template or a file graspcd did not write (unless --force), two runs writing one
+// stem into one folder each simulate their own object, a written scene folder loads after it was
+// moved, INT, TERM and HUP leave no temporary file or partial output (exit 128 + signal), and an
+// output that cannot be written is one line naming it, exit code 2, before the work.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "support/command_test.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using graspcd::testing::Outcome;
+using graspcd::testing::read_file;
+
+// A 50 x 40 x `height` mm box (file units mm), its lowest point at z = 10 mm.
+std::string box_obj(int height) {
+  const std::string top = std::to_string(10 + height);
+  return "v 100 -20 10\nv 150 -20 10\nv 150 20 10\nv 100 20 10\n"
+         "v 100 -20 " +
+         top + "\nv 150 -20 " + top + "\nv 150 20 " + top + "\nv 100 20 " + top +
+         "\nf 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
+         "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+}
+
+const std::string kMjcf = GRASPCD_MJCF_DIR;
+
+class SafeFilesTest : public graspcd::testing::CommandTest {
+ protected:
+  // Runs graspcd with stdout kept.
+  struct Result {
+    int exit_code = -1;
+    std::string out;
+    std::string err;
+  };
+  Result run_out(const std::string& args, const std::string& env = "") {
+    const fs::path out = dir_ / "stdout.txt";
+    const Outcome r =
+        run("{ " + env + " '" + GRASPCD_EXE + "' " + args + " > '" + out.string() + "'; }");
+    return {r.exit_code, read_file(out), r.err};
+  }
+
+  static std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+  }
+
+  // The names in `dir` that start with `prefix`.
+  static std::vector<std::string> entries(const fs::path& dir, const std::string& prefix = "") {
+    std::vector<std::string> out;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+      const std::string name = e.path().filename().string();
+      if (name.rfind(prefix, 0) == 0) out.push_back(name);
+    }
+    return out;
+  }
+
+  // Exit code 2 and one line on stderr that starts with "FILE: ".
+  void expect_refused(const Outcome& r, const std::string& file, const std::string& what) {
+    EXPECT_EQ(r.exit_code, 2) << what << ": " << r.err;
+    EXPECT_EQ(lines(r.err).size(), 1u) << what << ": " << r.err;
+    EXPECT_EQ(r.err.rfind(file + ": ", 0), 0u) << what << ": " << r.err;
+  }
+
+  // Starts graspcd with `args` (TMPDIR = `tmpdir`), waits until `appears` has an entry starting
+  // with `prefix`, sends `sig` and returns the exit status (-1 when the entry never appeared).
+  int interrupt(const std::vector<std::string>& args, const fs::path& tmpdir,
+                const fs::path& appears, const std::string& prefix, int sig) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+      setenv("TMPDIR", tmpdir.c_str(), 1);
+      const int null = open("/dev/null", O_WRONLY);
+      dup2(null, 1);
+      dup2(null, 2);
+      std::vector<char*> argv{const_cast<char*>(GRASPCD_EXE)};
+      for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+      argv.push_back(nullptr);
+      execv(GRASPCD_EXE, argv.data());
+      _exit(127);
+    }
+    bool seen = false;
+    for (int i = 0; i < 4000 && !seen; ++i) {
+      seen = !entries(appears, prefix).empty();
+      if (!seen) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    if (seen) kill(pid, sig);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    if (!seen) return -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
+  }
+};
+
+// The issue's case: --write-scene into the template's folder, the object named as the template.
+// The template and its pair config are left as they were, with or without --force.
+TEST_F(SafeFilesTest, WriteSceneNeverReplacesTheTemplateItReads) {
+  const fs::path hand = dir_ / "hand";
+  fs::create_directories(hand);
+  fs::copy_file(kMjcf + "/example1.xml", hand / "example1.xml");
+  fs::copy_file(kMjcf + "/example1.pairs.json", hand / "example1.pairs.json");
+  fs::create_directory_symlink(kMjcf + "/meshes", hand / "meshes");
+  const std::string object = write("example1.obj", box_obj(60));
+  const std::string xml = read_file(hand / "example1.xml");
+  const std::string pairs = read_file(hand / "example1.pairs.json");
+  for (const std::string force : {"", " --force"}) {
+    const Outcome r = graspcd("grasp --object " + object + " --scale 0.001 --hand " +
+                              (hand / "example1.xml").string() + " --write-scene " + hand.string() +
+                              " --max-steps 1" + force);
+    expect_refused(r, (hand / "example1.xml").string(), "the template" + force);
+    EXPECT_NE(r.err.find("template"), std::string::npos) << r.err;
+    EXPECT_EQ(read_file(hand / "example1.xml"), xml);
+    EXPECT_EQ(read_file(hand / "example1.pairs.json"), pairs);
+    EXPECT_TRUE(entries(hand, ".graspcd").empty());
+  }
+}
+
+// A scene graspcd did not write is replaced with --force only; its own (the marker) always.
+TEST_F(SafeFilesTest, WriteSceneReplacesAForeignSceneOnlyWithForce) {
+  const std::string box = write("box.obj", box_obj(60));
+  const fs::path out = dir_ / "out";
+  fs::create_directories(out);
+  const std::string mine = "<mujoco model=\"mine\"/>\n";
+  std::ofstream(out / "box.xml") << mine;
+  const std::string args =
+      "grasp --object " + box + " --scale 0.001 --write-scene " + out.string() + " --max-steps 1";
+  Outcome r = graspcd(args);
+  expect_refused(r, (out / "box.xml").string(), "a foreign scene");
+  EXPECT_NE(r.err.find("--force"), std::string::npos) << r.err;
+  EXPECT_EQ(read_file(out / "box.xml"), mine);
+  EXPECT_FALSE(fs::exists(out / "box.pairs.json"));
+  // A pair config alone, without graspcd's scene beside it, is not graspcd's either.
+  fs::remove(out / "box.xml");
+  std::ofstream(out / "box.pairs.json") << "{}\n";
+  expect_refused(graspcd(args), (out / "box.pairs.json").string(), "a foreign pair config");
+  std::ofstream(out / "box.xml") << mine;
+
+  r = graspcd(args + " --force");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string written = read_file(out / "box.xml");
+  EXPECT_NE(written.find("graspcd-generated"), std::string::npos) << written;
+  EXPECT_NE(read_file(out / "box.pairs.json"), "{}\n");
+  // graspcd's own scene is replaced without --force; no private folder is left.
+  r = graspcd(args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(entries(out, ".graspcd").empty());
+  EXPECT_EQ(entries(out).size(), 3u);  // box.xml, box.pairs.json, box.meshes
+}
+
+// Two runs writing an object of one stem into one folder at the same time: each simulates its
+// own object (its first line and its heights are those of the same run alone).
+TEST_F(SafeFilesTest, ConcurrentRunsWithOneStemEachSimulateTheirOwnObject) {
+  fs::create_directories(dir_ / "a");
+  fs::create_directories(dir_ / "b");
+  const std::string a = write("a/box.obj", box_obj(60));
+  const std::string b = write("b/box.obj", box_obj(30));
+  const fs::path out = dir_ / "out";
+  const auto args = [&](const std::string& box, const std::string& write_scene) {
+    return std::string("'") + GRASPCD_EXE + "' grasp --object " + box +
+           " --scale 0.001 --max-steps 2 --json" + write_scene;
+  };
+  const std::string scene = " --write-scene " + out.string();
+  const Outcome both = run("{ " + args(a, scene) + " > '" + (dir_ / "a.json").string() + "' & " +
+                           args(b, scene) + " > '" + (dir_ / "b.json").string() + "'; wait; }");
+  ASSERT_EQ(both.exit_code, 0) << both.err;
+  const nlohmann::json together_a = load(dir_ / "a.json");
+  const nlohmann::json together_b = load(dir_ / "b.json");
+  const Outcome alone = run("{ " + args(a, "") + " > '" + (dir_ / "a1.json").string() + "' && " +
+                            args(b, "") + " > '" + (dir_ / "b1.json").string() + "'; }");
+  ASSERT_EQ(alone.exit_code, 0) << alone.err;
+  const nlohmann::json alone_a = load(dir_ / "a1.json");
+  const nlohmann::json alone_b = load(dir_ / "b1.json");
+  EXPECT_NEAR(together_a["object"]["size"][2].get<double>(), 0.06, 1e-12);
+  EXPECT_NEAR(together_b["object"]["size"][2].get<double>(), 0.03, 1e-12);
+  for (const char* key : {"object_z_initial", "object_z_gripped", "object_z_final"}) {
+    EXPECT_EQ(together_a[key], alone_a[key]) << key;
+    EXPECT_EQ(together_b[key], alone_b[key]) << key;
+  }
+  EXPECT_NE(alone_a["object_z_final"], alone_b["object_z_final"]);
+  EXPECT_EQ(together_a["object"]["scene"], (out / "box.xml").string());
+  // One run's scene is left, whole, and no private folder.
+  EXPECT_TRUE(entries(out, ".graspcd").empty());
+  EXPECT_EQ(entries(out).size(), 3u);
+}
+
+// A written scene folder moved elsewhere (its object's mesh gone from where it was) loads and
+// runs the same grasp.
+TEST_F(SafeFilesTest, AMovedSceneFolderLoads) {
+  const std::string box = write("box.obj", box_obj(60));
+  const fs::path out = dir_ / "scene";
+  const Result first = run_out("grasp --object " + box + " --scale 0.001 --max-steps 2 --json " +
+                               "--write-scene " + out.string());
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  fs::create_directories(dir_ / "far/away");
+  fs::rename(out, dir_ / "far/away/scene");
+  fs::remove(box);
+  const Result moved =
+      run_out("grasp " + (dir_ / "far/away/scene/box.xml").string() + " --max-steps 2 --json");
+  ASSERT_EQ(moved.exit_code, 0) << moved.err;
+  const nlohmann::json a = nlohmann::json::parse(first.out);
+  const nlohmann::json b = nlohmann::json::parse(moved.out);
+  EXPECT_EQ(a["object_z_initial"], b["object_z_initial"]);
+  EXPECT_EQ(a["object_z_final"], b["object_z_final"]);
+  // The object is named relative to the scene's folder; no file the scene reads is named under
+  // the folder it was written in.
+  const std::string xml = read_file(dir_ / "far/away/scene/box.xml");
+  EXPECT_NE(xml.find("file=\"object/box.obj\""), std::string::npos) << xml;
+  const std::regex file_attribute(R"re(file="([^"]*)")re");
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), file_attribute);
+       it != std::sregex_iterator(); ++it) {
+    const std::string named = (*it)[1].str();
+    EXPECT_EQ(named.find(out.string()), std::string::npos) << named;
+    EXPECT_EQ(named.find(".."), std::string::npos) << named;
+  }
+}
+
+// INT, TERM and HUP in the middle of a grasp: exit code 128 + the signal, the temporary folder
+// (and, with --write-scene, the private folder) removed.
+TEST_F(SafeFilesTest, AnInterruptedGraspLeavesNoTemporaryFiles) {
+  const std::string box = write("box.obj", box_obj(60));
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    const fs::path tmp = dir_ / ("tmp" + std::to_string(sig));
+    fs::create_directories(tmp);
+    EXPECT_EQ(
+        interrupt({"grasp", "--object", box, "--scale", "0.001"}, tmp, tmp, "graspcd-object-", sig),
+        128 + sig)
+        << sig;
+    EXPECT_TRUE(fs::is_empty(tmp)) << sig;
+    const fs::path out = dir_ / ("out" + std::to_string(sig));
+    fs::create_directories(out);
+    EXPECT_EQ(
+        interrupt({"grasp", "--object", box, "--scale", "0.001", "--write-scene", out.string()},
+                  tmp, out, ".graspcd-box-", sig),
+        128 + sig)
+        << sig;
+    EXPECT_TRUE(fs::is_empty(out)) << sig;
+    EXPECT_TRUE(fs::is_empty(tmp)) << sig;
+  }
+}
+
+// An interrupted decompose leaves neither --out nor its hidden folder; an existing --out keeps
+// its earlier decomposition.
+TEST_F(SafeFilesTest, AnInterruptedDecomposeLeavesNoPartialOutput) {
+  const std::string cup = kMjcf + "/meshes/cup.obj";
+  const fs::path out = dir_ / "cup32";
+  EXPECT_EQ(interrupt({"decompose", cup, "--out", out.string(), "--pieces", "32"}, dir_, dir_,
+                      ".cup32.graspcd", SIGTERM),
+            128 + SIGTERM);
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_TRUE(entries(dir_, ".cup32").empty());
+}
+
+// `n` separate unit cubes along x, 2 units apart: HACD gives one piece each, at once.
+std::string cubes_obj(int n) {
+  std::string out;
+  for (int k = 0; k < n; ++k) {
+    const int x = 2 * k;
+    for (int c = 0; c < 8; ++c) {
+      out += "v " + std::to_string(x + (c & 1)) + " " + std::to_string((c >> 1) & 1) + " " +
+             std::to_string((c >> 2) & 1) + "\n";
+    }
+    const int b = 8 * k + 1;
+    const int faces[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                              {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    for (const auto& f : faces) {
+      out += "f " + std::to_string(b + f[0]) + " " + std::to_string(b + f[1]) + " " +
+             std::to_string(b + f[2]) + "\n";
+    }
+  }
+  return out;
+}
+
+// A reused --out holds the new decomposition only (no stale piece); one graspcd did not write is
+// refused before the work.
+TEST_F(SafeFilesTest, AReusedDecomposeOutDropsStalePieces) {
+  const std::string cubes = write("cubes.obj", cubes_obj(3));
+  const fs::path out = dir_ / "cubes";
+  Outcome r = graspcd("decompose " + cubes + " --pieces 3 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(out / "cubes_piece_2.obj"));
+  std::ofstream(out / "cubes_piece_99.obj") << "v 0 0 0\n";
+  write("cubes.obj", cubes_obj(2));
+  r = graspcd("decompose " + cubes + " --pieces 2 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(out / "cubes_piece_99.obj"));
+  EXPECT_FALSE(fs::exists(out / "cubes_piece_2.obj"));
+  EXPECT_TRUE(fs::exists(out / "cubes_piece_1.obj"));
+  EXPECT_EQ(load(out / "decomposition.json")["piece_count"], 2);
+  EXPECT_TRUE(entries(dir_, ".cubes").empty());
+  // Not a decomposition: refused, left as it was.
+  const fs::path other = dir_ / "other";
+  fs::create_directories(other);
+  std::ofstream(other / "notes.txt") << "mine\n";
+  expect_refused(graspcd("decompose " + cubes + " --pieces 2 --out " + other.string()),
+                 other.string(), "a foreign folder");
+  EXPECT_EQ(entries(other).size(), 1u);
+}
+
+// Outputs that cannot be written: one line naming the file, exit code 2, before the work.
+TEST_F(SafeFilesTest, AnOutputThatCannotBeWrittenIsOneLineNamingIt) {
+  const std::string box = write("box.obj", box_obj(60));
+  const std::string file = write("file.txt", "a file\n");
+  const std::string scene = kMjcf + "/example1.xml";
+  const std::string grasp = "grasp --object " + box + " --scale 0.001 --max-steps 1";
+  expect_refused(graspcd(grasp + " --write-scene " + file + "/scene"), file + "/scene",
+                 "--write-scene under a file");
+  expect_refused(graspcd(grasp + " --write-scene " + file), file, "--write-scene onto a file");
+  // A read-only folder (root writes into a mode 555 folder: sysfs refuses even root).
+  const fs::path read_only = geteuid() == 0 ? fs::path("/sys/kernel") : dir_ / "ro";
+  if (geteuid() != 0) {
+    fs::create_directories(read_only);
+    fs::permissions(read_only, fs::perms::owner_read | fs::perms::owner_exec);
+  }
+  if (fs::is_directory(read_only)) {
+    expect_refused(graspcd(grasp + " --write-scene " + read_only.string()), read_only.string(),
+                   "--write-scene into a read-only folder");
+  }
+  const Outcome no_tmp =
+      run("TMPDIR='" + (dir_ / "missing").string() + "' '" + GRASPCD_EXE + "' " + grasp);
+  expect_refused(no_tmp, (dir_ / "missing").string(), "a missing TMPDIR");
+  expect_refused(graspcd("validate " + scene + " --max-steps 1 --out /dev/full"), "/dev/full",
+                 "validate --out /dev/full");
+  expect_refused(graspcd("validate " + scene + " --max-steps 1 --out " + file), file,
+                 "validate --out FILE");
+  const std::string nowhere = file + "/t.json";
+  expect_refused(graspcd("trajectory " + scene + " --out " + nowhere), nowhere,
+                 "trajectory --out under a file");
+  expect_refused(graspcd("trajectory " + scene + " --out " + dir_.string()), dir_.string(),
+                 "trajectory --out onto a folder");
+  if (fs::is_directory(read_only)) {
+    const std::string locked = (read_only / "t.json").string();
+    expect_refused(graspcd("trajectory " + scene + " --out " + locked), locked,
+                   "trajectory --out in a read-only folder");
+  }
+  expect_refused(graspcd("decompose " + kMjcf + "/meshes/cup.obj --out " + file), file,
+                 "decompose --out FILE");
+  EXPECT_TRUE(entries(dir_, ".").empty());
+}
+
+// Messages and JSON name the user's files: without --write-scene the document names no scene
+// (the temporary one is gone) and stderr no temporary path.
+TEST_F(SafeFilesTest, TheOutputNamesNoTemporaryFile) {
+  const std::string box = write("box.obj", box_obj(60));
+  const fs::path tmp = dir_ / "tmp";
+  fs::create_directories(tmp);
+  const Result r = run_out("grasp --object " + box + " --scale 0.001 --max-steps 1 --json",
+                           "TMPDIR='" + tmp.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(doc["object"]["scene"].is_null());
+  EXPECT_EQ(doc["scene"], box);
+  EXPECT_EQ(r.out.find(tmp.string()), std::string::npos);
+  EXPECT_EQ(r.err.find(tmp.string()), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_empty(tmp));
+}
+
+}  // namespace
