@@ -112,11 +112,14 @@ TEST_F(ObjectFormats, GraspObjectReadsPlyGlbAndAsciiStlConvertingThemForMuJoCo) 
     EXPECT_NEAR(size[0], 0.05, 1e-12);
     EXPECT_NEAR(size[1], 0.04, 1e-12);
     EXPECT_NEAR(size[2], 0.06, 1e-12);
-    // MuJoCo 2.2 reads OBJ and binary STL only: the scene names the converted OBJ.
+    // MuJoCo 2.2 reads OBJ and binary STL only: the scene names the converted OBJ, which moves
+    // with the scene (STEM.meshes/object/), and not the user's file.
     const std::string stem = fs::path(file).stem().string();
     const std::string xml = read_file(scene / (stem + ".xml"));
-    EXPECT_NE(xml.find(stem + ".converted.obj"), std::string::npos) << xml;
-    EXPECT_TRUE(fs::exists(scene / (stem + ".converted.obj")));
+    // (the scene's meshdir is STEM.meshes/)
+    EXPECT_NE(xml.find("file=\"object/" + stem + ".converted.obj\""), std::string::npos) << xml;
+    EXPECT_EQ(xml.find(fs::path(file).filename().string() + '"'), std::string::npos) << xml;
+    EXPECT_TRUE(fs::exists(scene / (stem + ".meshes") / "object" / (stem + ".converted.obj")));
   }
 }
 
