@@ -741,7 +741,7 @@ def race_section(race, fig_dir, fig_rel):
               f" {shown} | {opt(r.get('tilt_final_deg'), '.1f')} |"
               f" {opt(r.get('max_speed'), '.3g')} |"
               f" {opt(None if r.get('kinetic_energy_max') is None else 1000 * r['kinetic_energy_max'], '.3g')} |"
-              f" {opt(None if tp is None else 1000 * tp, '.3g')} |"
+              f" {opt(None if tp is None else 1000 * tp, '.3g')}{penetration_side(r)} |"
               f" {r['ms_per_physics_step']:.3f} | {r['contacts_per_step']:.1f} |"
               f" {same} of {len(segments)} |"
               f" {by_geom(r['phantom'], r.get('phantom_by_geom'))},"
@@ -773,6 +773,9 @@ def race_section(race, fig_dir, fig_rel):
     ax.set_xlabel("step cost: wall ms per physics step (log)")
     ax.set_ylabel("contact error: phantom + missed per closing step")
     ax.set_title("Contact error (the judge)")
+    if not axp.collections:
+        axp.text(0.5, 0.5, "no row of this race.json measured the true meshes", ha="center",
+                 va="center", transform=axp.transAxes, fontsize=8)
     axp.set_xscale("log")
     axp.set_yscale("symlog", linthresh=1.0)
     axp.set_xlabel("step cost: wall ms per physics step (log)")
@@ -801,6 +804,12 @@ def shown_outcome(r):
     if "outcome" in r:
         return r["outcome"]
     return "held" if r.get("held") else "not held"
+
+
+def penetration_side(r):
+    """" (hand)" or " (support)": where a row's deepest true penetration was, or ""."""
+    side = (r.get("true_penetration") or {}).get("side")
+    return f" ({side})" if side else ""
 
 
 def opt(value, spec):
