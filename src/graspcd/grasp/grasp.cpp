@@ -136,6 +136,9 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   } else {
     run = std::make_unique<GraspRun>(m, d, registry.get(), options, scene_path);
   }
+  // The start state: the scene's first keyframe when it has one (a hand shaped before the grasp,
+  // e.g. a gripper half closed with a pad through a mug's handle), else the model's qpos0.
+  if (m->nkey > 0) mj_resetDataKeyframe(m, d, 0);
   mj_forward(m, d);
   throw_if_bad_start(m, d, run->object(), scene_path, options.native, truth.get());
   if (truth) run->set_truth(truth.get());

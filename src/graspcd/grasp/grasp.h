@@ -27,17 +27,19 @@
 //      wrist rises by lift_height and the hand keeps its orientation (arm2 + arm3 = 0).
 //   4. Hold `hold_time` s.
 //
-// Before phase 1 the start state is checked (start_check.h), against the geometry each
-// configuration collides. First the scene itself, on the true meshes (for --decomposed, the
-// object as it was): an object that starts inside the hand, a finger or its support (by more than
-// 0.5 mm), or wholly inside one, is bad input (GraspInputError naming the scene, "the start state
-// is not valid: ..."). Then, under native collision (--native, --decomposed), the meshes as
-// MuJoCo collides them, their convex hulls (check_hull_start): a hull that holds another geom
-// more than 0.5 mm deep is a start that geometry cannot represent, refused as bad input with
-// "cannot start with --native: MuJoCo collides mesh 'M' as its convex hull, which geom 'G' lies
-// D mm inside at the start (a limit of the hull, not of the scene; graspcd's contacts start this
-// scene)" ("--decomposed", "a limit of the pieces" for the pieces). The verdicts (docs/design.md,
-// "Semantics"):
+// The start state is the scene's first keyframe (<keyframe><key .../>: qpos, qvel, act, ctrl) when
+// it has one, else MuJoCo's reference configuration qpos0 with zero controls; a driven hand's
+// closing starts from the keyframe's controls. Before phase 1 the start state is checked
+// (start_check.h), against the geometry each configuration collides. First the scene itself, on the
+// true meshes (for --decomposed, the object as it was): an object that starts inside the hand, a
+// finger or its support (by more than 0.5 mm), or wholly inside one, is bad input (GraspInputError
+// naming the scene, "the start state is not valid: ..."). Then, under native collision (--native,
+// --decomposed), the meshes as MuJoCo collides them, their convex hulls (check_hull_start): a hull
+// that holds another geom more than 0.5 mm deep is a start that geometry cannot represent, refused
+// as bad input with "cannot start with --native: MuJoCo collides mesh 'M' as its convex hull, which
+// geom 'G' lies D mm inside at the start (a limit of the hull, not of the scene; graspcd's contacts
+// start this scene)" ("--decomposed", "a limit of the pieces" for the pieces). The verdicts
+// (docs/design.md, "Semantics"):
 //  - gripped: at the end of the settling (just before the lift), two hand geoms touch the object
 //    with opposing contact normals: the mean normals, from each geom into the object, of two
 //    touching geoms have a negative dot product (kGripOpposing). One side pushing is no grip.

@@ -129,6 +129,13 @@ TemplateParts read_template(tinyxml2::XMLDocument& doc, const std::string& templ
   if (t.root == nullptr || std::string(t.root->Name()) != "mujoco") {
     throw template_error(template_path, t.root, "no <mujoco>");
   }
+  // A keyframe is the grasp's start (grasp.h) and holds the template object's pose, which the new
+  // object's placement would not replace.
+  if (tinyxml2::XMLElement* key = t.root->FirstChildElement("keyframe")) {
+    throw template_error(template_path, key,
+                         "a template with a <keyframe> cannot take a new object (the keyframe "
+                         "starts the grasp with the template object's pose)");
+  }
   tinyxml2::XMLElement* world = t.root->FirstChildElement("worldbody");
   for (tinyxml2::XMLElement* world_element = world; world_element;
        world_element = world_element->NextSiblingElement("worldbody")) {
