@@ -32,7 +32,10 @@ hull), a can with rounded edges and a bowl (non-convex); and a C-block (the boun
 5 mm cubes, non-convex: a slot open toward fingers 1-3). Examples: 1 the cup, 2 the can, 3 the
 C-block (finger 2 enters its slot, where MuJoCo's convex hull is solid), each as body `object`
 centred under the hand, resting on the floor; hand_triangles.xml has the cup under the hand and the
-other objects aside (bodies object_can, object_bowl, object_cblock).
+other objects aside (bodies object_can, object_bowl, object_cblock). Concave grasps: the thumb
+inside a thin-walled open box pinches its wall against fingers 1-3 (concave_project_thinbox.xml,
+mesh thinbox.obj), and the can lifted off the floor of the plastic bowl of ../shared/models, used
+by path (concave_bowl_lift.xml: no floor; the can against the bowl is a pair of the config too).
 
 Contact filter: fingers and palm contype 2 conaffinity 0, objects contype 1 conaffinity 3, floor
 contype 1 conaffinity 1, arm links 0/0: fingers touch objects but not each other, the palm or the
@@ -297,9 +300,11 @@ VOXEL = 0.005
 CBLOCK = dict(size=12, wall=2, height=12)  # 0.06 x 0.06 x 0.06, walls 0.01
 
 
-def voxel_mesh(cells, size):
+def voxel_mesh(cells, size, grid=None):
     """The boundary of a union of cubes (integer cells, edge `size`), as a closed outward mesh:
-    every exposed cube face becomes two triangles. Cells must not touch along an edge only."""
+    every exposed cube face becomes two triangles. Cells must not touch along an edge only.
+    grid: per axis, the coordinates of the cell boundaries (cell k spans grid[axis][k] ..
+    grid[axis][k + 1]) instead of multiples of `size`: a union of boxes of a rectilinear grid."""
     m = Mesh()
     for c in sorted(cells):
         for axis in range(3):
@@ -317,7 +322,10 @@ def voxel_mesh(cells, size):
                     q = list(base)
                     q[u] += du
                     q[v] += dv
-                    quad.append(m.vert(tuple(k * size for k in q)))
+                    if grid is None:
+                        quad.append(m.vert(tuple(k * size for k in q)))
+                    else:
+                        quad.append(m.vert(tuple(grid[a][k] for a, k in enumerate(q))))
                 a, b, cc, d = quad
                 if sign > 0:
                     m.tri(a, b, cc)
@@ -339,6 +347,26 @@ def cblock_mesh():
     return voxel_mesh(cells, VOXEL)
 
 
+# The thin-walled box: an open box (no lid), outer extents (x, y, z) in metres, walls and bottom
+# `wall` thick. Its cavity is open upward; its hull is solid. Built as the 3 x 3 x 2 grid of boxes
+# whose centre top box (the cavity) is left out: large faces, few triangles.
+THINBOX = dict(size=(0.09, 0.07, 0.095), wall=0.005)
+
+
+def thinbox_mesh():
+    (sx, sy, sz), w = THINBOX["size"], THINBOX["wall"]
+    grid = ((-sx / 2, -sx / 2 + w, sx / 2 - w, sx / 2), (-sy / 2, -sy / 2 + w, sy / 2 - w, sy / 2),
+            (0.0, w, sz))
+    cells = {(i, j, k) for i in range(3) for j in range(3) for k in range(2)} - {(1, 1, 1)}
+    return voxel_mesh(cells, None, grid)
+
+
+def thinbox_desc():
+    (sx, sy, sz), w = THINBOX["size"], THINBOX["wall"]
+    return ("thin-walled box: %.3f x %.3f x %.3f, open at the top, walls and bottom %.3f, centred "
+            "on x = y = 0; non-convex (open cavity)" % (sx, sy, sz, w))
+
+
 OBJECT_MESHES = (
     ("cup", cup_mesh, "cup: outer radius %.3f, height %.3f, wall %.3f, bottom %.3f; non-convex "
      "(open cavity)" % (CUP["radius"], CUP["height"], CUP["wall"], CUP["bottom"])),
@@ -351,6 +379,7 @@ OBJECT_MESHES = (
      (CBLOCK["size"] * VOXEL, CBLOCK["size"] * VOXEL, CBLOCK["height"] * VOXEL,
       CBLOCK["wall"] * VOXEL, (CBLOCK["size"] / 2 - CBLOCK["wall"]) * VOXEL,
       (CBLOCK["wall"] - CBLOCK["size"] / 2) * VOXEL)),
+    ("thinbox", thinbox_mesh, thinbox_desc()),
 )
 
 
@@ -372,11 +401,12 @@ def header(title, lines):
     return out
 
 
-def geometry_comment(kind):
+def geometry_comment(kind, floor=True):
     seg = ", ".join("%s %.3f" % (s, SEG_LEN[s]) for s in SEG_NAMES)
     lines = [
         "",
-        "Units: metres, radians. z up; the floor (table) is the plane z = 0.",
+        "Units: metres, radians. z up; %s" % ("the floor (table) is the plane z = 0." if floor else
+                                             "no floor (the object's support is named below)."),
         "Arm: pedestal at (%.2f, 0, 0); arm1 (hinge z) at height %.3f; arm2 (hinge y) %.3f above;"
         % (PEDESTAL_X, ARM1_Z, LINK1),
         "  link2 %.3f along +x to arm3 (hinge y); link3 %.3f along +x to the wrist at (0, 0, %.3f)."
@@ -413,10 +443,12 @@ def common_head(model, extra_comment, meshes, meshdir="meshes", option_extra="")
     return out
 
 
-def arm_and_hand(kind):
-    """The worldbody lines of the arm and hand; kind is 'box' or 'mesh'."""
+def arm_and_hand(kind, floor=True):
+    """The worldbody lines of the arm and hand; kind is 'box' or 'mesh'; floor=False leaves the
+    floor out (a scene whose object rests on another support)."""
     o = []
-    o.append('    <geom name="floor" type="plane" size="1 1 0.05" %s/>' % CONTACT_FLOOR)
+    if floor:
+        o.append('    <geom name="floor" type="plane" size="1 1 0.05" %s/>' % CONTACT_FLOOR)
     o.append('    <body name="pedestal" pos="%s">' % vec(PEDESTAL_X, 0, 0))
     o.append('      <geom name="pedestal" type="cylinder" size="0.04 %s" pos="%s" %s/>' %
              (fmt(ARM1_Z / 2), vec(0, 0, ARM1_Z / 2), CONTACT_NONE))
@@ -515,10 +547,11 @@ def box_scene():
 
 
 def object_lines(body, mesh, x, y):
+    mass = ' mass="%s"' % fmt(OBJECT_MASS[mesh]) if mesh in OBJECT_MASS else ""
     return [
         '    <body name="%s" pos="%s">' % (body, vec(x, y, 0)),
         "      <freejoint/>",
-        '      <geom name="%s" type="mesh" mesh="%s" %s/>' % (body, mesh, CONTACT_OBJECT),
+        '      <geom name="%s" type="mesh" mesh="%s"%s %s/>' % (body, mesh, mass, CONTACT_OBJECT),
         "    </body>",
     ]
 
@@ -537,6 +570,59 @@ def triangle_scene(model, objects, extra, meshdir="meshes", option_extra=""):
     o.extend(arm_and_hand("mesh"))
     for body, mesh, x, y in objects:
         o.extend(object_lines(body, mesh, x, y))
+    o.append("  </worldbody>")
+    o.extend(actuators())
+    o.append("</mujoco>")
+    return "\n".join(o) + "\n"
+
+
+# Object masses set in the scenes (kg); the others take MuJoCo's density of water. The thin-walled
+# box is light plastic: its grip is on one wall, 4 cm from its centre of mass.
+OBJECT_MASS = {"thinbox": 0.035}
+
+# The thin-walled box's body x: its +x wall centred under the palm (x = 0).
+THINBOX_X = -(THINBOX["size"][0] / 2 - THINBOX["wall"] / 2)
+
+# The bowl-lift scene: the can stands in a real bowl (../shared/models, used by path) that is the
+# scene's only support, sunk so that the open fingers clear its wall.
+BOWL_LIFT_MESH = "../../../shared/models/objects/prl_assets/plastic_bowl_visual.obj"
+BOWL_LIFT_Z = -0.030  # the bowl's bottom (no floor: the bowl is the support)
+BOWL_LIFT_CAN_Z = 0.0105  # the can's bottom above the bowl's bottom (its inner floor is a cone)
+CONTACT_BOWL = 'contype="4" conaffinity="4"'
+CONTACT_IN_BOWL = 'contype="6" conaffinity="6"'
+BOWL_LIFT_PAIRS = ('{\n  "method": "sat",\n  "pairs": [\n'
+                   '    {"a": "geom:finger*", "b": "body:object"},\n'
+                   '    {"a": "body:object", "b": "geom:bowl"}\n  ]\n}\n')
+
+
+def bowl_lift_scene():
+    lines = geometry_comment("closed rounded-box meshes, edge radius %.3f" % SEG_ROUND,
+                             floor=False) + [
+        "",
+        "Concave support: the can (body object) stands inside the plastic bowl of ../shared/models",
+        "  (objects/prl_assets/plastic_bowl_visual.obj, 17.2 cm wide, 7.6 cm tall, 720 faces; used",
+        "  by path, never copied), a fixed geom of the world. There is no floor: the bowl is the",
+        "  support, its bottom at z = %.3f so that the open fingers clear its wall; the can's"
+        % BOWL_LIFT_Z,
+        "  bottom %.4f above it (the bowl's inner floor is a shallow cone). The fingers close on"
+        % BOWL_LIFT_CAN_Z,
+        "  the can and lift it off the bowl's floor. Contact filter: the bowl 4 / 4 and the can",
+        "  6 / 6: the can touches the bowl and the fingers, the fingers and palm never the bowl.",
+        "  The pair config serves the can against the bowl too (exact contacts): MuJoCo's convex",
+        "  hull of the bowl is solid where the can stands.",
+        "Object: %s." % [d for n, _, d in OBJECT_MESHES if n == "can"][0],
+    ]
+    o = common_head("graspcd concave_bowl_lift", lines,
+                    ["finger_%s" % x for x in SEG_NAMES] + ["can"])
+    o.insert(o.index("  </asset>"), '    <mesh name="bowl" file="%s"/>' % BOWL_LIFT_MESH)
+    o.append("  <worldbody>")
+    o.extend(arm_and_hand("mesh", floor=False))
+    o.append('    <geom name="bowl" type="mesh" mesh="bowl" pos="%s" %s/>' %
+             (vec(0, 0, BOWL_LIFT_Z), CONTACT_BOWL))
+    o.append('    <body name="object" pos="%s">' % vec(0, 0, BOWL_LIFT_Z + BOWL_LIFT_CAN_Z))
+    o.append("      <freejoint/>")
+    o.append('      <geom name="object" type="mesh" mesh="can" %s/>' % CONTACT_IN_BOWL)
+    o.append("    </body>")
     o.append("  </worldbody>")
     o.extend(actuators())
     o.append("</mujoco>")
@@ -605,6 +691,21 @@ def generate():
              % (name, HOLD_NOSLIP_ITERATIONS)],
             meshdir="../meshes", option_extra=' noslip_iterations="%d"' % HOLD_NOSLIP_ITERATIONS)
         files["hard/hold_%s.pairs.json" % name] = pairs_json("body:object")
+    # Concave grasps (tests/scenes/concave_hands_test.cpp): the thumb inside the thin-walled box
+    # pinches its wall against fingers 1-3; MuJoCo's hull of the box holds the thumb.
+    files["concave_project_thinbox.xml"] = triangle_scene(
+        "graspcd concave_project_thinbox", (("object", "thinbox", THINBOX_X, 0.0),),
+        ["", "Concave grasp: the thin-walled box stands with its +x wall (x = %.4f .. %.4f) between"
+         % (THINBOX_X + THINBOX["size"][0] / 2 - THINBOX["wall"],
+            THINBOX_X + THINBOX["size"][0] / 2),
+         "  the thumb, which hangs inside its cavity, and fingers 1-3 outside: the thumb presses the",
+         "  wall's inner face, the fingers its outer face, and the pinch lifts the box. MuJoCo's",
+         "  convex hull of the box is solid where the thumb hangs. Its mass is set (%.0f g, light"
+         % (1000 * OBJECT_MASS["thinbox"]),
+         "  plastic): the grip is on one wall, 4 cm from its centre of mass, and the box tilts."])
+    files["concave_project_thinbox.pairs.json"] = pairs_json("body:object")
+    files["concave_bowl_lift.xml"] = bowl_lift_scene()
+    files["concave_bowl_lift.pairs.json"] = BOWL_LIFT_PAIRS
     return files
 
 

@@ -28,7 +28,9 @@ namespace {
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
 const std::vector<std::string> kTriangleScenes = {"hand_triangles", "example1", "example2",
-                                                  "example3"};
+                                                  "example3", "concave_project_thinbox"};
+// Every scene whose start MuJoCo's native collision can simulate (concave_project_thinbox starts
+// with the thumb inside the box's convex hull: its tests are in concave_hands_test.cpp).
 const std::vector<std::string> kAllScenes = {"hand_boxes", "hand_triangles", "example1", "example2",
                                              "example3"};
 constexpr double kGraspStep = 0.003;  // rad, the paper's grasp step
