@@ -1,6 +1,8 @@
-// graspcd decompose MESH --out DIR [--pieces N] [--simplify F] [--hausdorff-bound B] [--json]: an
-// approximate convex decomposition with HACD (Mamou and Ghorbel, ICIP 2009), written as one OBJ
-// per convex piece and an MJCF fragment, with how far the pieces' hulls lie from the original
+// graspcd decompose MESH --out DIR [--engine hacd|vhacd] [--pieces N] [--simplify F]
+// [--resolution R] [--timeout S] [--hausdorff-bound B] [--json]: an approximate convex
+// decomposition with HACD (Mamou and Ghorbel, ICIP 2009) or V-HACD 4 (Mamou, Game Engine Gems 3,
+// 2016; run by node from the npm package vhacd-js), written as one OBJ per convex piece and an
+// MJCF fragment, with how far the pieces' hulls lie from the original
 // surface (CGAL's bounded-error one-sided Hausdorff distance) and, for a closed mesh, the volume
 // they add. --simplify F: HACD partitions a copy decimated to at most F faces (CGAL's edge
 // collapse), each original face joins the cluster of its nearest decimated face, and the pieces
@@ -14,6 +16,7 @@
 
 #include "command.h"
 #include "graspcd/decompose/mesh_decomposition.h"
+#include "graspcd/decompose/vhacd.h"
 
 namespace graspcd::cli {
 
@@ -21,6 +24,7 @@ namespace {
 
 struct DecomposeOptions {
   decompose::DecomposeOptions run;
+  std::string engine = "hacd";
   bool json = false;
 };
 
@@ -28,6 +32,7 @@ struct DecomposeOptions {
 void print_text(const decompose::Manifest& m, const decompose::DecomposeOptions& o) {
   std::ostringstream out;
   out << std::setprecision(4);
+  out << "engine " << m.engine << "\n";
   out << "pieces " << m.piece_count << " (at most " << o.pieces << ")\n";
   if (m.simplify) {
     out << "simplify_faces " << m.simplify->faces_before;
@@ -50,12 +55,26 @@ void print_text(const decompose::Manifest& m, const decompose::DecomposeOptions&
   std::cout << out.str();
 }
 
-void run_decompose(const DecomposeOptions& o) {
+void run_decompose(DecomposeOptions& o, const CLI::App& app) {
+  const bool vhacd = o.engine == "vhacd";
+  o.run.engine = vhacd ? decompose::Engine::kVhacd : decompose::Engine::kHacd;
+  if (vhacd && app.count("--simplify") > 0) {
+    throw UsageError("decompose: --simplify is for --engine hacd (V-HACD voxelizes the mesh)");
+  }
+  for (const char* option : {"--resolution", "--timeout"}) {
+    if (!vhacd && app.count(option) > 0) {
+      throw UsageError(std::string("decompose: ") + option + " is for --engine vhacd");
+    }
+  }
   const decompose::DecomposeRun run = [&o] {
     try {
       return decompose::decompose_mesh(o.run);
     } catch (const decompose::BoundError& e) {
       throw UsageError(std::string("--hausdorff-bound: ") + e.what());
+    } catch (const decompose::VhacdUnavailable& e) {
+      throw UsageError(std::string("decompose: the V-HACD engine needs node and the vhacd-js "
+                                   "package (") +
+                       e.what() + "): run ./run build");
     }
   }();
   if (o.json) {
@@ -70,11 +89,18 @@ void run_decompose(const DecomposeOptions& o) {
 Command add_decompose_command(CLI::App& parent) {
   auto options = std::make_shared<DecomposeOptions>();
   CLI::App* app = parent.add_subcommand(
-      "decompose", "Approximate convex decomposition (HACD) of a mesh, as OBJ pieces and MJCF");
+      "decompose",
+      "Approximate convex decomposition (HACD or V-HACD 4) of a mesh, as OBJ pieces and MJCF");
   app->add_option("MESH", options->run.mesh, "The mesh: OBJ or binary STL")->required();
   app->add_option("--out", options->run.out, "The folder for the pieces and the fragment")
       ->required();
-  app->add_option("--pieces", options->run.pieces, "At most this many convex pieces")
+  app->add_option("--engine", options->engine,
+                  "hacd: HACD (Debian's libHACD); vhacd: V-HACD 4 (node and the npm package "
+                  "vhacd-js, installed by ./run build)")
+      ->check(CLI::IsMember({"hacd", "vhacd"}))
+      ->capture_default_str();
+  app->add_option("--pieces", options->run.pieces,
+                  "At most this many convex pieces (HACD's clusters, V-HACD's hulls)")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
   app->add_option("--simplify", options->run.simplify,
@@ -82,13 +108,24 @@ Command add_decompose_command(CLI::App& parent) {
                   "the pieces are hulls of the original vertices")
       ->type_name("F")
       ->check(integer_in_range(4, 100000000));
+  app->add_option("--resolution", options->run.resolution,
+                  "V-HACD: voxels in the mesh's bounding box (finer: closer pieces, slower)")
+      ->type_name("R")
+      ->check(integer_in_range(10000, 64000000))
+      ->capture_default_str();
+  app->add_option("--timeout", options->run.timeout,
+                  "V-HACD: node is stopped after this many seconds (the mesh is then refused)")
+      ->type_name("S")
+      ->check(positive_number())
+      ->capture_default_str();
   app->add_option("--hausdorff-bound", options->run.hausdorff_bound,
                   "Error bound of the Hausdorff distance in m (default 0.001 of the bounding box "
                   "diagonal)")
       ->check(positive_number());
   app->add_flag("--json", options->json, "Print one JSON document instead of text");
   app->footer(wrap_help(
-      "HACD (Mamou and Ghorbel, ICIP 2009; Debian's libHACD) clusters the mesh's faces along "
+      "Two engines (--engine). hacd (the default): HACD (Mamou and Ghorbel, ICIP 2009; Debian's "
+      "libHACD) clusters the mesh's faces along "
       "their adjacency, the least concave merge first, down to --pieces clusters; each piece is "
       "the convex hull of its cluster's vertices (qhull). The count obtained is reported: fewer "
       "for a mesh of fewer faces, more for a mesh of more separate components (each gives at "
@@ -101,20 +138,37 @@ Command add_decompose_command(CLI::App& parent) {
       "piece is the hull of its cluster's vertices of MESH, so the pieces follow MESH's surface "
       "(the Hausdorff distance is against MESH). A cluster no face of MESH joins gives no piece. "
       "A mesh of at most F faces is not decimated (reported).\n"
+      "vhacd: V-HACD 4 (Mamou, Game Engine Gems 3, 2016; the npm package vhacd-js, "
+      "WebAssembly, run by node from tools/vhacd/vhacd.mjs of graspcd's source tree, or the "
+      "script GRASPCD_VHACD_SCRIPT names; ./run build installs the package there with npm ci) "
+      "voxelizes the closed mesh (--resolution voxels in its bounding box, V-HACD's default "
+      "400000), splits the voxels recursively where the hull of a part exceeds its volume by "
+      "more than 1% (at most 10 levels), merges the parts down to --pieces hulls and "
+      "shrink-wraps each hull (at most 64 vertices) onto the mesh; graspcd rebuilds every hull "
+      "with qhull and leaves out one without volume. Meant for closed meshes: an open one is "
+      "filled where its voxels enclose a volume. Where node or vhacd-js is missing, --engine "
+      "vhacd is one line and exit code 2 (nothing else needs them). --simplify is for hacd; "
+      "--resolution and --timeout for vhacd. Choose vhacd for a large or scanned mesh (its "
+      "time grows with the voxels, not the faces; no --simplify needed) and for hulls close to "
+      "the solid; hacd needs no node and follows the mesh's own faces.\n"
       "Written into DIR: STEM_piece_K.obj (K = 0, 1, ...; in MESH's own coordinates and scale), "
       "STEM.xml (an MJCF fragment MuJoCo 2.2 includes: <mujocoinclude> with the <mesh> assets, "
       "files relative to DIR, and a <body name=\"STEM\"> with one <geom> per piece) and "
       "decomposition.json (the JSON document below; graspcd grasp --decomposed DIR reads it).\n"
-      "Reported: the pieces' count, HACD's time in s, the one-sided Hausdorff distance from the "
+      "Reported: the pieces' count, the engine's time in s (for vhacd with node's start), the "
+      "one-sided Hausdorff distance from the "
       "pieces' surfaces to MESH's surface with its error bound (CGAL 5.5's "
       "bounded_error_Hausdorff_distance; faces of a piece inside the object count too), and for "
       "a closed mesh the volume the pieces add (the sum of their volumes minus MESH's; overlaps "
       "between pieces count twice).\n"
-      "Text output: lines 'pieces N (at most M)', with --simplify 'simplify_faces F0 -> F1 (at "
-      "most F) in S s' or 'simplify_faces F0 (at most F: not decimated)', 'seconds S' (HACD "
+      "Text output: lines 'engine E', 'pieces N (at most M)', with --simplify 'simplify_faces F0 "
+      "-> F1 (at "
+      "most F) in S s' or 'simplify_faces F0 (at most F: not decimated)', 'seconds S' (the engine "
       "and the hulls; with --simplify after the decimation), 'hausdorff_m D +- B', "
       "'volume_added_m3 V (P% of V0)' or '- (open mesh)', 'fragment PATH'. --json: one "
-      "document: source, source_faces, closed, max_pieces, simplify (max_faces, faces_before, "
+      "document: source, engine (hacd or vhacd), engine_parameters (hacd: max_clusters; vhacd: "
+      "max_hulls, voxel_resolution, max_vertices_per_hull, min_volume_percent_error, "
+      "max_recursion_depth), source_faces, closed, max_pieces, simplify (max_faces, faces_before, "
       "faces_after, decimated, seconds; null without --simplify), piece_count, slabs, "
       "flat_clusters, "
       "seconds, "
@@ -127,8 +181,10 @@ Command add_decompose_command(CLI::App& parent) {
       "  graspcd decompose ../shared/models/objects/mujoco/cube_cup.obj --out /tmp/cup8 "
       "--pieces 8\n"
       "  graspcd decompose ../shared/models/objects/mujoco/mug.obj --out /tmp/mug16 --pieces 16 "
-      "--simplify 3000"));
-  return Command{app, [options] { run_decompose(*options); }};
+      "--simplify 3000\n"
+      "  graspcd decompose ../shared/models/objects/mujoco/mug.obj --out /tmp/mug32v --pieces 32 "
+      "--engine vhacd"));
+  return Command{app, [options, app] { run_decompose(*options, *app); }};
 }
 
 }  // namespace graspcd::cli

@@ -177,6 +177,8 @@ Decomposition pieces_of_partition(const TriangleMesh& mesh, const Partition& par
   return out;
 }
 
+TriangleMesh convex_hull(const std::vector<Vec3>& points) { return qhull_hull(points); }
+
 Decomposition hacd_decompose(const TriangleMesh& mesh, const HacdOptions& options) {
   return pieces_of_partition(mesh, hacd_partition(mesh, options));
 }

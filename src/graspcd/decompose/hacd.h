@@ -57,6 +57,10 @@ Partition hacd_partition(const TriangleMesh& mesh, const HacdOptions& options);
 // flat.
 Decomposition pieces_of_partition(const TriangleMesh& mesh, const Partition& partition);
 
+// The convex hull of `points` by qhull, faces turned outward; empty (no faces) when the points
+// have no full-dimensional hull (flat, collinear, fewer than 4).
+TriangleMesh convex_hull(const std::vector<Vec3>& points);
+
 // Decomposes `mesh` (at least one face): pieces_of_partition(mesh, hacd_partition(mesh,
 // options)). Throws std::runtime_error when HACD fails or every cluster is flat. The pieces'
 // count is HACD's (see HacdOptions).

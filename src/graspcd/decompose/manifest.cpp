@@ -1,5 +1,7 @@
 #include "graspcd/decompose/manifest.h"
 
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -35,7 +37,17 @@ nlohmann::json to_json(const Manifest& m) {
   for (const Manifest::Piece& p : m.pieces) {
     pieces.push_back({{"file", p.file}, {"vertices", p.vertices}, {"faces", p.faces}});
   }
+  nlohmann::json parameters = nlohmann::json::object();
+  for (const auto& [name, value] : m.engine_parameters) {
+    if (std::floor(value) == value && std::fabs(value) < 9e15) {
+      parameters[name] = static_cast<std::int64_t>(value);
+    } else {
+      parameters[name] = value;
+    }
+  }
   return {{"source", m.source},
+          {"engine", m.engine},
+          {"engine_parameters", parameters},
           {"source_faces", m.source_faces},
           {"closed", m.closed},
           {"max_pieces", m.max_pieces},
@@ -77,6 +89,12 @@ Manifest from_json(const nlohmann::json& doc) {
     piece.vertices = field(p, "vertices", std::size_t{0});
     piece.faces = field(p, "faces", std::size_t{0});
     m.pieces.push_back(std::move(piece));
+  }
+  m.engine = field(doc, "engine", std::string("hacd"));
+  if (const auto it = doc.find("engine_parameters"); it != doc.end() && it->is_object()) {
+    for (const auto& [name, value] : it->items()) {
+      if (value.is_number()) m.engine_parameters.emplace_back(name, value.get<double>());
+    }
   }
   m.source_faces = field(doc, "source_faces", std::size_t{0});
   m.closed = field(doc, "closed", false);

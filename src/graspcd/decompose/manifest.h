@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace graspcd::decompose {
@@ -39,7 +40,11 @@ struct Manifest {
     std::size_t vertices = 0;
     std::size_t faces = 0;
   };
-  std::string source;  // the mesh, absolute
+  std::string source;           // the mesh, absolute
+  std::string engine = "hacd";  // "hacd" or "vhacd"; a manifest without it is HACD's
+  // "engine_parameters": the engine's settings, each under its name (an object of numbers; an
+  // integral value is written as an integer).
+  std::vector<std::pair<std::string, double>> engine_parameters;
   std::size_t source_faces = 0;
   bool closed = false;
   int max_pieces = 0;
@@ -47,7 +52,7 @@ struct Manifest {
   std::size_t piece_count = 0;
   std::size_t slabs = 0;
   std::size_t flat_clusters = 0;
-  double seconds = 0;  // HACD and the hulls (with --simplify, after the decimation), s
+  double seconds = 0;  // the engine and the hulls (with --simplify, after the decimation), s
   Hausdorff hausdorff;
   std::optional<Volume> volume;
   std::string fragment;  // the MJCF fragment's file name

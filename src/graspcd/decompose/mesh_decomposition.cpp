@@ -14,6 +14,7 @@
 #include "graspcd/core/warnings.h"
 #include "graspcd/decompose/decomposition_files.h"
 #include "graspcd/decompose/hacd.h"
+#include "graspcd/decompose/vhacd.h"
 #include "graspcd/exact/hausdorff.h"
 #include "graspcd/exact/simplify.h"
 #include "graspcd/exact/surface_distance.h"
@@ -74,21 +75,47 @@ std::optional<Manifest::Simplify> simplify_copy(const DecomposeOptions& o, const
   return s;
 }
 
-// HACD, timed with the pieces' hulls (and with --simplify, the transfer of the decimated copy's
-// partition to the mesh's faces).
-Decomposition run_hacd(const DecomposeOptions& o, const TriangleMesh& mesh, bool decimated,
-                       const TriangleMesh& coarse, double& seconds) {
+VhacdOptions vhacd_options(const DecomposeOptions& o) {
+  VhacdOptions v;
+  v.max_hulls = static_cast<std::size_t>(o.pieces);
+  v.voxel_resolution = static_cast<std::size_t>(o.resolution);
+  v.timeout_seconds = o.timeout;
+  v.script = o.vhacd_script;
+  return v;
+}
+
+// The engine's settings as the manifest records them.
+std::vector<std::pair<std::string, double>> engine_parameters(const DecomposeOptions& o) {
+  if (o.engine == Engine::kVhacd) {
+    const VhacdOptions v = vhacd_options(o);
+    return {{"max_hulls", static_cast<double>(v.max_hulls)},
+            {"voxel_resolution", static_cast<double>(v.voxel_resolution)},
+            {"max_vertices_per_hull", static_cast<double>(v.max_vertices_per_hull)},
+            {"min_volume_percent_error", 1.0},
+            {"max_recursion_depth", 10.0}};
+  }
+  return {{"max_clusters", static_cast<double>(o.pieces)}};
+}
+
+// The engine (HACD or V-HACD), timed with the pieces' hulls (and with --simplify, the transfer of
+// the decimated copy's partition to the mesh's faces).
+Decomposition run_engine(const DecomposeOptions& o, const TriangleMesh& mesh, bool decimated,
+                         const TriangleMesh& coarse, double& seconds) {
   HacdOptions hacd;
   hacd.max_pieces = static_cast<std::size_t>(o.pieces);
   const Clock::time_point start = Clock::now();
   Decomposition d;
   try {
-    if (decimated) {
+    if (o.engine == Engine::kVhacd) {
+      d = vhacd_decompose(mesh, vhacd_options(o));
+    } else if (decimated) {
       const Partition partition = transfer_partition(hacd_partition(coarse, hacd), coarse, mesh);
       d = pieces_of_partition(mesh, partition);
     } else {
       d = hacd_decompose(mesh, hacd);
     }
+  } catch (const VhacdUnavailable&) {
+    throw;
   } catch (const std::runtime_error& e) {
     throw io::InputError(o.mesh, 0, e.what());
   }
@@ -96,7 +123,9 @@ Decomposition run_hacd(const DecomposeOptions& o, const TriangleMesh& mesh, bool
   if (d.flat_clusters > 0) {
     warnings().add("decompose_flat_pieces",
                    o.mesh + ": " + std::to_string(d.flat_clusters) +
-                       " of HACD's clusters have no hull even as a slab and were left out");
+                       (o.engine == Engine::kVhacd
+                            ? " of V-HACD's hulls have no volume and were left out"
+                            : " of HACD's clusters have no hull even as a slab and were left out"));
   }
   return d;
 }
@@ -124,7 +153,15 @@ std::optional<Manifest::Volume> added_volume(const std::vector<TriangleMesh>& hu
 
 }  // namespace
 
+const char* engine_name(Engine engine) { return engine == Engine::kVhacd ? "vhacd" : "hacd"; }
+
 DecomposeRun decompose_mesh(const DecomposeOptions& o) {
+  if (o.engine == Engine::kVhacd) {
+    if (o.simplify > 0) throw std::invalid_argument("simplify is for the HACD engine");
+    if (const std::string missing = vhacd_missing(vhacd_options(o)); !missing.empty()) {
+      throw VhacdUnavailable(missing);
+    }
+  }
   // The mesh as graspcd reads it: a bad file is one line naming it.
   io::MeshStats stats;
   const TriangleMesh mesh = io::load_mesh(o.mesh, &stats);
@@ -149,7 +186,8 @@ DecomposeRun decompose_mesh(const DecomposeOptions& o) {
   Manifest m;
   TriangleMesh coarse;
   m.simplify = simplify_copy(o, mesh, coarse);
-  const Decomposition d = run_hacd(o, mesh, m.simplify && m.simplify->decimated, coarse, m.seconds);
+  const Decomposition d =
+      run_engine(o, mesh, m.simplify && m.simplify->decimated, coarse, m.seconds);
 
   // How far the pieces' hulls lie from the original surface, and the volume they add.
   std::vector<TriangleMesh> hulls;
@@ -166,13 +204,16 @@ DecomposeRun decompose_mesh(const DecomposeOptions& o) {
   try {
     files = write_decomposition_files(
         d.pieces, o.out, stem,
-        "graspcd decompose: " + std::to_string(d.pieces.size()) + " convex pieces (HACD) of " +
+        "graspcd decompose: " + std::to_string(d.pieces.size()) + " convex pieces (" +
+            (o.engine == Engine::kVhacd ? "V-HACD" : "HACD") + ") of " +
             fs::path(o.mesh).filename().string() + ", in its own coordinates and scale");
   } catch (const std::runtime_error& e) {
     throw io::InputError(o.out, 0, e.what());
   }
 
   m.source = fs::absolute(o.mesh).lexically_normal().string();
+  m.engine = engine_name(o.engine);
+  m.engine_parameters = engine_parameters(o);
   m.source_faces = mesh.faces.size();
   m.closed = stats.closedness.closed();
   m.max_pieces = o.pieces;

@@ -1,8 +1,9 @@
 // `graspcd decompose` as a library: an approximate convex decomposition of a mesh with HACD (Mamou
-// and Ghorbel, ICIP 2009; hacd.h), written as one OBJ per convex piece and an MJCF fragment
-// (decomposition_files.h), with how far the pieces' hulls lie from the original surface (CGAL's
-// bounded-error one-sided Hausdorff distance) and, for a closed mesh, the volume they add. Beside
-// the pieces it writes the manifest, DIR/decomposition.json (manifest.h).
+// and Ghorbel, ICIP 2009; hacd.h) or V-HACD 4 (Mamou 2016, run by node; vhacd.h), written as one
+// OBJ per convex piece and an MJCF fragment (decomposition_files.h), with how far the pieces' hulls
+// lie from the original surface (CGAL's bounded-error one-sided Hausdorff distance) and, for a
+// closed mesh, the volume they add. Beside the pieces it writes the manifest,
+// DIR/decomposition.json (manifest.h).
 #pragma once
 
 #include <stdexcept>
@@ -12,11 +13,20 @@
 
 namespace graspcd::decompose {
 
+enum class Engine { kHacd, kVhacd };
+
+// The engine's name as the command line and the manifest write it: "hacd", "vhacd".
+const char* engine_name(Engine engine);
+
 struct DecomposeOptions {
-  std::string mesh;            // OBJ or binary STL
-  std::string out;             // the folder of the pieces, the fragment and the manifest (created)
-  int pieces = 16;             // at most this many pieces (HACD's cluster count)
-  int simplify = 0;            // 0: HACD on the mesh itself; F: on a copy of at most F faces
+  std::string mesh;  // OBJ or binary STL
+  std::string out;   // the folder of the pieces, the fragment and the manifest (created)
+  Engine engine = Engine::kHacd;
+  int pieces = 16;             // at most this many pieces (HACD's clusters, V-HACD's hulls)
+  int simplify = 0;            // HACD only. 0: HACD on the mesh itself; F: on a copy of <= F faces
+  int resolution = 400000;     // V-HACD only: its voxels in the mesh's bounding box
+  double timeout = 600;        // V-HACD only: node is stopped after this many s
+  std::string vhacd_script;    // V-HACD only: empty for default_vhacd_script() (vhacd.h)
   double hausdorff_bound = 0;  // 0: kDefaultBoundFraction of the bounding box diagonal
 };
 
@@ -44,7 +54,9 @@ struct DecomposeRun {
 // Decomposes `options.mesh` into `options.out` and writes the manifest there. Warnings (the mesh's
 // hygiene, flat clusters left out, a volume CGAL cannot measure) go to the process's sink. Throws
 // io::InputError (graspcd/io/text_input.h) naming the mesh for a missing or bad mesh or a failed
-// decomposition, naming the folder when it cannot be created or written.
+// decomposition, naming the folder when it cannot be created or written; VhacdUnavailable
+// (vhacd.h) for Engine::kVhacd where node or the vhacd-js package is missing, before the folder is
+// made; std::invalid_argument for simplify with Engine::kVhacd.
 DecomposeRun decompose_mesh(const DecomposeOptions& options);
 
 }  // namespace graspcd::decompose
