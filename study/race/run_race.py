@@ -25,7 +25,7 @@ and the wall time of its race) and its piece counts (--scene-pieces S=4,8 races 
 fewer, or none with S=, where decompositions or grasps would take too long; --scene-note S=TEXT
 says why in the data and the report). --simplify-above FACES=F decomposes every mesh of more than
 FACES triangles with `decompose --simplify F` (HACD partitions a copy decimated to at most F faces;
-the pieces are hulls of the original vertices), cached apart (WORK/STEM_N_simplifyF), and records
+the pieces are hulls of the original vertices; HACD only), cached apart (WORK/STEM_N_simplifyF), and records
 it per scene ("simplify": the threshold, F and the mesh's triangles; null when the mesh was
 decomposed as it is) and per decomposition (faces after decimation, its time, and the commit of
 the graspcd that made it). The file keeps the command, its wall time and the load at its end;
@@ -52,6 +52,7 @@ import datetime
 import json
 import os
 import platform
+import re
 import shlex
 import subprocess
 import sys
@@ -76,7 +77,10 @@ def object_mesh(scene):
 def object_mesh_and_scale(scene):
     """object_mesh and the asset's scale (3 numbers; 1 1 1 without one): the decompositions
     are in the file's units, the scene scales them."""
-    root = ET.parse(scene).getroot()
+    # Comments left out before parsing: MuJoCo's parser takes "--" inside a comment (a scene's
+    # header naming `grasp --native`), Python's does not.
+    with open(scene, encoding="utf-8") as f:
+        root = ET.fromstring(re.sub(r"<!--.*?-->", "", f.read(), flags=re.DOTALL))
     meshdir = ""
     for c in root.iter("compiler"):
         meshdir = c.get("meshdir", meshdir)
@@ -306,7 +310,10 @@ def main():
         first = first or native
         for engine in engines:
             for n in counts:
-                suffix = "" if simplify is None else f"_simplify{simplify}"
+                # --simplify is HACD's (V-HACD voxelizes: its time follows the voxels, not the
+                # faces).
+                simplified = simplify if engine == "hacd" else None
+                suffix = "" if simplified is None else f"_simplify{simplified}"
                 tag = "" if engine == "hacd" else f"_{engine}"
                 out = os.path.join(args.work, f"{stem}{tag}_{n}{suffix}")
                 manifest = os.path.join(out, "decomposition.json")
@@ -314,14 +321,14 @@ def main():
                 key = str(n) if engine == "hacd" else f"{engine}-{n}"
                 if not os.path.exists(manifest):
                     print(f"[race] {scene_name}: decompose {stem} into at most {n} with {engine}"
-                          + ("" if simplify is None else f" (--simplify {simplify})"),
+                          + ("" if simplified is None else f" (--simplify {simplified})"),
                           file=sys.stderr)
                     command = [args.graspcd, "decompose", mesh, "--out", out, "--pieces", str(n),
                                "--json"]
                     if engine != "hacd":
                         command += ["--engine", engine]
-                    if simplify is not None:
-                        command += ["--simplify", str(simplify)]
+                    if simplified is not None:
+                        command += ["--simplify", str(simplified)]
                     done = subprocess.run(command, capture_output=True, text=True)
                     if done.returncode != 0:
                         lines = done.stderr.strip().splitlines()
