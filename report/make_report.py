@@ -653,7 +653,23 @@ def race_section(race, fig_dir, fig_rel):
       " earlier run kept by `run_race.py --merge` keeps that run's machine, date and load; the"
       " load average is the machine's, shared with other builds, so compare step costs within a"
       " scene, not across scenes).")
-    if race.get("command"):
+    if race.get("merged"):
+        w("")
+        w(f"This file joins races run apart (`{' '.join(race['command'])}`), each scene with the"
+          " provenance of the race that ran it:")
+        w("")
+        for part in race["merged"]:
+            if not part["scenes"]:
+                continue
+            if part.get("command"):
+                load = ", ".join(f"{x:.1f}" for x in part["load_average"] or [])
+                end = ", ".join(f"{x:.1f}" for x in part["load_average_end"] or [])
+                w(f"- {', '.join(part['scenes'])}: `{' '.join(part['command'])}`,"
+                  f" {part['wall_seconds'] / 60:.0f} minutes of wall time, the load average"
+                  f" {load} at its start and {end} at its end.")
+            else:
+                w(f"- {', '.join(part['scenes'])}: an earlier race ({part['file']}).")
+    elif race.get("command"):
         w("")
         w(f"This file comes from one run, `{' '.join(race['command'])}`: "
           f"{race['wall_seconds'] / 60:.0f} minutes of wall time, the load average"
@@ -668,6 +684,9 @@ def race_section(race, fig_dir, fig_rel):
         what = (f"`grasp --object {obj['file']} {' '.join(obj['options'])}`" if obj
                 else f"mjcf/{scene}.xml")
         counts = ", ".join(str(n) for n in e.get("pieces", race["pieces"])) or "none"
+        if e.get("vhacd_pieces") is not None:
+            counts = (f"HACD {counts}; V-HACD"
+                      f" {', '.join(str(n) for n in e['vhacd_pieces']) or 'none'}")
         if "machine" in p:
             old = p["machine"]
             w(f"| {scene} | {what} | {counts} | (not recorded) | {old['date']} |"

@@ -4,7 +4,7 @@
 usage: run_race.py GRASPCD [--out FILE] [--work DIR] [--scenes S1,S2,...] [--pieces 4,8,16]
                    [--object "NAME=FILE [grasp --object options]"]... [--scene-pieces S=4,8 ...]
                    [--simplify-above FACES=F] [--merge OLD.json] [--noslip 0,10]
-                   [--engines hacd,vhacd]
+                   [--engines hacd,vhacd] [--vhacd-pieces 16]
 
 For each scene (default: examples 1-3; mjcf/S.xml) and each --object (a user's mesh through
 `graspcd grasp --object FILE OPTIONS --write-scene WORK/scenes/NAME`, raced as that scene under
@@ -31,7 +31,10 @@ decomposed as it is) and per decomposition (faces after decimation, its time, an
 the graspcd that made it). The file keeps the command, its wall time and the load at its end;
 each row the phantom and missed contacts per hand geom (the judge leaves out the body the object
 stands on, the pair config's "support": the Robotiq scenes' table).
---merge OLD.json keeps OLD's scenes that this run does not race, each with its own provenance.
+--merge OLD.json keeps OLD's scenes that this run does not race, each with its own provenance
+(repeatable; `--scenes ""` races nothing and only merges: races run side by side, each into its
+own file, joined afterwards); the file lists each merged file's command, wall time and load
+("merged").
 
 The protocol (study/race/race_score.py): every configuration runs once per --noslip value
 (MuJoCo's noslip iterations, `grasp --noslip N`; default 0 and 10), and each run is one row with
@@ -45,7 +48,7 @@ start state is not valid ...") is a row "cannot start" with that message; any ot
 row "cannot start" with its message too; a decomposition that fails is recorded with its message
 and raced no further. --engines hacd,vhacd decomposes with each engine `graspcd decompose
 --engine` offers (HACD always: configuration decomposed-N; V-HACD, when the executable has it:
-vhacd-N), cached apart in --work.
+vhacd-N, with --vhacd-pieces' counts when given, else the scene's), cached apart in --work.
 """
 import argparse
 import datetime
@@ -253,11 +256,15 @@ def main():
                         help="S=TEXT: a note on scene S for the report (e.g. why fewer pieces)")
     parser.add_argument("--simplify-above", metavar="FACES=F",
                         help="decompose meshes of more than FACES triangles with --simplify F")
-    parser.add_argument("--merge", help="keep this race.json's scenes that are not raced now")
+    parser.add_argument("--merge", action="append", default=[],
+                        help="keep this race.json's scenes that are not raced now (repeatable: "
+                             "the first file's scene first)")
     parser.add_argument("--noslip", default="0,10",
                         help="MuJoCo's noslip iterations: one run per value (grasp --noslip)")
     parser.add_argument("--engines", default="hacd,vhacd",
                         help="decomposition engines, those the executable offers (hacd, vhacd)")
+    parser.add_argument("--vhacd-pieces",
+                        help="V-HACD's piece counts for every scene (default: HACD's)")
     args = parser.parse_args()
     noslips = [int(n) for n in args.noslip.split(",") if n]
     offered = engines_available(args.graspcd)
@@ -308,8 +315,12 @@ def main():
         rows, native = race_rows("native hull", base + ["--native"], noslips)
         entry["rows"].extend(rows)
         first = first or native
+        vhacd_counts = counts if args.vhacd_pieces is None else \
+            [int(p) for p in args.vhacd_pieces.split(",") if p]
+        if "vhacd" in engines:
+            entry["vhacd_pieces"] = vhacd_counts
         for engine in engines:
-            for n in counts:
+            for n in (counts if engine == "hacd" else vhacd_counts):
                 # --simplify is HACD's (V-HACD voxelizes: its time follows the voxels, not the
                 # faces).
                 simplified = simplify if engine == "hacd" else None
@@ -354,9 +365,17 @@ def main():
             first = {}
         entry["provenance"] = provenance(first, started)
         result["scenes"][scene_name] = entry
-    if args.merge:
-        with open(args.merge, encoding="utf-8") as f:
+    # --merge, first file first: a scene raced now, or in an earlier file, is kept from there.
+    for merged in args.merge:
+        with open(merged, encoding="utf-8") as f:
             old = json.load(f)
+        # Where the scenes taken from it were raced: its command, wall time and load.
+        result.setdefault("merged", []).append(
+            {"file": os.path.basename(merged), "command": old.get("command"),
+             "wall_seconds": old.get("wall_seconds"),
+             "load_average": old.get("machine", {}).get("load_average"),
+             "load_average_end": old.get("load_average_end"),
+             "scenes": [s for s in old["scenes"] if s not in result["scenes"]]})
         for scene_name, entry in old["scenes"].items():
             if scene_name in result["scenes"]:
                 continue

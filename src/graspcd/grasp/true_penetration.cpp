@@ -41,10 +41,19 @@ struct TruePenetrationWatch::Pair {
 
 namespace {
 
+// "geom 'NAME'", or for an unnamed geom "geom N (mesh 'M' of body 'B')" (its type for a
+// primitive), as the start check names geoms.
 std::string geom_label(const mjModel* m, int g) {
   const char* name = mj_id2name(m, mjOBJ_GEOM, g);
   if (name != nullptr && *name != '\0') return "geom '" + std::string(name) + "'";
-  return "geom " + std::to_string(g);
+  std::string type = mujoco::geom_type_name(m->geom_type[g]);
+  if (m->geom_type[g] == mjGEOM_MESH) {
+    const char* mesh = mj_id2name(m, mjOBJ_MESH, m->geom_dataid[g]);
+    if (mesh != nullptr) type += " '" + std::string(mesh) + "'";
+  }
+  const char* body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]);
+  return "geom " + std::to_string(g) + " (" + type + " of body '" +
+         (body != nullptr ? body : "world") + "')";
 }
 
 bool may_collide(const mjModel* m, int a, int b) {
