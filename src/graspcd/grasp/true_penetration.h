@@ -21,6 +21,11 @@
 //    meshes are not measured at all (TruePenetration::unmeasured).
 //  - a plane: the depth of the object's lowest probe below it (its solid is the half-space under
 //    it). Height fields are not measured (unmeasured).
+// A sample per grasp step (10 ms at the shipped 2 ms step): an object thrown faster than a thin
+// support's thickness per grasp step can pass through it between two samples and leave only a
+// shallow depth (the Shadow hand's mug thrown through its table at 11 m/s: 2.3 mm); the ejection
+// verdict (grasp.h) catches such a run, and the race ranks it by its outcome first. A plane has no
+// thickness to pass: the depth below it stays.
 // Each measured geom is the hand's (any body but the world and the support's body tree) or the
 // support's (the world body: a floor; the support body tree of a driven hand). The deepest over
 // the run, its grasp step, time, phase and geom, and the deepest per side.
