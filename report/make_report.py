@@ -629,7 +629,8 @@ def race_section(race, fig_dir, fig_rel):
       " decompositions are cached in its `--work` folder, by default `report/out/race`). Each scene's grasp runs as graspcd"
       " serves it (the contact manifold), natively on MuJoCo's convex hull, and natively on"
       " HACD decompositions of the object into at most N convex pieces (`graspcd decompose`,"
-      " `grasp --decomposed`). The step cost is the wall time per physics step over the whole"
+      " `grasp --decomposed`; decomposed-N), and V-HACD's where raced (`decompose --engine"
+      " vhacd`; vhacd-N). The step cost is the wall time per physics step over the whole"
       " grasp (single runs one after another, not a benchmark); contacts are hand-object"
       " contacts per physics step; the contact error is phantom plus missed contacts per closing"
       " grasp step, judged by CGAL on the true meshes (`grasp --judge`: a phantom's point lies"
@@ -731,7 +732,8 @@ def race_section(race, fig_dir, fig_rel):
     lines.extend(race_protocol_text(race))
     w("")
     w("| scene | configuration | noslip | outcome | tilt final (deg) | top speed (m/s) |"
-      " kinetic energy (mJ) | true penetration (mm) | step cost (ms) | contacts per step |"
+      " kinetic energy (mJ) | true penetration: hand, support (mm) | step cost (ms) |"
+      " contacts per step |"
       " first contact as CGAL's | phantom, missed | contact error per step |")
     w("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     fig, (ax, axp) = plt.subplots(1, 2, figsize=(13, 4.8))
@@ -744,8 +746,13 @@ def race_section(race, fig_dir, fig_rel):
             outcome = race_score.row_outcome(r)
             noslip = r.get("noslip")
             if outcome == "cannot start":
+                # The grasp's message from "cannot start" on (without the scene's and the
+                # pieces' paths, which race.json keeps).
+                message = r.get("message") or ""
+                at = message.find("cannot start with ")
+                message = message[at + len("cannot start with "):] if at >= 0 else message
                 w(f"| {scene} | {r['configuration']} | {noslip} | cannot start:"
-                  f" {r.get('message', '')} | - | - | - | - | - | - | - | - | - |")
+                  f" {message.replace('|', '/')} | - | - | - | - | - | - | - | - | - |")
                 continue
             # A segment is a geom name (the project's hands) or a "body:NAME" touch pattern.
             segments = r["first_contact"]
@@ -755,12 +762,12 @@ def race_section(race, fig_dir, fig_rel):
             shown = outcome if "outcome" in r else ("held" if r["held"] else "not held")
             if "outcome" in r and outcome == "dropped" and r.get("reason"):
                 shown = f"dropped ({r['reason']})"
-            tp = r.get("true_penetration_max")
+            tp = race_score.hand_penetration(r)
             w(f"| {scene} | {r['configuration']} | {'-' if noslip is None else noslip} |"
               f" {shown} | {opt(r.get('tilt_final_deg'), '.1f')} |"
               f" {opt(r.get('max_speed'), '.3g')} |"
               f" {opt(None if r.get('kinetic_energy_max') is None else 1000 * r['kinetic_energy_max'], '.3g')} |"
-              f" {opt(None if tp is None else 1000 * tp, '.3g')}{penetration_side(r)} |"
+              f" {penetration_cell(r)} |"
               f" {r['ms_per_physics_step']:.3f} | {r['contacts_per_step']:.1f} |"
               f" {same} of {len(segments)} |"
               f" {by_geom(r['phantom'], r.get('phantom_by_geom'))},"
@@ -776,7 +783,7 @@ def race_section(race, fig_dir, fig_rel):
             ax.annotate(label, (r["ms_per_physics_step"], r["contact_error_per_step"]),
                         fontsize=5, xytext=(3, 3), textcoords="offset points")
             if tp is not None:
-                axp.annotate(label, (r["ms_per_physics_step"], 1000 * tp), fontsize=5,
+                axp.annotate(label, (r["ms_per_physics_step"], max(1000 * tp, 0.01)), fontsize=5,
                              xytext=(3, 3), textcoords="offset points")
         for good, (xs, ys, tps) in points.items():
             if not xs:
@@ -784,7 +791,7 @@ def race_section(race, fig_dir, fig_rel):
             style = ({"color": color} if good else {"facecolors": "none", "edgecolors": color})
             name = f"{scene} ({'kept' if good else 'not kept'})"
             ax.scatter(xs, ys, marker=marker, label=name, **style)
-            with_tp = [(x, 1000 * t) for x, t in zip(xs, tps) if t is not None]
+            with_tp = [(x, max(1000 * t, 0.01)) for x, t in zip(xs, tps) if t is not None]
             if with_tp:
                 axp.scatter([x for x, _ in with_tp], [t for _, t in with_tp], marker=marker,
                             **style)
@@ -796,9 +803,9 @@ def race_section(race, fig_dir, fig_rel):
         axp.text(0.5, 0.5, "no row of this race.json measured the true meshes", ha="center",
                  va="center", transform=axp.transAxes, fontsize=8)
     axp.set_xscale("log")
-    axp.set_yscale("symlog", linthresh=1.0)
+    axp.set_yscale("log")
     axp.set_xlabel("step cost: wall ms per physics step (log)")
-    axp.set_ylabel("deepest true-mesh penetration (mm, symlog)")
+    axp.set_ylabel("deepest true penetration into the hand (mm, log; at least 0.01)")
     axp.set_title("True-mesh penetration (the protocol's rows)")
     # The legend beside the axes, never over the points.
     axp.legend(*ax.get_legend_handles_labels(), fontsize=6, loc="upper left",
@@ -825,10 +832,13 @@ def shown_outcome(r):
     return "held" if r.get("held") else "not held"
 
 
-def penetration_side(r):
-    """" (hand)" or " (support)": where a row's deepest true penetration was, or ""."""
-    side = (r.get("true_penetration") or {}).get("side")
-    return f" ({side})" if side else ""
+def penetration_cell(r):
+    """A row's deepest true penetration into the hand and into the support, mm ("hand 0.2,
+    support 3.1"), "-" for a row without it."""
+    tp = r.get("true_penetration")
+    if not tp:
+        return "-"
+    return f"{1000 * tp['hand_max']:.3g}, {1000 * tp['support_max']:.3g}"
 
 
 def opt(value, spec):
@@ -850,11 +860,14 @@ def race_protocol_text(race):
         " penetration of the true meshes over the run (`grasp`'s true_penetration: the object"
         " against every hand geom and its support, once per grasp step in every phase, whatever"
         " geometry the configuration collided, by the start check's exact inside test on vertices"
-        " and edge points), so a run that throws the object out is not scored on the contacts it"
-        " no longer has; the kinetic energy is the object's largest. Rows are scored by outcome"
-        " (held, held tilted, dropped, then ejected and cannot start alike, worse than any run"
-        " that kept the object in the scene), then by the true penetration, then by the contact"
-        " error (`study/race/race_score.py`).")
+        " and edge points; shown into the hand and into the support, the table or floor), so a"
+        " run that throws the object out is not scored on the contacts it no longer has; the"
+        " kinetic energy is the object's largest. Rows are scored by outcome (held, held tilted,"
+        " dropped, then ejected and cannot start alike, worse than any run that kept the object"
+        " in the scene), then by the true penetration into the hand (the support's, like the"
+        " judge's, is not the grasp's: its contact with the object is MuJoCo's native one in"
+        " every configuration but the decomposed, and an object thrown through it is ejected),"
+        " then by the contact error (`study/race/race_score.py`).")
     return lines
 
 
@@ -888,36 +901,51 @@ def race_findings(race):
                         + ", ".join(f"{r['configuration']} {shown_outcome(r)}"
                                     for r in lost) + ".")
             o_rank = race_score.RANK[shown_outcome(ours)]
-            o_tp = ours.get("true_penetration_max")
+            o_tp = race_score.hand_penetration(ours)
+            o_err = round(ours["contact_error_per_step"], 2)
             good = []
             for r in cheaper:
                 if not r["configuration"].startswith(("decomposed", "vhacd")):
                     continue
                 if race_score.RANK[race_score.row_outcome(r)] > o_rank:
                     continue
-                tp = r.get("true_penetration_max")
+                tp = race_score.hand_penetration(r)
                 if (o_tp is None) != (tp is None):
                     continue
                 if tp is not None and tp > o_tp + PENETRATION_SLACK:
                     continue
+                # Compared as printed (2 decimals).
+                if round(r["contact_error_per_step"], 2) > o_err:
+                    continue
                 good.append(r)
+
+            def numbers(r):
+                tp = race_score.hand_penetration(r)
+                return (f"{r['ms_per_physics_step']:.3f} ms"
+                        + ("" if tp is None else f", {1000 * tp:.2f} mm into the hand")
+                        + f", {r['contact_error_per_step']:.2f} errors per step")
             if good:
                 cheap_good.append(
-                    f"- {scene}{setting}: graspcd {shown_outcome(ours)},"
-                    f" {ours['ms_per_physics_step']:.3f} ms"
-                    + ("" if o_tp is None else f", {1000 * o_tp:.2f} mm") + "; "
-                    + ", ".join(f"{r['configuration']} {shown_outcome(r)},"
-                                f" {r['ms_per_physics_step']:.3f} ms"
-                                + ("" if r.get("true_penetration_max") is None else
-                                   f", {1000 * r['true_penetration_max']:.2f} mm")
+                    f"- {scene}{setting}: graspcd {shown_outcome(ours)}, {numbers(ours)}; "
+                    + "; ".join(f"{r['configuration']} {shown_outcome(r)}, {numbers(r)}"
                                 for r in good) + ".")
             best = min(rows, key=race_score.score)
             if "outcome" in best:
                 verdicts.append(f"- {scene}{setting}: best {best['configuration']}"
                                 f" ({shown_outcome(best)},"
-                                f" {1000 * best['true_penetration_max']:.2f} mm,"
-                                f" {best['contact_error_per_step']:.2f} errors per step,"
+                                f" {1000 * race_score.hand_penetration(best):.2f} mm into the"
+                                f" hand, {best['contact_error_per_step']:.2f} errors per step,"
                                 f" {best['ms_per_physics_step']:.3f} ms).")
+    rescued = []
+    for scene, e in race["scenes"].items():
+        off = {r["configuration"]: r for r in e["rows"] if r.get("noslip") == 0}
+        for r in e["rows"]:
+            if not r.get("noslip") or r["configuration"] not in off:
+                continue
+            before = off[r["configuration"]]
+            if race_score.kept(r) != race_score.kept(before):
+                rescued.append(f"{scene} {r['configuration']} ({shown_outcome(before)} at"
+                               f" noslip 0, {shown_outcome(r)} at {r['noslip']})")
     w("Where exactness changes the outcome: graspcd kept the object (held, tilted or not) and a"
       " configuration cheaper per step, or one that could not start, at the same noslip setting"
       " did not:")
@@ -925,16 +953,19 @@ def race_findings(race):
     lines.extend(exact or ["- none of these scenes."])
     w("")
     w("Where a decomposition is as good and cheaper: a decomposition's run with an outcome no"
-      " worse than graspcd's, a true penetration no deeper than graspcd's by more than"
-      f" {1000 * PENETRATION_SLACK:g} mm (the start check's tolerance; rows of an earlier race,"
-      " without true penetration, by outcome alone) and a lower step cost, at the same noslip"
-      " setting:")
+      " worse than graspcd's, a true penetration into the hand no deeper than graspcd's by more"
+      f" than {1000 * PENETRATION_SLACK:g} mm (the start check's tolerance; rows of an earlier"
+      " race, without true penetration, by outcome and contact error alone), no more contact"
+      " error (as printed) and a lower step cost, at the same noslip setting:")
     w("")
     lines.extend(cheap_good or ["- none of these scenes."])
+    w("")
+    w("Where MuJoCo's noslip solver changes whether the object is kept (the same configuration"
+      " with noslip off and on): " + ("; ".join(rescued) if rescued else "nowhere") + ".")
     if verdicts:
         w("")
         w("The best row of each scene and noslip setting by the race's score (outcome, true"
-          " penetration, contact error):")
+          " penetration into the hand, contact error):")
         w("")
         lines.extend(verdicts)
     return lines

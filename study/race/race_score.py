@@ -12,8 +12,12 @@ The outcome of a run, best first (OUTCOMES):
                 message says why): no grasp to judge.
 The score orders runs: first the outcome's rank (RANK: ejected and cannot start share the worst
 rank, below every run that kept the object in the scene), then the deepest penetration of the true
-meshes over the run (`true_penetration_max`, none counting as infinitely deep), then the judge's
-contact error per closing step (phantom plus missed; none counting as infinite). Lower is better.
+meshes into the hand over the run (`true_penetration.hand_max`; `true_penetration_max` for a row
+without the split; none counting as infinitely deep), then the judge's contact error per closing
+step (phantom plus missed; none counting as infinite). Lower is better. The support's penetration
+(the table or floor the object stands on) is not in the score, as the judge leaves the support
+out: its contact with the object is MuJoCo's native one in every configuration, and an object
+thrown through it is ejected, which the outcome ranks.
 """
 
 import math
@@ -45,10 +49,18 @@ def _number(x):
     return math.inf if x is None else x
 
 
+def hand_penetration(r):
+    """The deepest true penetration of a row into the hand, m, or None when not measured."""
+    tp = r.get("true_penetration")
+    if tp and tp.get("hand_max") is not None:
+        return tp["hand_max"]
+    return r.get("true_penetration_max")
+
+
 def score(r):
-    """The sort key of a race row: (outcome rank, true penetration, contact error); lower is
-    better."""
-    return (RANK[row_outcome(r)], _number(r.get("true_penetration_max")),
+    """The sort key of a race row: (outcome rank, true penetration into the hand, contact error);
+    lower is better."""
+    return (RANK[row_outcome(r)], _number(hand_penetration(r)),
             _number(r.get("contact_error_per_step")))
 
 

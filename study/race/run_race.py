@@ -42,8 +42,8 @@ its outcome (held, held tilted, dropped, ejected, cannot start), the verdict's r
 the object's top speed and largest kinetic energy, the deepest penetration of the true meshes over
 the run (`grasp`'s true_penetration: measured on the true meshes whatever collided, so a run that
 threw the object out is not scored on the contacts it no longer has), the judge's phantom and
-missed contacts per closing step, the step cost, and its score (outcome, then true penetration,
-then contact error). A run the grasp refuses at the start (exit code 2, "cannot start ..." or "the
+missed contacts per closing step and the step cost; the report scores it (outcome, then the true
+penetration into the hand, then contact error). A run the grasp refuses at the start (exit code 2, "cannot start ..." or "the
 start state is not valid ...") is a row "cannot start" with that message; any other failed run a
 row "cannot start" with its message too; a decomposition that fails is recorded with its message
 and raced no further. --engines hacd,vhacd decomposes with each engine `graspcd decompose
@@ -223,14 +223,10 @@ def race_rows(name, command, noslips):
             continue
         first = first or g
         r = row(name, g, n)
-        r["score"] = list(race_score.score(r))
         print(f"[race]   {name} noslip {n}: {r['outcome']}, true penetration"
               f" {1000 * r['true_penetration_max']:.2f} mm,"
               f" {r['ms_per_physics_step']:.3f} ms per step", file=sys.stderr)
         rows.append(r)
-    for r in rows:
-        if "score" not in r:
-            r["score"] = [race_score.RANK["cannot start"], None, None]
     return rows, first
 
 

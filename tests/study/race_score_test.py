@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """study/race/race_score.py: the race's outcome and score on made-up rows and grasp documents. An
 ejected or unstarted run scores worse than any run that kept the object, whatever its penetration
-and contact error; within an outcome the true penetration decides, then the contact error. Run by
-ctest as race_score_test; exit 0 when every check holds."""
+and contact error; within an outcome the true penetration into the hand decides, then the contact
+error. Run by ctest as race_score_test; exit 0 when every check holds."""
 
 import math
 import sys
@@ -61,6 +61,15 @@ check(race_score.score(rows[0])[1] == math.inf, "no penetration counts as infini
 check(race_score.row_outcome({"held": True}) == "held", "old held row")
 check(race_score.row_outcome({"held": False}) == "dropped", "old row not held")
 check(race_score.kept(rows[3]) and not race_score.kept(rows[2]), "kept: held, tilted or not")
+
+# The hand's penetration is scored, the support's is not: an object sunk into its table but
+# shallow in the hand ranks before one deeper in the hand.
+sunk = dict(row("held", 0.004, 0.0, "sunk into the table"),
+            true_penetration={"hand_max": 0.0002, "support_max": 0.004})
+deep = dict(row("held", 0.001, 0.0, "deeper in the hand"),
+            true_penetration={"hand_max": 0.001, "support_max": 0.0})
+check(race_score.score(sunk) < race_score.score(deep), "the hand's penetration, not the table's")
+check(race_score.hand_penetration(sunk) == 0.0002, "hand_max read")
 
 for f in failures:
     print(f"race_score_test: FAILED: {f}", file=sys.stderr)
