@@ -329,6 +329,7 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   grasp.max_steps = options.max_steps;
   if (app.count("--contact-reuse") > 0) grasp.contact_reuse = options.contact_reuse;
   if (app.count("--noslip") > 0) grasp.noslip_iterations = options.noslip;
+  grasp.true_penetration = true;  // every run of the command measures it
   if (app.count("--method") > 0) grasp.method = options.method.method;
   if (app.count("--cap") > 0) grasp.cap = options.method.cap;
   if (app.count("--switch") > 0) grasp.switch_passes = options.method.switch_passes;

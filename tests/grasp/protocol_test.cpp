@@ -49,6 +49,7 @@ class Protocol : public testing::TempDirTest {
     xml = replaced(xml, "meshdir=\"meshes\"", "meshdir=\"" + kMjcf + "/meshes\"");
     xml = replaced(xml, "</worldbody>", "</worldbody>\n" + extra);
     options.native = true;
+    options.true_penetration = true;
     options.max_steps = 20;
     options.squeeze_time = 0.02;
     options.settle_time = 0.05;

@@ -430,8 +430,10 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   result.object_z_initial = object_height();
   start_watch();
   grasp_step_length_ = std::max(1, options.physics_steps_per_grasp_step);
-  true_watch_ =
-      std::make_unique<TruePenetrationWatch>(truth_ ? truth_ : m_, object_, support_root());
+  if (options.true_penetration) {
+    true_watch_ =
+        std::make_unique<TruePenetrationWatch>(truth_ ? truth_ : m_, object_, support_root());
+  }
   close(options, result);
 
   // Phase 2: squeeze, then settle, watching how far the object is pushed from where it was.
@@ -488,7 +490,7 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   result.tilt_final_deg = watch_.tilt * kDegrees;
   result.max_speed = watch_.max_speed;
   result.kinetic_energy_max = watch_.kinetic_energy_max;
-  result.true_penetration = true_watch_->result();
+  if (true_watch_) result.true_penetration = true_watch_->result();
   result.ejected = watch_.ejected;
   bool ever_touched = false;
   for (int step : result.first_contact) ever_touched = ever_touched || step > 0;
