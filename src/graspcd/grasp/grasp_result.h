@@ -67,7 +67,7 @@ struct GraspOptions {
   // Measure the true meshes' penetration once per grasp step (true_penetration.h; GraspResult::
   // true_penetration). `graspcd grasp` always does; off by default in the library, where the
   // study's recordings and the tests that only need a verdict would pay its exact inside tests
-  // (about 1 s of CPU per grasp on the shipped scenes, three to four times the grasp's own).
+  // (1 to 6 s of CPU per grasp on the shipped scenes, several times the grasp's own).
   bool true_penetration = false;
   // MuJoCo's noslip solver iterations (mjOption.noslip_iterations: after the main solver, a pass
   // that removes the contacts' slip); none: the scene's (MuJoCo's default 0, off).

@@ -27,6 +27,7 @@ struct TruePenetrationWatch::Surface {
   std::vector<Vec3> vertices;
   std::vector<Vec3> probes;
   std::vector<std::size_t> probe_start;
+  double radius = 0;  // the farthest probe from the geom's origin, m
 };
 
 // An object geom and a geom it may collide with: which ways are tested.
@@ -37,6 +38,10 @@ struct TruePenetrationWatch::Pair {
   bool other_in_object = false;  // the other's probes inside the object's solid
   bool support = false;
   std::string name;  // the other geom's, for the result
+  // The last measure of the pair: the other geom in the object's frame then, and its depth.
+  bool measured = false;
+  Pose last;
+  double last_depth = 0;
 };
 
 namespace {
@@ -127,6 +132,7 @@ TruePenetrationWatch::TruePenetrationWatch(const mjModel* truth, int object_body
       ++s->probe_start[f + 1];
     }
     for (std::size_t f = 0; f < triangles.size(); ++f) s->probe_start[f + 1] += s->probe_start[f];
+    for (const Vec3& p : s->probes) s->radius = std::max(s->radius, p.norm());
     return s.get();
   };
   std::vector<char> partial(static_cast<std::size_t>(m->ngeom), 0);
@@ -180,7 +186,7 @@ void TruePenetrationWatch::measure(const mjData* d, long step, const std::string
   ++result_.measures;
   std::vector<Vec3> placed;
   std::vector<std::int32_t> stack;
-  for (const Pair& pair : pairs_) {
+  for (Pair& pair : pairs_) {
     const int o = pair.object;
     const int g = pair.other;
     const Surface& object = *surfaces_[static_cast<std::size_t>(o)];
@@ -199,6 +205,22 @@ void TruePenetrationWatch::measure(const mjData* d, long step, const std::string
                          m->geom_rbound[o] - m->geom_rbound[g];
       if (gap > 0) continue;
       const Surface& other = *surfaces_[static_cast<std::size_t>(g)];
+      // A pair that moved too little since its last measure to pass the deepest of its side is
+      // not measured again: a probe's depth (its distance to the surface inside, 0 outside) moves
+      // no more than the probe, and the probes of the other geom in the object's frame, and of
+      // the object in the other's, moved at most |R1 - R0|_F r + |dt| (r the probes' radius), so
+      // the pair's depth is at most its last plus that (exact: the maxima are those of measuring
+      // every time).
+      const Pose now = mujoco::relative_pose(d, o, g);
+      if (pair.measured) {
+        const Pose& was = pair.last;
+        const double turn = (now.R - was.R).norm();  // Frobenius, at least the spectral norm
+        const double moved = std::max(
+            turn * other.radius + (now.t - was.t).norm(),
+            turn * object.radius + (now.R.transpose() * now.t - was.R.transpose() * was.t).norm());
+        const double side = pair.support ? result_.support_max : result_.hand_max;
+        if (pair.last_depth + moved + 1e-9 < side) continue;
+      }
       // The deepest of `probed`'s probes inside `solid`, `p` placing probed in solid's frame: only
       // the probes of the probed tree's leaves whose boxes meet the solid's root box.
       const auto deepest = [&placed, &stack](const Surface& solid, const Surface& probed,
@@ -230,9 +252,10 @@ void TruePenetrationWatch::measure(const mjData* d, long step, const std::string
       if (pair.object_in_other) {
         depth = std::max(depth, deepest(other, object, mujoco::relative_pose(d, g, o)));
       }
-      if (pair.other_in_object) {
-        depth = std::max(depth, deepest(object, other, mujoco::relative_pose(d, o, g)));
-      }
+      if (pair.other_in_object) depth = std::max(depth, deepest(object, other, now));
+      pair.measured = true;
+      pair.last = now;
+      pair.last_depth = depth;
     }
     double& side = pair.support ? result_.support_max : result_.hand_max;
     side = std::max(side, depth);

@@ -26,6 +26,9 @@
 // shallow depth (the Shadow hand's mug thrown through its table at 11 m/s: 2.3 mm); the ejection
 // verdict (grasp.h) catches such a run, and the race ranks it by its outcome first. A plane has no
 // thickness to pass: the depth below it stays.
+// A pair that moved too little since its last measure to pass the deepest of its side found so
+// far is not measured again (a depth moves no more than the probes do): the maxima, their step
+// and geom are those of measuring every pair at every grasp step.
 // Each measured geom is the hand's (any body but the world and the support's body tree) or the
 // support's (the world body: a floor; the support body tree of a driven hand). The deepest over
 // the run, its grasp step, time, phase and geom, and the deepest per side.
