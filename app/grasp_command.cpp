@@ -62,6 +62,7 @@ struct GraspCliOptions {
   std::string decomposed;      // --decomposed DIR: the object's collision by its convex pieces
   bool judge = false;          // --judge: every closing step's contacts against CGAL (the race)
   bool force = false;          // --force: --write-scene may replace files graspcd did not write
+  int noslip = 0;              // --noslip N: MuJoCo's noslip iterations (default: the scene's)
 };
 
 namespace fs = std::filesystem;
@@ -200,6 +201,25 @@ std::string object_line(const ObjectRun& o) {
   return out.str();
 }
 
+// The true meshes' penetration (true_penetration.h) as a phrase of the verdict line: "true
+// meshes: deepest penetration 0.412 mm (geom 'left_pad', hand, grasp step 57, t = 0.570 s, in the
+// closing), hand 0.412 mm, support 0.101 mm, over 640 grasp steps; partial: ...; not measured:
+// ...".
+std::string true_penetration_text(const grasp::TruePenetration& p) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(3) << "true meshes: deepest penetration " << p.max * 1e3
+      << " mm";
+  if (p.step > 0) {
+    out << " (" << p.geom << ", " << p.side << ", grasp step " << p.step << ", t = " << p.time
+        << " s, in " << p.phase << ")";
+  }
+  out << ", hand " << p.hand_max * 1e3 << " mm, support " << p.support_max * 1e3 << " mm, over "
+      << p.measures << " grasp steps (" << p.pairs << " geom pairs)";
+  for (const std::string& line : p.partial) out << "; partial: " << line;
+  for (const std::string& line : p.unmeasured) out << "; not measured: " << line;
+  return out.str();
+}
+
 // quiet: without the per-step table (its header line and one line per grasp step).
 void print_text(const grasp::GraspResult& r, const std::optional<ObjectRun>& object,
                 const std::optional<grasp::DecomposedScene>& decomposed,
@@ -233,12 +253,15 @@ void print_text(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
       << " m (final), rose " << r.object_rise << " m of the hand's " << r.hand_travel
       << " m, lowest " << r.hold_min_z << " m and drift " << r.hold_drift
       << " m in the hold; grip point rose " << r.grip_rise << " m; tilt " << r.tilt_final_deg
-      << " deg final, " << r.tilt_deg << " deg largest; fastest " << r.max_speed << " m/s\n";
+      << " deg final, " << r.tilt_deg << " deg largest; fastest " << r.max_speed
+      << " m/s, kinetic energy at most " << std::setprecision(6) << r.kinetic_energy_max << " J; "
+      << true_penetration_text(r.true_penetration) << '\n';
   out << "# detection ns " << r.detection_ns_close << " closing, " << r.detection_ns_total
       << " total; " << r.physics_steps << " physics steps, " << std::setprecision(2) << r.sim_time
       << " s simulated, " << std::setprecision(4) << r.step_wall_ms << " ms per physics step; "
       << r.contained_calls << " containment findings; " << r.nonfinite_skips
-      << " non-finite skips; " << r.reused_calls << " reused\n";
+      << " non-finite skips; " << r.reused_calls << " reused; noslip " << r.noslip_iterations
+      << " iterations\n";
   if (decomposed) {
     out << "# decomposed: " << decomposed->replaced_geoms << " geom(s) of " << decomposed->source
         << " collide as " << decomposed->pieces << " convex pieces each (native)\n";
@@ -305,6 +328,30 @@ void print_json(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
       {"tilt_deg", r.tilt_deg},
       {"tilt_final_deg", r.tilt_final_deg},
       {"max_speed", r.max_speed},
+      {"kinetic_energy_max", r.kinetic_energy_max},
+      {"true_penetration_max", r.true_penetration.max},
+      {"true_penetration_step",
+       r.true_penetration.step > 0 ? nlohmann::json(r.true_penetration.step) : nlohmann::json()},
+      {"true_penetration",
+       {{"max", r.true_penetration.max},
+        {"step",
+         r.true_penetration.step > 0 ? nlohmann::json(r.true_penetration.step) : nlohmann::json()},
+        {"time",
+         r.true_penetration.step > 0 ? nlohmann::json(r.true_penetration.time) : nlohmann::json()},
+        {"phase",
+         r.true_penetration.step > 0 ? nlohmann::json(r.true_penetration.phase) : nlohmann::json()},
+        {"geom",
+         r.true_penetration.step > 0 ? nlohmann::json(r.true_penetration.geom) : nlohmann::json()},
+        {"side",
+         r.true_penetration.step > 0 ? nlohmann::json(r.true_penetration.side) : nlohmann::json()},
+        {"hand_max", r.true_penetration.hand_max},
+        {"support_max", r.true_penetration.support_max},
+        {"measures", r.true_penetration.measures},
+        {"pairs", r.true_penetration.pairs},
+        {"probe_spacing", grasp::kTrueProbeSpacing},
+        {"partial", r.true_penetration.partial},
+        {"unmeasured", r.true_penetration.unmeasured}}},
+      {"noslip_iterations", r.noslip_iterations},
       {"ejected", r.ejected ? nlohmann::json{{"t", r.ejected->time},
                                              {"speed", r.ejected->speed},
                                              {"cause", r.ejected->cause}}
@@ -386,6 +433,8 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
     grasp.reduction = choice->reduction;
     grasp.max_contacts = choice->max_contacts;
   }
+  if (app.count("--noslip") > 0) grasp.noslip_iterations = options.noslip;
+  grasp.true_penetration = true;  // every run of the command measures it
   if (app.count("--method") > 0) grasp.method = options.method.method;
   if (app.count("--cap") > 0) grasp.cap = options.method.cap;
   if (app.count("--switch") > 0) grasp.switch_passes = options.method.switch_passes;
@@ -545,6 +594,10 @@ Command add_grasp_command(CLI::App& parent) {
                 "lines (no effect with --json)");
   app->add_option("--config", options->config,
                   "Pair config (JSON); default SCENE.pairs.json beside the scene");
+  app->add_option("--noslip", options->noslip,
+                  "MuJoCo's noslip solver iterations (mjOption.noslip_iterations, 0: off) for "
+                  "every configuration (default: the scene's, MuJoCo's 0)")
+      ->check(CLI::Range(0, 1000));
   app->add_option("--max-steps", options->max_steps, "Most closing grasp steps")
       ->check(positive_number())
       ->capture_default_str();
@@ -579,15 +632,18 @@ Command add_grasp_command(CLI::App& parent) {
       "held yes[, tilted N°]|no[: REASON]' (REASON 'ejected at t = T s (S m/s)' for an object "
       "thrown out, grasp/grasp.h) with 'object z (origin)': the heights of the object body's "
       "origin (as object_z) at the start, before the lift and at the end, its rise and the hand's "
-      "travel, "
-      "its grip point's rise, its tilt since the lift (final and largest) and its top speed; the "
+      "travel, its grip point's rise, its tilt since the lift (final and largest), its top speed, "
+      "its largest kinetic energy and the true meshes' penetration ('true meshes: deepest "
+      "penetration D mm (GEOM, hand|support, grasp step S, t = T s, in PHASE), hand H mm, support "
+      "S mm, over M grasp steps (P geom pairs)', then '; partial: ...' and '; not measured: ...' "
+      "for open meshes, see below); the "
       "detection time of the closing steps and of the whole "
       "run, the physics steps, simulated seconds and wall ms per physics step, the "
       "containment findings (served calls whose surfaces did not meet but a segment lay wholly "
       "inside the closed object: a contact the surface test cannot see), and the non-finite "
       "skips (served calls whose geom placement held NaN, inf or a number beyond 1e10: no "
-      "contacts, no query), and the reused calls (answered by a pair's kept contacts, "
-      "--contact-reuse).\n"
+      "contacts, no query), the reused calls (answered by a pair's kept contacts, "
+      "--contact-reuse), and MuJoCo's noslip iterations.\n"
       "--json: one document with the same: scene, method, native, steps (step, contacts, "
       "detection_ns, box_tests, front_skips (front node pairs, or leaf pairs whose triangles "
       "were apart, still apart by their last gap, kept without a box or triangle test), "
@@ -601,7 +657,12 @@ Command add_grasp_command(CLI::App& parent) {
       "hold_min_z, hold_drift, grip_rise "
       "(m, the rise of the object's grip point), tilt_deg and tilt_final_deg (the object's "
       "rotation since the start of the lift: the largest and the final, degrees), max_speed "
-      "(the object's top speed, m/s), ejected ({t, speed, cause}: when, how fast and why the "
+      "(the object's top speed, m/s), kinetic_energy_max (the object's largest kinetic energy, "
+      "J, every physics step), true_penetration_max (m) and true_penetration_step (its grasp "
+      "step, or null when none was found) with true_penetration {max, step, time, phase, geom, "
+      "side (hand or support), hand_max, support_max, measures (grasp steps measured), pairs, "
+      "probe_spacing (m), partial, unmeasured} (see below), noslip_iterations, ejected ({t, "
+      "speed, cause}: when, how fast and why the "
       "object was seen thrown out, cause speed, below or away; null when not), "
       "detection_ns_close, detection_ns_total, physics_steps, sim_time, ms_per_physics_step, "
       "max_contacts, mean_contacts (finger-object contacts per physics step), max_pair_contacts "
@@ -631,6 +692,23 @@ Command add_grasp_command(CLI::App& parent) {
       "'its grip rose X cm "
       "of the hand's Y cm travel'. "
       "--require-held: exit code 1 when not held.\n"
+      "True meshes' penetration: whatever geometry collides (graspcd's contacts, --native's "
+      "hulls, --decomposed's pieces), after every 5th physics step of every phase (each grasp "
+      "step, also in the squeeze, lift and hold) each object geom is measured against every "
+      "geom the contype/conaffinity filter lets collide with it, on the true meshes (for "
+      "--decomposed the object as it was): the deepest of each one's vertices and points "
+      "along its edges (at most 1 mm apart) inside the other's closed solid, by the start "
+      "check's exact inside test, both ways; against a plane, the object's depth below it. A "
+      "geom is the support's when it belongs to the world body (a floor) or to the pair "
+      "config's 'support' body, else the hand's. An open mesh has no inside: only the other "
+      "side's inside is tested ('partial', one line per open geom); two open meshes, and "
+      "height fields, are not measured ('unmeasured'). A vertex measure can underestimate a "
+      "depth (two edges crossing), never invent one; an object thrown through its support "
+      "shows as the support's depth. The time it takes is outside the physics steps' wall "
+      "time.\n"
+      "--noslip N: MuJoCo's noslip solver (mjOption.noslip_iterations: N iterations after the "
+      "main solver that remove the contacts' slip) in every configuration; default the "
+      "scene's (0, off); JSON noslip_iterations records what ran.\n"
       "Warnings: the pair registry's findings that do not stop the grasp (a served geom with a "
       "margin, an open mesh inside which containment is not checked), one line 'warning: "
       "CONFIG: message' each on stderr, and in the JSON's warnings.\n"

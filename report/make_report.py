@@ -27,6 +27,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import draw_figures  # noqa: E402  (report/draw_figures.py, beside this script)
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                                "study", "race"))
+import race_score  # noqa: E402  (study/race/race_score.py: the race's outcome and score)
+
 # bridge::finger_segment_names(): the order of every per-segment array in study.json.
 SEGMENTS = [f"finger{f}_{s}" for f in range(1, 5) for s in "ABC"]
 
@@ -625,7 +629,8 @@ def race_section(race, fig_dir, fig_rel):
       " decompositions are cached in its `--work` folder, by default `report/out/race`). Each scene's grasp runs as graspcd"
       " serves it (the contact manifold), natively on MuJoCo's convex hull, and natively on"
       " HACD decompositions of the object into at most N convex pieces (`graspcd decompose`,"
-      " `grasp --decomposed`). The step cost is the wall time per physics step over the whole"
+      " `grasp --decomposed`; decomposed-N), and V-HACD's where raced (`decompose --engine"
+      " vhacd`; vhacd-N). The step cost is the wall time per physics step over the whole"
       " grasp (single runs one after another, not a benchmark); contacts are hand-object"
       " contacts per physics step; the contact error is phantom plus missed contacts per closing"
       " grasp step, judged by CGAL on the true meshes (`grasp --judge`: a phantom's point lies"
@@ -649,7 +654,23 @@ def race_section(race, fig_dir, fig_rel):
       " earlier run kept by `run_race.py --merge` keeps that run's machine, date and load; the"
       " load average is the machine's, shared with other builds, so compare step costs within a"
       " scene, not across scenes).")
-    if race.get("command"):
+    if race.get("merged"):
+        w("")
+        w(f"This file joins races run apart (`{' '.join(race['command'])}`), each scene with the"
+          " provenance of the race that ran it:")
+        w("")
+        for part in race["merged"]:
+            if not part["scenes"]:
+                continue
+            if part.get("command"):
+                load = ", ".join(f"{x:.1f}" for x in part["load_average"] or [])
+                end = ", ".join(f"{x:.1f}" for x in part["load_average_end"] or [])
+                w(f"- {', '.join(part['scenes'])}: `{' '.join(part['command'])}`,"
+                  f" {part['wall_seconds'] / 60:.0f} minutes of wall time, the load average"
+                  f" {load} at its start and {end} at its end.")
+            else:
+                w(f"- {', '.join(part['scenes'])}: an earlier race ({part['file']}).")
+    elif race.get("command"):
         w("")
         w(f"This file comes from one run, `{' '.join(race['command'])}`: "
           f"{race['wall_seconds'] / 60:.0f} minutes of wall time, the load average"
@@ -664,6 +685,9 @@ def race_section(race, fig_dir, fig_rel):
         what = (f"`grasp --object {obj['file']} {' '.join(obj['options'])}`" if obj
                 else f"mjcf/{scene}.xml")
         counts = ", ".join(str(n) for n in e.get("pieces", race["pieces"])) or "none"
+        if e.get("vhacd_pieces") is not None:
+            counts = (f"HACD {counts}; V-HACD"
+                      f" {', '.join(str(n) for n in e['vhacd_pieces']) or 'none'}")
         if "machine" in p:
             old = p["machine"]
             w(f"| {scene} | {what} | {counts} | (not recorded) | {old['date']} |"
@@ -683,93 +707,273 @@ def race_section(race, fig_dir, fig_rel):
       " mesh file's units, times the scene's mesh scale (`mesh_scale`; 1 where race.json has"
       " none).")
     w("")
-    w("| scene | N asked | pieces | HACD on | HACD (s) | one-sided Hausdorff (mm) |"
+    w("| scene | N asked | pieces | engine on | decomposition (s) | one-sided Hausdorff (mm) |"
       " volume added |")
     w("|---|---|---|---|---|---|---|")
     for scene, e in race["scenes"].items():
         scale = e.get("mesh_scale", [1, 1, 1])[0]
         for n, d in e["decompositions"].items():
+            if "error" in d:
+                w(f"| {scene} ({e['mesh']}) | {n} | - | {d.get('engine', 'hacd')} failed:"
+                  f" {d['error']} | - | - | - |")
+                continue
             vol = d["volume"]
             added = "open mesh" if vol is None else f"{100 * vol['added_fraction']:.0f}%"
             simp = d.get("simplify")
-            on = ("the mesh" if not simp or not simp["decimated"] else
-                  f"a copy of {simp['faces_after']} faces (`--simplify {simp['max_faces']}`,"
-                  f" {simp['seconds']:.1f} s)")
+            engine = d.get("engine", "hacd").upper().replace("VHACD", "V-HACD")
+            on = (f"{engine} on the mesh" if not simp or not simp["decimated"] else
+                  f"{engine} on a copy of {simp['faces_after']} faces (`--simplify"
+                  f" {simp['max_faces']}`, {simp['seconds']:.1f} s)")
+            haus = ("-" if d.get("hausdorff") is None else
+                    f"{1000 * scale * d['hausdorff']:.2f} +-"
+                    f" {1000 * scale * d['hausdorff_bound']:.2f}")
             w(f"| {scene} ({e['mesh']}, {d['source_faces']} faces) | {n} | {d['pieces']} |"
-              f" {on} | {d['seconds']:.1f} | {1000 * scale * d['hausdorff']:.2f} +-"
-              f" {1000 * scale * d['hausdorff_bound']:.2f} | {added} |")
+              f" {on} | {d['seconds']:.1f} | {haus} | {added} |")
+    lines.extend(race_protocol_text(race))
     w("")
-    w("| scene | configuration | step cost (ms) | contacts per step | gripped, held |"
+    w("| scene | configuration | noslip | outcome | tilt final (deg) | top speed (m/s) |"
+      " kinetic energy (mJ) | true penetration: hand, support (mm) | step cost (ms) |"
+      " contacts per step |"
       " first contact as CGAL's | phantom, missed | contact error per step |")
-    w("|---|---|---|---|---|---|---|---|")
-    fig, ax = plt.subplots(figsize=(9.5, 4.8))
-    markers = "osD^v<>"
-    wins = []
-    verdicts = []
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    fig, (ax, axp) = plt.subplots(1, 2, figsize=(13, 4.8))
+    markers = "osD^v<>phH*"
     for k, (scene, e) in enumerate(race["scenes"].items()):
-        xs, ys, held = [], [], []
+        color = f"C{k % 10}"
+        marker = markers[k % len(markers)]
+        points = {True: ([], [], []), False: ([], [], [])}
         for r in e["rows"]:
+            outcome = race_score.row_outcome(r)
+            noslip = r.get("noslip")
+            if outcome == "cannot start":
+                # The grasp's message from "cannot start" on (without the scene's and the
+                # pieces' paths, which race.json keeps).
+                message = r.get("message") or ""
+                at = message.find("cannot start with ")
+                message = message[at + len("cannot start with "):] if at >= 0 else message
+                w(f"| {scene} | {r['configuration']} | {noslip} | cannot start:"
+                  f" {message.replace('|', '/')} | - | - | - | - | - | - | - | - | - |")
+                continue
             # A segment is a geom name (the project's hands) or a "body:NAME" touch pattern.
             segments = r["first_contact"]
             same = sum(1 for seg, step in segments.items()
                        if (r["cgal_first_contact_body"].get(seg[5:]) if seg.startswith("body:")
                            else r["cgal_first_contact"].get(seg)) == step)
-            w(f"| {scene} | {r['configuration']} | {r['ms_per_physics_step']:.3f} |"
-              f" {r['contacts_per_step']:.1f} |"
-              f" {'yes' if r['gripped'] else 'no'}, {'yes' if r['held'] else 'no'} |"
+            shown = outcome if "outcome" in r else ("held" if r["held"] else "not held")
+            if "outcome" in r and outcome == "dropped" and r.get("reason"):
+                shown = f"dropped ({r['reason']})"
+            tp = race_score.hand_penetration(r)
+            w(f"| {scene} | {r['configuration']} | {'-' if noslip is None else noslip} |"
+              f" {shown} | {opt(r.get('tilt_final_deg'), '.1f')} |"
+              f" {opt(r.get('max_speed'), '.3g')} |"
+              f" {opt(None if r.get('kinetic_energy_max') is None else 1000 * r['kinetic_energy_max'], '.3g')} |"
+              f" {penetration_cell(r)} |"
+              f" {r['ms_per_physics_step']:.3f} | {r['contacts_per_step']:.1f} |"
               f" {same} of {len(segments)} |"
               f" {by_geom(r['phantom'], r.get('phantom_by_geom'))},"
               f" {by_geom(r['missed'], r.get('missed_by_geom'))} |"
               f" {r['contact_error_per_step']:.2f} |")
-            xs.append(r["ms_per_physics_step"])
-            ys.append(r["contact_error_per_step"])
-            held.append(r["held"])
-            ax.annotate(r["configuration"].replace("decomposed-", "d"),
-                        (r["ms_per_physics_step"], r["contact_error_per_step"]),
-                        fontsize=6, xytext=(3, 3), textcoords="offset points")
-        color = f"C{k}"
-        marker = markers[k % len(markers)]
-        if any(held):
-            ax.scatter([x for x, h in zip(xs, held) if h], [y for y, h in zip(ys, held) if h],
-                       marker=marker, color=color, label=f"{scene} (held)")
-        if not all(held):
-            ax.scatter([x for x, h in zip(xs, held) if not h],
-                       [y for y, h in zip(ys, held) if not h], marker=marker, facecolors="none",
-                       edgecolors=color, label=f"{scene} (not held)")
-        ours = next(r for r in e["rows"] if r["configuration"] == "graspcd")
-        verdicts.append(race_verdict(scene, ours, e["rows"]))
-        for r in e["rows"]:
-            if r["configuration"].startswith("decomposed") and \
-                    r["ms_per_physics_step"] < ours["ms_per_physics_step"] and \
-                    r["contact_error_per_step"] <= ours["contact_error_per_step"] and \
-                    (r["held"] or not ours["held"]):
-                wins.append(f"{scene} ({r['configuration']})")
+            good = race_score.kept(r)
+            points[good][0].append(r["ms_per_physics_step"])
+            points[good][1].append(r["contact_error_per_step"])
+            points[good][2].append(tp)
+            label = r["configuration"].replace("decomposed-", "d").replace("vhacd-", "v")
+            if noslip:
+                label += f" ns{noslip}"
+            ax.annotate(label, (r["ms_per_physics_step"], r["contact_error_per_step"]),
+                        fontsize=5, xytext=(3, 3), textcoords="offset points")
+            if tp is not None:
+                axp.annotate(label, (r["ms_per_physics_step"], max(1000 * tp, 0.01)), fontsize=5,
+                             xytext=(3, 3), textcoords="offset points")
+        for good, (xs, ys, tps) in points.items():
+            if not xs:
+                continue
+            style = ({"color": color} if good else {"facecolors": "none", "edgecolors": color})
+            name = f"{scene} ({'kept' if good else 'not kept'})"
+            ax.scatter(xs, ys, marker=marker, label=name, **style)
+            with_tp = [(x, max(1000 * t, 0.01)) for x, t in zip(xs, tps) if t is not None]
+            if with_tp:
+                axp.scatter([x for x, _ in with_tp], [t for _, t in with_tp], marker=marker,
+                            **style)
     ax.set_xscale("log")
     ax.set_xlabel("step cost: wall ms per physics step (log)")
     ax.set_ylabel("contact error: phantom + missed per closing step")
-    ax.set_title("The race: every configuration a point")
+    ax.set_title("Contact error (the judge)")
+    if not axp.collections:
+        axp.text(0.5, 0.5, "no row of this race.json measured the true meshes", ha="center",
+                 va="center", transform=axp.transAxes, fontsize=8)
+    axp.set_xscale("log")
+    axp.set_yscale("log")
+    axp.set_xlabel("step cost: wall ms per physics step (log)")
+    axp.set_ylabel("deepest true penetration into the hand (mm, log; at least 0.01)")
+    axp.set_title("True-mesh penetration (the protocol's rows)")
     # The legend beside the axes, never over the points.
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
+    axp.legend(*ax.get_legend_handles_labels(), fontsize=6, loc="upper left",
+               bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     fig.tight_layout()
     fig.savefig(os.path.join(fig_dir, "race_pareto.png"), dpi=120, bbox_inches="tight")
     plt.close(fig)
     w("")
-    w(f"![step cost against contact error]({fig_rel}/race_pareto.png)")
+    w(f"![step cost against contact error and true-mesh penetration]({fig_rel}/race_pareto.png)")
     w("")
-    w("Filled markers: the object was held through the lift and hold; hollow: it was not.")
+    w("Filled markers: the object was kept (held, tilted or not); hollow: it was not (dropped,"
+      " ejected; a run that could not start has no point). Rows of an earlier race (no noslip"
+      " column) have no true penetration and appear in the left panel only.")
     w("")
-    w("Where a decomposition wins, scene by scene (graspcd's step cost and contact error per"
-      " closing step beside the decompositions'):")
-    w("")
-    lines.extend(verdicts)
-    w("")
-    if wins:
-        w("A decomposition wins outright (cheaper per step, no more contact error, held whenever"
-          f" graspcd held) on: {', '.join(wins)}.")
-    else:
-        w("No decomposition is both cheaper per step than graspcd and as faithful while holding"
-          " whenever graspcd held, on these scenes.")
+    lines.extend(race_findings(race))
     return lines
+
+
+def shown_outcome(r):
+    """A row's outcome as the findings name it: "not held" for a row of an earlier race, which
+    recorded neither the tilt nor an ejection."""
+    if "outcome" in r:
+        return r["outcome"]
+    return "held" if r.get("held") else "not held"
+
+
+def penetration_cell(r):
+    """A row's deepest true penetration into the hand and into the support, mm ("hand 0.2,
+    support 3.1"), "-" for a row without it."""
+    tp = r.get("true_penetration")
+    if not tp:
+        return "-"
+    return f"{1000 * tp['hand_max']:.3g}, {1000 * tp['support_max']:.3g}"
+
+
+def opt(value, spec):
+    """A number as `spec`, or "-" for none."""
+    return "-" if value is None else format(value, spec)
+
+
+def race_protocol_text(race):
+    """What a row of the race says, and the order the race scores rows by."""
+    lines = [""]
+    lines.append(
+        "Each configuration of a scene raced under the protocol (rows with a noslip value) ran"
+        " once per MuJoCo noslip setting (`grasp --noslip N`: N iterations of MuJoCo's noslip"
+        " solver, which removes the contacts' slip; 0 is MuJoCo's default, off). The outcome is"
+        " the grasp's verdict: held (final tilt under 2 degrees), held tilted, dropped (not held,"
+        " not ejected: the reason beside it), ejected (faster than 2 m/s, below its support or out"
+        " of the scene) or cannot start (the grasp refused the start: a hull or pieces that hold a"
+        " finger at the start, with the grasp's message). The true penetration is the deepest"
+        " penetration of the true meshes over the run (`grasp`'s true_penetration: the object"
+        " against every hand geom and its support, once per grasp step in every phase, whatever"
+        " geometry the configuration collided, by the start check's exact inside test on vertices"
+        " and edge points; shown into the hand and into the support, the table or floor), so a"
+        " run that throws the object out is not scored on the contacts it no longer has; the"
+        " kinetic energy is the object's largest. Rows are scored by outcome (held, held tilted,"
+        " dropped, then ejected and cannot start alike, worse than any run that kept the object"
+        " in the scene), then by the true penetration into the hand (the support's, like the"
+        " judge's, is not the grasp's: its contact with the object is MuJoCo's native one in"
+        " every configuration but the decomposed, and an object thrown through it is ejected),"
+        " then by the contact error (`study/race/race_score.py`).")
+    return lines
+
+
+def race_findings(race):
+    """The race's findings, computed from the rows: where exactness changes the outcome (graspcd
+    keeps the object and a cheaper configuration does not, at the same noslip setting) and where a
+    decomposition is as good and cheaper (no worse an outcome, a true penetration no deeper than
+    graspcd's by more than the start check's 0.5 mm, a lower step cost)."""
+    lines = []
+    w = lines.append
+    exact, cheap_good, verdicts = [], [], []
+    for scene, e in race["scenes"].items():
+        by_noslip = {}
+        for r in e["rows"]:
+            by_noslip.setdefault(r.get("noslip"), []).append(r)
+        for noslip, rows in by_noslip.items():
+            ours = next((r for r in rows if r["configuration"] == "graspcd"), None)
+            if ours is None or ours.get("ms_per_physics_step") is None:
+                continue
+            setting = "" if noslip is None else f", noslip {noslip}"
+            cheaper = [r for r in rows if r is not ours and r.get("ms_per_physics_step") is not None
+                       and r["ms_per_physics_step"] < ours["ms_per_physics_step"]]
+            # Runs that could not start cost nothing: they lose whatever graspcd did.
+            refused = [r for r in rows if r is not ours and
+                       race_score.row_outcome(r) == "cannot start"]
+            if race_score.kept(ours):
+                lost = [r for r in cheaper + refused if not race_score.kept(r)]
+                if lost:
+                    exact.append(
+                        f"- {scene}{setting}: graspcd {shown_outcome(ours)}; "
+                        + ", ".join(f"{r['configuration']} {shown_outcome(r)}"
+                                    for r in lost) + ".")
+            o_rank = race_score.RANK[shown_outcome(ours)]
+            o_tp = race_score.hand_penetration(ours)
+            o_err = round(ours["contact_error_per_step"], 2)
+            good = []
+            for r in cheaper:
+                if not r["configuration"].startswith(("decomposed", "vhacd")):
+                    continue
+                if race_score.RANK[race_score.row_outcome(r)] > o_rank:
+                    continue
+                tp = race_score.hand_penetration(r)
+                if (o_tp is None) != (tp is None):
+                    continue
+                if tp is not None and tp > o_tp + PENETRATION_SLACK:
+                    continue
+                # Compared as printed (2 decimals).
+                if round(r["contact_error_per_step"], 2) > o_err:
+                    continue
+                good.append(r)
+
+            def numbers(r):
+                tp = race_score.hand_penetration(r)
+                return (f"{r['ms_per_physics_step']:.3f} ms"
+                        + ("" if tp is None else f", {1000 * tp:.2f} mm into the hand")
+                        + f", {r['contact_error_per_step']:.2f} errors per step")
+            if good:
+                cheap_good.append(
+                    f"- {scene}{setting}: graspcd {shown_outcome(ours)}, {numbers(ours)}; "
+                    + "; ".join(f"{r['configuration']} {shown_outcome(r)}, {numbers(r)}"
+                                for r in good) + ".")
+            best = min(rows, key=race_score.score)
+            if "outcome" in best:
+                verdicts.append(f"- {scene}{setting}: best {best['configuration']}"
+                                f" ({shown_outcome(best)},"
+                                f" {1000 * race_score.hand_penetration(best):.2f} mm into the"
+                                f" hand, {best['contact_error_per_step']:.2f} errors per step,"
+                                f" {best['ms_per_physics_step']:.3f} ms).")
+    rescued = []
+    for scene, e in race["scenes"].items():
+        off = {r["configuration"]: r for r in e["rows"] if r.get("noslip") == 0}
+        for r in e["rows"]:
+            if not r.get("noslip") or r["configuration"] not in off:
+                continue
+            before = off[r["configuration"]]
+            if race_score.kept(r) != race_score.kept(before):
+                rescued.append(f"{scene} {r['configuration']} ({shown_outcome(before)} at"
+                               f" noslip 0, {shown_outcome(r)} at {r['noslip']})")
+    w("Where exactness changes the outcome: graspcd kept the object (held, tilted or not) and a"
+      " configuration cheaper per step, or one that could not start, at the same noslip setting"
+      " did not:")
+    w("")
+    lines.extend(exact or ["- none of these scenes."])
+    w("")
+    w("Where a decomposition is as good and cheaper: a decomposition's run with an outcome no"
+      " worse than graspcd's, a true penetration into the hand no deeper than graspcd's by more"
+      f" than {1000 * PENETRATION_SLACK:g} mm (the start check's tolerance; rows of an earlier"
+      " race, without true penetration, by outcome and contact error alone), no more contact"
+      " error (as printed) and a lower step cost, at the same noslip setting:")
+    w("")
+    lines.extend(cheap_good or ["- none of these scenes."])
+    w("")
+    w("Where MuJoCo's noslip solver changes whether the object is kept (the same configuration"
+      " with noslip off and on): " + ("; ".join(rescued) if rescued else "nowhere") + ".")
+    if verdicts:
+        w("")
+        w("The best row of each scene and noslip setting by the race's score (outcome, true"
+          " penetration into the hand, contact error):")
+        w("")
+        lines.extend(verdicts)
+    return lines
+
+
+# How much deeper than graspcd's a configuration's true penetration may be and still count as
+# good as graspcd's: the start check's tolerance (grasp/start_check.h, kStartPenetration), m.
+PENETRATION_SLACK = 0.5e-3
 
 
 def by_geom(total, counts):
@@ -777,44 +981,6 @@ def by_geom(total, counts):
     if not total or not counts:
         return str(total)
     return f"{total} ({', '.join(f'{g} {n}' for g, n in sorted(counts.items()))})"
-
-
-def race_verdict(scene, ours, rows):
-    """One line of the race: where the decompositions of `scene` win on step cost, contact error
-    and outcome against graspcd's row `ours`, with the numbers."""
-    decs = [r for r in rows if r["configuration"].startswith("decomposed")]
-    if not decs:
-        return f"- {scene}: no decomposition raced."
-
-    def name(r):
-        return r["configuration"].replace("decomposed-", "")
-
-    def outcome(r):
-        return "held" if r["held"] else ("gripped, not held" if r["gripped"] else "not gripped")
-
-    def span(values, digits):
-        lo, hi = f"{min(values):.{digits}f}", f"{max(values):.{digits}f}"
-        return lo if lo == hi else f"{lo}-{hi}"
-
-    cheaper = [r for r in decs if r["ms_per_physics_step"] < ours["ms_per_physics_step"]]
-    cost = (f"step cost: {len(cheaper)} of {len(decs)} cheaper than graspcd's"
-            f" {ours['ms_per_physics_step']:.3f} ms"
-            f" ({span([r['ms_per_physics_step'] for r in decs], 3)} ms)")
-    # Compared as printed (2 decimals): 39 of 44 steps is not "lower" than 40 of 45.
-    e0 = round(ours["contact_error_per_step"], 2)
-    parts = []
-    for word, keep in (("lower", lambda x: x < e0), ("equal", lambda x: x == e0),
-                       ("higher", lambda x: x > e0)):
-        some = [r for r in decs if keep(round(r["contact_error_per_step"], 2))]
-        if some:
-            parts.append(f"{word} with {', '.join(name(r) for r in some)} pieces"
-                         f" ({span([r['contact_error_per_step'] for r in some], 2)})")
-    error = f"contact error: graspcd {e0:.2f}, decompositions " + ", ".join(parts)
-    held = [name(r) for r in decs if r["held"]]
-    result = (f"outcome: graspcd {outcome(ours)}; decompositions held with"
-              f" {', '.join(held) if held else 'none'} of {', '.join(name(r) for r in decs)}"
-              " pieces")
-    return f"- {scene}: {cost}; {error}; {result}."
 
 
 def real_models_section(real):

@@ -3,7 +3,8 @@
 
 usage: run_race.py GRASPCD [--out FILE] [--work DIR] [--scenes S1,S2,...] [--pieces 4,8,16]
                    [--object "NAME=FILE [grasp --object options]"]... [--scene-pieces S=4,8 ...]
-                   [--simplify-above FACES=F] [--merge OLD.json]
+                   [--simplify-above FACES=F] [--merge OLD.json] [--noslip 0,10]
+                   [--engines hacd,vhacd] [--vhacd-pieces 16]
 
 For each scene (default: examples 1-3; mjcf/S.xml) and each --object (a user's mesh through
 `graspcd grasp --object FILE OPTIONS --write-scene WORK/scenes/NAME`, raced as that scene under
@@ -24,24 +25,44 @@ and the wall time of its race) and its piece counts (--scene-pieces S=4,8 races 
 fewer, or none with S=, where decompositions or grasps would take too long; --scene-note S=TEXT
 says why in the data and the report). --simplify-above FACES=F decomposes every mesh of more than
 FACES triangles with `decompose --simplify F` (HACD partitions a copy decimated to at most F faces;
-the pieces are hulls of the original vertices), cached apart (WORK/STEM_N_simplifyF), and records
+the pieces are hulls of the original vertices; HACD only), cached apart (WORK/STEM_N_simplifyF), and records
 it per scene ("simplify": the threshold, F and the mesh's triangles; null when the mesh was
 decomposed as it is) and per decomposition (faces after decimation, its time, and the commit of
 the graspcd that made it). The file keeps the command, its wall time and the load at its end;
 each row the phantom and missed contacts per hand geom (the judge leaves out the body the object
 stands on, the pair config's "support": the Robotiq scenes' table).
---merge OLD.json keeps OLD's scenes that this run does not race, each with its own provenance.
+--merge OLD.json keeps OLD's scenes that this run does not race, each with its own provenance
+(repeatable; `--scenes ""` races nothing and only merges: races run side by side, each into its
+own file, joined afterwards); the file lists each merged file's command, wall time and load
+("merged").
+
+The protocol (study/race/race_score.py): every configuration runs once per --noslip value
+(MuJoCo's noslip iterations, `grasp --noslip N`; default 0 and 10), and each run is one row with
+its outcome (held, held tilted, dropped, ejected, cannot start), the verdict's reason, the tilt,
+the object's top speed and largest kinetic energy, the deepest penetration of the true meshes over
+the run (`grasp`'s true_penetration: measured on the true meshes whatever collided, so a run that
+threw the object out is not scored on the contacts it no longer has), the judge's phantom and
+missed contacts per closing step and the step cost; the report scores it (outcome, then the true
+penetration into the hand, then contact error). A run the grasp refuses at the start (exit code 2, "cannot start ..." or "the
+start state is not valid ...") is a row "cannot start" with that message; any other failed run a
+row "cannot start" with its message too; a decomposition that fails is recorded with its message
+and raced no further. --engines hacd,vhacd decomposes with each engine `graspcd decompose
+--engine` offers (HACD always: configuration decomposed-N; V-HACD, when the executable has it:
+vhacd-N, with --vhacd-pieces' counts when given, else the scene's), cached apart in --work.
 """
 import argparse
 import datetime
 import json
 import os
 import platform
+import re
 import shlex
 import subprocess
 import sys
 import time
 import xml.etree.ElementTree as ET
+
+import race_score  # study/race/race_score.py, beside this script
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -59,7 +80,10 @@ def object_mesh(scene):
 def object_mesh_and_scale(scene):
     """object_mesh and the asset's scale (3 numbers; 1 1 1 without one): the decompositions
     are in the file's units, the scene scales them."""
-    root = ET.parse(scene).getroot()
+    # Comments left out before parsing: MuJoCo's parser takes "--" inside a comment (a scene's
+    # header naming `grasp --native`), Python's does not.
+    with open(scene, encoding="utf-8") as f:
+        root = ET.fromstring(re.sub(r"<!--.*?-->", "", f.read(), flags=re.DOTALL))
     meshdir = ""
     for c in root.iter("compiler"):
         meshdir = c.get("meshdir", meshdir)
@@ -140,9 +164,40 @@ def object_scene(graspcd, spec, work):
     return name, os.path.join(folder, stem + ".xml"), {"file": words[0], "options": words[1:]}
 
 
-def row(name, g):
+def grasp_run(command):
+    """One grasp: (its JSON, None), or (None, the message) when it exited with an error (a start
+    it refused, exit code 2 with one line)."""
+    done = subprocess.run(command, capture_output=True, text=True)
+    if done.returncode != 0:
+        lines = [x for x in done.stderr.strip().splitlines() if not x.startswith("warning:")]
+        return None, (lines[-1] if lines else f"exit {done.returncode}")
+    return json.loads(done.stdout), None
+
+
+def refused_row(name, noslip, message):
+    """The row of a run that did not start (or failed): no measures."""
+    return {"configuration": name, "noslip": noslip, "outcome": "cannot start",
+            "message": message, "gripped": False, "held": False, "reason": None,
+            "tilt_deg": None, "tilt_final_deg": None, "max_speed": None,
+            "kinetic_energy_max": None, "true_penetration_max": None, "true_penetration": None,
+            "ms_per_physics_step": None, "contacts_per_step": None, "phantom": None,
+            "missed": None, "contact_error_per_step": None, "first_contact": {},
+            "cgal_first_contact": {}, "cgal_first_contact_body": {}}
+
+
+def row(name, g, noslip=None):
     judge = g["judge"]
+    tp = g.get("true_penetration")
     return {"configuration": name,
+            "noslip": g.get("noslip_iterations", noslip),
+            "outcome": race_score.outcome(g),
+            "reason": g.get("reason"),
+            "ejected": g.get("ejected"),
+            "tilt_deg": g.get("tilt_deg"), "tilt_final_deg": g.get("tilt_final_deg"),
+            "max_speed": g.get("max_speed"),
+            "kinetic_energy_max": g.get("kinetic_energy_max"),
+            "true_penetration_max": g.get("true_penetration_max"),
+            "true_penetration": tp,
             "ms_per_physics_step": g["ms_per_physics_step"],
             "contacts_per_step": g["mean_contacts"],
             "gripped": g["gripped"], "held": g["held"],
@@ -155,6 +210,31 @@ def row(name, g):
             "phantom": judge["phantom"], "missed": judge["missed"],
             "phantom_by_geom": judge["phantom_by_geom"], "missed_by_geom": judge["missed_by_geom"],
             "contact_error_per_step": judge["contact_error_per_step"]}
+
+
+def race_rows(name, command, noslips):
+    """The rows of one configuration, one per noslip value, and the first run's JSON (or None)."""
+    rows, first = [], None
+    for n in noslips:
+        g, message = grasp_run(command + ["--noslip", str(n)])
+        if g is None:
+            print(f"[race]   {name} noslip {n}: cannot start: {message}", file=sys.stderr)
+            rows.append(refused_row(name, n, message))
+            continue
+        first = first or g
+        r = row(name, g, n)
+        print(f"[race]   {name} noslip {n}: {r['outcome']}, true penetration"
+              f" {1000 * r['true_penetration_max']:.2f} mm,"
+              f" {r['ms_per_physics_step']:.3f} ms per step", file=sys.stderr)
+        rows.append(r)
+    return rows, first
+
+
+def engines_available(graspcd):
+    """The decomposition engines the executable offers: always "hacd", "vhacd" when `decompose
+    --help` names it."""
+    done = subprocess.run([graspcd, "decompose", "--help"], capture_output=True, text=True)
+    return ["hacd"] + (["vhacd"] if "vhacd" in done.stdout.lower() else [])
 
 
 def main():
@@ -172,8 +252,19 @@ def main():
                         help="S=TEXT: a note on scene S for the report (e.g. why fewer pieces)")
     parser.add_argument("--simplify-above", metavar="FACES=F",
                         help="decompose meshes of more than FACES triangles with --simplify F")
-    parser.add_argument("--merge", help="keep this race.json's scenes that are not raced now")
+    parser.add_argument("--merge", action="append", default=[],
+                        help="keep this race.json's scenes that are not raced now (repeatable: "
+                             "the first file's scene first)")
+    parser.add_argument("--noslip", default="0,10",
+                        help="MuJoCo's noslip iterations: one run per value (grasp --noslip)")
+    parser.add_argument("--engines", default="hacd,vhacd",
+                        help="decomposition engines, those the executable offers (hacd, vhacd)")
+    parser.add_argument("--vhacd-pieces",
+                        help="V-HACD's piece counts for every scene (default: HACD's)")
     args = parser.parse_args()
+    noslips = [int(n) for n in args.noslip.split(",") if n]
+    offered = engines_available(args.graspcd)
+    engines = [e for e in args.engines.split(",") if e in offered]
     simplify_above = None
     if args.simplify_above:
         above, _, target = args.simplify_above.partition("=")
@@ -187,7 +278,8 @@ def main():
         name, _, counts = spec.partition("=")
         scene_pieces[name] = [int(p) for p in counts.split(",") if p]
     notes = dict(spec.partition("=")[::2] for spec in args.scene_note)
-    result = {"machine": machine(), "pieces": pieces,
+    result = {"machine": machine(), "pieces": pieces, "noslip": noslips, "engines": engines,
+              "engines_asked": args.engines.split(","), "protocol": "outcome",
               "command": [os.path.relpath(sys.argv[0], ROOT)] + sys.argv[1:], "scenes": {}}
     race_started = time.time()
     scenes = [(s, os.path.join(ROOT, "mjcf", s + ".xml"), None)
@@ -214,33 +306,72 @@ def main():
                               "source_faces": faces})
         base = [args.graspcd, "grasp", scene, "--judge", "--json"]
         print(f"[race] {scene_name}: graspcd, native", file=sys.stderr)
-        first = run_json(base)
-        entry["rows"].append(row("graspcd", first))
-        entry["rows"].append(row("native hull", run_json(base + ["--native"])))
-        for n in counts:
-            suffix = "" if simplify is None else f"_simplify{simplify}"
-            out = os.path.join(args.work, f"{stem}_{n}{suffix}")
-            manifest = os.path.join(out, "decomposition.json")
-            if not os.path.exists(manifest):
-                print(f"[race] {scene_name}: decompose {stem} into at most {n}"
-                      + ("" if simplify is None else f" (--simplify {simplify})"), file=sys.stderr)
-                run_json([args.graspcd, "decompose", mesh, "--out", out, "--pieces", str(n),
-                          "--json"] + ([] if simplify is None else ["--simplify", str(simplify)]))
-            with open(manifest, encoding="utf-8") as f:
-                d = json.load(f)
-            entry["decompositions"][str(n)] = {
-                "pieces": d["piece_count"], "slabs": d["slabs"], "seconds": d["seconds"],
-                "hausdorff": d["hausdorff"]["distance"],
-                "hausdorff_bound": d["hausdorff"]["error_bound"], "volume": d["volume"],
-                "source_faces": d["source_faces"], "simplify": d.get("simplify"),
-                "graspcd": d.get("graspcd", {}).get("commit")}
-            print(f"[race] {scene_name}: decomposed-{n}", file=sys.stderr)
-            entry["rows"].append(row(f"decomposed-{n}", run_json(base + ["--decomposed", out])))
+        rows, first = race_rows("graspcd", base, noslips)
+        entry["rows"].extend(rows)
+        rows, native = race_rows("native hull", base + ["--native"], noslips)
+        entry["rows"].extend(rows)
+        first = first or native
+        vhacd_counts = counts if args.vhacd_pieces is None else \
+            [int(p) for p in args.vhacd_pieces.split(",") if p]
+        if "vhacd" in engines:
+            entry["vhacd_pieces"] = vhacd_counts
+        for engine in engines:
+            for n in (counts if engine == "hacd" else vhacd_counts):
+                # --simplify is HACD's (V-HACD voxelizes: its time follows the voxels, not the
+                # faces).
+                simplified = simplify if engine == "hacd" else None
+                suffix = "" if simplified is None else f"_simplify{simplified}"
+                tag = "" if engine == "hacd" else f"_{engine}"
+                out = os.path.join(args.work, f"{stem}{tag}_{n}{suffix}")
+                manifest = os.path.join(out, "decomposition.json")
+                name = f"{'decomposed' if engine == 'hacd' else engine}-{n}"
+                key = str(n) if engine == "hacd" else f"{engine}-{n}"
+                if not os.path.exists(manifest):
+                    print(f"[race] {scene_name}: decompose {stem} into at most {n} with {engine}"
+                          + ("" if simplified is None else f" (--simplify {simplified})"),
+                          file=sys.stderr)
+                    command = [args.graspcd, "decompose", mesh, "--out", out, "--pieces", str(n),
+                               "--json"]
+                    if engine != "hacd":
+                        command += ["--engine", engine]
+                    if simplified is not None:
+                        command += ["--simplify", str(simplified)]
+                    done = subprocess.run(command, capture_output=True, text=True)
+                    if done.returncode != 0:
+                        lines = done.stderr.strip().splitlines()
+                        message = lines[-1] if lines else f"exit {done.returncode}"
+                        print(f"[race] {scene_name}: {name}: {message}", file=sys.stderr)
+                        entry["decompositions"][key] = {"engine": engine, "error": message}
+                        continue
+                with open(manifest, encoding="utf-8") as f:
+                    d = json.load(f)
+                entry["decompositions"][key] = {
+                    "engine": engine,
+                    "pieces": d["piece_count"], "slabs": d.get("slabs"), "seconds": d["seconds"],
+                    "hausdorff": (d.get("hausdorff") or {}).get("distance"),
+                    "hausdorff_bound": (d.get("hausdorff") or {}).get("error_bound"),
+                    "volume": d.get("volume"),
+                    "source_faces": d.get("source_faces"), "simplify": d.get("simplify"),
+                    "graspcd": d.get("graspcd", {}).get("commit")}
+                print(f"[race] {scene_name}: {name}", file=sys.stderr)
+                rows, g = race_rows(name, base + ["--decomposed", out], noslips)
+                entry["rows"].extend(rows)
+                first = first or g
+        if first is None:
+            first = {}
         entry["provenance"] = provenance(first, started)
         result["scenes"][scene_name] = entry
-    if args.merge:
-        with open(args.merge, encoding="utf-8") as f:
+    # --merge, first file first: a scene raced now, or in an earlier file, is kept from there.
+    for merged in args.merge:
+        with open(merged, encoding="utf-8") as f:
             old = json.load(f)
+        # Where the scenes taken from it were raced: its command, wall time and load.
+        result.setdefault("merged", []).append(
+            {"file": os.path.basename(merged), "command": old.get("command"),
+             "wall_seconds": old.get("wall_seconds"),
+             "load_average": old.get("machine", {}).get("load_average"),
+             "load_average_end": old.get("load_average_end"),
+             "scenes": [s for s in old["scenes"] if s not in result["scenes"]]})
         for scene_name, entry in old["scenes"].items():
             if scene_name in result["scenes"]:
                 continue

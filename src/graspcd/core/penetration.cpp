@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
 
 #include "graspcd/core/containment.h"
 
@@ -61,10 +64,65 @@ double point_triangle_distance(const Vec3& p, const Triangle& t) {
   return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
 }
 
+namespace {
+
+// The distance from p to the closed box b: the length of what the clamp to its extents leaves in
+// its frame. Algorithm: Ericson (2005), 5.1.4 "Closest point on OBB to point".
+double point_box_distance(const Vec3& p, const Obb& b) {
+  const Vec3 local = b.axes.transpose() * (p - b.center);
+  return (local.cwiseAbs() - b.half).cwiseMax(0.0).norm();
+}
+
+// The distance from p to the nearest triangle of the tree, or any value <= `enough` once the
+// search finds a triangle at most `enough` away (the caller then no longer needs it). Branch and
+// bound on the node boxes (a bounding volume hierarchy's closest-point query, Ericson (2005),
+// 6.6): a node whose box lies farther than the nearest triangle so far cannot hold a nearer one
+// (a box holds its triangles; the comparison leaves a margin for the box's rounding), the nearer
+// child first. The triangles the bound keeps are those the linear scan would find nearest, so the
+// distance is the scan's minimum.
+double nearest_surface_distance(const ObbTree& tree, const Vec3& p, double enough,
+                                std::vector<std::int32_t>& stack) {
+  const std::vector<ObbNode>& nodes = tree.nodes();
+  const std::vector<Triangle>& triangles = tree.triangles();
+  const double slack = 1e-9 * (1 + nodes.front().box.half.maxCoeff());
+  double nearest = std::numeric_limits<double>::infinity();
+  stack.assign(1, 0);
+  while (!stack.empty()) {
+    const ObbNode& node = nodes[static_cast<std::size_t>(stack.back())];
+    const std::int32_t index = stack.back();
+    stack.pop_back();
+    if (point_box_distance(p, node.box) - slack > nearest) continue;
+    if (node.is_leaf()) {
+      for (std::int32_t k = 0; k < node.count; ++k) {
+        nearest = std::min(nearest, point_triangle_distance(
+                                        p, triangles[static_cast<std::size_t>(node.first + k)]));
+      }
+      if (nearest <= enough) return nearest;
+      continue;
+    }
+    const std::int32_t left = index + 1;
+    const std::int32_t right = node.right;
+    const double dl = point_box_distance(p, nodes[static_cast<std::size_t>(left)].box);
+    const double dr = point_box_distance(p, nodes[static_cast<std::size_t>(right)].box);
+    // The nearer child on top of the stack.
+    if (dl <= dr) {
+      stack.push_back(right);
+      stack.push_back(left);
+    } else {
+      stack.push_back(left);
+      stack.push_back(right);
+    }
+  }
+  return nearest;
+}
+
+}  // namespace
+
 VertexPenetration deepest_point_inside(const ObbTree& solid, const std::vector<Vec3>& points,
                                        double stop_above) {
   VertexPenetration out;
   if (solid.nodes().empty()) return out;
+  std::vector<std::int32_t> stack;
   const Obb& root = solid.root().box;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Vec3& p = points[i];
@@ -74,11 +132,7 @@ VertexPenetration deepest_point_inside(const ObbTree& solid, const std::vector<V
     if (point_side(solid, p) == PointSide::kOutside) continue;
     ++out.inside;
     // The distance to the surface, abandoned once it cannot exceed the deepest so far.
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const Triangle& t : solid.triangles()) {
-      nearest = std::min(nearest, point_triangle_distance(p, t));
-      if (nearest <= out.depth) break;
-    }
+    const double nearest = nearest_surface_distance(solid, p, out.depth, stack);
     if (nearest > out.depth || out.point == std::numeric_limits<std::size_t>::max()) {
       out.depth = std::max(out.depth, nearest);
       out.point = i;

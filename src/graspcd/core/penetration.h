@@ -37,9 +37,10 @@ struct VertexPenetration {
 // frame of the points: no pose). Points outside the tree's root box are skipped without a query.
 // The scan stops as soon as a point deeper than `stop_above` is found (its depth is then a lower
 // bound of the maximum): the check needs only to know that the limit is passed. For each inside
-// point the distance is the minimum over the solid's triangles, abandoned once it is below the
-// deepest depth found so far (it cannot raise the maximum: the early break of Hausdorff-distance
-// computations, Taha and Hanbury, IEEE TPAMI 37(11), 2015).
+// point the distance is the minimum over the solid's triangles, searched through the tree's boxes
+// (branch and bound: a box farther than the nearest triangle so far is skipped) and abandoned once
+// it is below the deepest depth found so far (it cannot raise the maximum: the early break of
+// Hausdorff-distance computations, Taha and Hanbury, IEEE TPAMI 37(11), 2015).
 // The mesh must be closed (containment.h, closedness(tree).closed()): the caller checks.
 VertexPenetration deepest_point_inside(const ObbTree& solid, const std::vector<Vec3>& points,
                                        double stop_above = std::numeric_limits<double>::infinity());

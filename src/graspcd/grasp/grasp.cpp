@@ -31,12 +31,11 @@ namespace {
 // object's true meshes (for a decomposed scene, the model with the object as it was) checked by
 // check_start_state; then, under native collision, the geometry MuJoCo collides (the hulls of
 // the meshes, or of the pieces) by check_hull_start.
+// `truth`: the model with the true object (true_object_model) for a decomposed scene, else null.
 void throw_if_bad_start(const mjModel* m, const mjData* d, int object, const std::string& scene,
-                        bool native) {
-  bool decomposed = false;
-  for (int g = 0; g < m->ngeom && !decomposed; ++g) decomposed = is_piece(m, g);
-  const mujoco::ModelPtr truth = decomposed ? true_object_model(m) : nullptr;
-  const std::string problem = check_start_state(decomposed ? truth.get() : m, d, object);
+                        bool native, const mjModel* truth) {
+  const bool decomposed = truth != nullptr;
+  const std::string problem = check_start_state(decomposed ? truth : m, d, object);
   if (!problem.empty()) {
     throw GraspInputError(scene, "the start state is not valid: " + problem);
   }
@@ -102,7 +101,12 @@ GraspConfig load_grasp_config(const mjModel* m, const std::string& config_path,
 // phases are described in grasp.h.
 GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options) {
   const auto model = mujoco::load_model(scene_path);
+  if (options.noslip_iterations) model->opt.noslip_iterations = *options.noslip_iterations;
   const mjModel* m = model.get();
+  // A decomposed scene's true object (its start and its penetration are the true meshes').
+  bool decomposed = false;
+  for (int g = 0; g < m->ngeom && !decomposed; ++g) decomposed = is_piece(m, g);
+  const mujoco::ModelPtr truth = decomposed ? true_object_model(m) : nullptr;
 
   const std::string config_path =
       options.config_path.empty() ? mujoco::pair_config_path(scene_path) : options.config_path;
@@ -125,6 +129,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   result.scene = scene_path;
   result.native = options.native;
   result.method = options.native ? "native" : method_name(config.method);
+  result.noslip_iterations = m->opt.noslip_iterations;
 
   // A hand driven through its own actuators (the config's "grasp" section), or ours.
   std::unique_ptr<HandRun> run;
@@ -137,7 +142,8 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   // e.g. a gripper half closed with a pad through a mug's handle), else the model's qpos0.
   if (m->nkey > 0) mj_resetDataKeyframe(m, d, 0);
   mj_forward(m, d);
-  throw_if_bad_start(m, d, run->object(), scene_path, options.native);
+  throw_if_bad_start(m, d, run->object(), scene_path, options.native, truth.get());
+  if (truth) run->set_truth(truth.get());
   if (registry) registry->reset_stats();
   run->run(options, result);
   attached.release();

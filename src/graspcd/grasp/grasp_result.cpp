@@ -115,4 +115,18 @@ double kinetic_energy(const mjModel* m, const mjData* d) {
   return 0.5 * mju_dot(d->qvel, mv.data(), m->nv);
 }
 
+double object_kinetic_energy(const mjModel* m, const mjData* d, int body,
+                             std::vector<mjtNum>& scratch) {
+  const auto nv = static_cast<std::size_t>(m->nv);
+  scratch.assign(2 * nv, 0);
+  mjtNum* v = scratch.data();
+  mjtNum* mv = v + nv;
+  const int root = m->body_rootid[body];
+  for (int i = 0; i < m->nv; ++i) {
+    if (m->body_rootid[m->dof_bodyid[i]] == root) v[i] = d->qvel[i];
+  }
+  mj_mulM(m, d, mv, v);
+  return 0.5 * mju_dot(v, mv, m->nv);
+}
+
 }  // namespace graspcd::grasp

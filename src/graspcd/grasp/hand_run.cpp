@@ -217,7 +217,8 @@ long HandRun::phase_steps(double seconds) const {
 }
 
 // One physics step (the hand's advance, timed), MuJoCo's non-finite check, then the scan of the
-// segment-object contacts.
+// segment-object contacts, the object's watch and, after the last physics step of each grasp
+// step (of any phase), the true meshes' penetration (outside the timed step).
 void HandRun::physics_step() {
   const Clock::time_point start = Clock::now();
   advance();
@@ -226,6 +227,11 @@ void HandRun::physics_step() {
   throw_if_nonfinite(d_, scene_, phase_, physics_steps_);
   scan_contacts();
   watch_object();
+  if (true_watch_ && physics_steps_ % grasp_step_length_ == 0) {
+    const bool closing = phase_.rfind("grasp step ", 0) == 0;
+    true_watch_->measure(d_, physics_steps_ / grasp_step_length_,
+                         closing ? std::string("the closing") : phase_);
+  }
 }
 
 // The object at the start (grasp.h, "ejected"): resting on its support, its origin lies at most R
@@ -259,6 +265,8 @@ void HandRun::watch_object() {
   const double speed =
       std::sqrt(velocity[3] * velocity[3] + velocity[4] * velocity[4] + velocity[5] * velocity[5]);
   watch_.max_speed = std::max(watch_.max_speed, speed);
+  watch_.kinetic_energy_max =
+      std::max(watch_.kinetic_energy_max, object_kinetic_energy(m_, d_, object_, energy_scratch_));
   if (!watch_.ejected) {
     double away = 0;
     for (int k = 0; k < 3; ++k) {
@@ -421,6 +429,11 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   result.first_contact.assign(segments_.size(), -1);
   result.object_z_initial = object_height();
   start_watch();
+  grasp_step_length_ = std::max(1, options.physics_steps_per_grasp_step);
+  if (options.true_penetration) {
+    true_watch_ =
+        std::make_unique<TruePenetrationWatch>(truth_ ? truth_ : m_, object_, support_root());
+  }
   close(options, result);
 
   // Phase 2: squeeze, then settle, watching how far the object is pushed from where it was.
@@ -476,6 +489,8 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   result.tilt_deg = watch_.max_tilt * kDegrees;
   result.tilt_final_deg = watch_.tilt * kDegrees;
   result.max_speed = watch_.max_speed;
+  result.kinetic_energy_max = watch_.kinetic_energy_max;
+  if (true_watch_) result.true_penetration = true_watch_->result();
   result.ejected = watch_.ejected;
   bool ever_touched = false;
   for (int step : result.first_contact) ever_touched = ever_touched || step > 0;

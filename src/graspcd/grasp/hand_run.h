@@ -10,11 +10,13 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "graspcd/grasp/grasp_result.h"
+#include "graspcd/grasp/true_penetration.h"
 #include "graspcd/mujoco/registry.h"
 
 namespace graspcd::grasp {
@@ -27,6 +29,11 @@ class HandRun {
   HandRun& operator=(const HandRun&) = delete;
 
   int object() const { return object_; }
+
+  // The model whose geoms are the true surfaces the run's penetration is measured on
+  // (true_penetration.h): for a decomposed scene its true_object_model (decomposed_pieces.h);
+  // by default the run's own model. Must outlive the run.
+  void set_truth(const mjModel* truth) { truth_ = truth; }
 
   // Runs the phases and fills `result`'s grasp fields (the caller fills scene, method, warnings).
   void run(const GraspOptions& options, GraspResult& result);
@@ -94,6 +101,7 @@ class HandRun {
     double drop = 0;  // how far below start_height it can rest on the support, m
     double away = 0;  // how far from start it can be in the scene, m
     double max_speed = 0;
+    double kinetic_energy_max = 0;  // the object's, J (object_kinetic_energy)
     std::optional<Ejection> ejected;
     bool tilt_on = false;
     // From the start of the lift: when the object lost its last hand contact, -1 while touched.
@@ -130,6 +138,10 @@ class HandRun {
   std::int64_t wall_ns_ = 0;
   BridgeTotals totals_;
   ObjectWatch watch_;
+  std::vector<mjtNum> energy_scratch_;
+  const mjModel* truth_ = nullptr;
+  std::unique_ptr<TruePenetrationWatch> true_watch_;
+  long grasp_step_length_ = 5;  // physics steps per grasp step (GraspOptions)
 };
 
 // Looks up a named element of the scene; a missing one breaks the scene contract.

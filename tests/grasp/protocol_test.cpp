@@ -1,0 +1,108 @@
+// The race's protocol measures of a grasp run (grasp_result.h, true_penetration.h): the true
+// meshes' penetration, measured whatever the run collided, the object's largest kinetic energy
+// and MuJoCo's noslip iterations. The case that must not read as perfect: an object thrown out of
+// the grasp, here the can of example 2 that MuJoCo is told not to collide with the floor
+// (<exclude> of the world body and the object: its contype and conaffinity, which the true
+// meshes' pairs follow, still say the floor holds it), so that it falls through the floor as a
+// hull's push throws an object through its support. No hand contact is left to judge, and the
+// true meshes say how deep the can went below the floor.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "graspcd/grasp/grasp.h"
+#include "support/temp_dir.h"
+
+namespace graspcd::grasp {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kMjcf = GRASPCD_MJCF_DIR;
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Replaces the one occurrence of `from` in `text`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+class Protocol : public testing::TempDirTest {
+ protected:
+  // Example 2, its meshes read from the source tree, with `extra` added after the worldbody. A
+  // short run, native: a closing of 20 grasp steps (0.2 s), a squeeze of 0.02 s, a settling of
+  // 0.05 s, a lift and a hold of 0.1 s each.
+  GraspResult example2(const std::string& extra, GraspOptions options = {}) {
+    std::string xml = read_text(kMjcf + "/example2.xml");
+    xml = replaced(xml, "meshdir=\"meshes\"", "meshdir=\"" + kMjcf + "/meshes\"");
+    xml = replaced(xml, "</worldbody>", "</worldbody>\n" + extra);
+    options.native = true;
+    options.true_penetration = true;
+    options.max_steps = 20;
+    options.squeeze_time = 0.02;
+    options.settle_time = 0.05;
+    options.lift_time = 0.1;
+    options.hold_time = 0.1;
+    return run_grasp(write("scene.xml", xml), options);
+  }
+};
+
+TEST_F(Protocol, ACanThrownThroughTheFloorIsEjectedWithItsTruePenetrationMeasured) {
+  GraspOptions options;
+  options.noslip_iterations = 7;
+  const GraspResult r =
+      example2("<contact><exclude body1=\"world\" body2=\"object\"/></contact>", options);
+  ASSERT_TRUE(r.ejected.has_value());
+  EXPECT_FALSE(r.held);
+  EXPECT_EQ(r.noslip_iterations, 7);
+  // Every grasp step of every phase measured (5 physics steps each), every one after the can
+  // started to fall found it below the floor: the deepest at the last, the can's free fall over
+  // the whole run less the height of its lowest point (it started 0.5 mm or less above the floor).
+  const TruePenetration& p = r.true_penetration;
+  EXPECT_EQ(p.measures, r.physics_steps / 5);
+  EXPECT_GT(p.pairs, 0);
+  EXPECT_EQ(p.step, p.measures);
+  EXPECT_EQ(p.side, "support");
+  EXPECT_EQ(p.geom, "geom 'floor'");
+  EXPECT_EQ(p.phase, "the hold");
+  EXPECT_DOUBLE_EQ(p.max, p.support_max);
+  const double fall = 0.5 * 9.81 * r.sim_time * r.sim_time;
+  EXPECT_NEAR(p.max, fall, 0.02 * fall);
+  EXPECT_DOUBLE_EQ(p.hand_max, 0.0);  // no finger reached it
+  // A falling can does not turn: its largest kinetic energy is that of its top speed, at the end.
+  EXPECT_GT(r.kinetic_energy_max, 0.0);
+  const double mass = r.kinetic_energy_max / (0.5 * r.max_speed * r.max_speed);
+  EXPECT_GT(mass, 0.0);
+  EXPECT_NEAR(r.kinetic_energy_max, 0.5 * mass * 9.81 * 9.81 * r.sim_time * r.sim_time,
+              0.02 * r.kinetic_energy_max);
+}
+
+TEST_F(Protocol, ACanStandingOnTheFloorIsMeasuredAtRestWithoutNoslip) {
+  const GraspResult r = example2("");
+  EXPECT_FALSE(r.ejected.has_value());
+  EXPECT_EQ(r.noslip_iterations, 0);  // the scene's
+  const TruePenetration& p = r.true_penetration;
+  EXPECT_EQ(p.measures, r.physics_steps / 5);
+  // MuJoCo's soft contact lets the can sink into the floor about a millimetre as the fingers
+  // close on it (1.06 mm here), never by centimetres.
+  EXPECT_GT(p.support_max, 0.0);
+  EXPECT_LT(p.support_max, 3e-3);
+  EXPECT_TRUE(p.unmeasured.empty());
+  EXPECT_LT(r.max_speed, kEjectSpeed);
+  EXPECT_GT(r.kinetic_energy_max, 0.0);  // the fingers' closing moves it
+}
+
+}  // namespace
+}  // namespace graspcd::grasp
