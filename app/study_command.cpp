@@ -115,7 +115,7 @@ Command add_study_command(CLI::App& parent) {
       "about 2 minutes on 2 idle cores), --quick under a minute.\n"
       "Scale-out: --shard i/n runs every n-th sweep point from i (no tables) into "
       "sweep.shard-i-of-n.json; --merge FILE... joins the shards (they must come from the same "
-      "build, recordings and options) into sweep.json. study/slurm/sweep.sbatch runs the shards "
+      "build, recordings and options) into sweep.json. cluster/sweep.sbatch runs the shards "
       "as a Slurm array job.\n"
       "Examples:\n"
       "  graspcd study --quick --out /tmp/q\n"

@@ -573,7 +573,7 @@ Command add_validate_command(CLI::App& parent) {
       "--merge FILE...: joins the shard files of one split of one set (same objects, settings "
       "and N, each shard once) into the table of the whole set (--out OUT: OUT/objects.json); "
       "a missing shard is named with its objects (exit code 2); the exit code of the joined set "
-      "is --objects' own. study/slurm/"
+      "is --objects' own. cluster/"
       "validate_objects.sbatch runs the shards as a Slurm array job.\n"
       "Examples:\n"
       "  graspcd validate mjcf/example3.xml\n"

@@ -6,8 +6,8 @@ Reads OUT_DIR/study.json (Table 1, the box hand of Figures 13-15, recordings, ma
 OUT_DIR/sweep.json (the run-time/error sweep, possibly merged from shards) and, if present,
 OUT_DIR/stress.json (`graspcd stress --json`, the numerical stress suite) and
 OUT_DIR/perf.json (`./run perf`, graspcd against FCL and MuJoCo),
-OUT_DIR/contacts.json (study/contacts_solver.py, what MuJoCo's solver gets) and
-OUT_DIR/race.json, else the cached report/data/race.json (study/race/run_race.py, graspcd
+OUT_DIR/contacts.json (report/contacts_solver.py, what MuJoCo's solver gets) and
+OUT_DIR/race.json, else the cached report/data/race.json (report/race/run_race.py, graspcd
 against the hull and convex decompositions), writes
 OUT_DIR/REPORT.md and OUT_DIR/figures/*.png. Every number in the report comes from those files; the text around a
 number is chosen by comparing numbers, never written in advance.
@@ -28,8 +28,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import draw_figures  # noqa: E402  (report/draw_figures.py, beside this script)
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                                "study", "race"))
-import race_score  # noqa: E402  (study/race/race_score.py: the race's outcome and score)
+                                "report", "race"))
+import race_score  # noqa: E402  (report/race/race_score.py: the race's outcome and score)
 
 # bridge::finger_segment_names(): the order of every per-segment array in study.json.
 SEGMENTS = [f"finger{f}_{s}" for f in range(1, 5) for s in "ABC"]
@@ -564,13 +564,13 @@ def perf_closing_note(perf):
 
 
 def contacts_section(contacts):
-    """The "Contacts and the solver" section from contacts.json (study/contacts_solver.py)."""
+    """The "Contacts and the solver" section from contacts.json (report/contacts_solver.py)."""
     lines = []
     w = lines.append
     before = contacts["before_budget"]
     w("## Contacts and the solver")
     w("")
-    w("From `contacts.json` (`study/contacts_solver.py`, run by `./run study`): each scene's grasp"
+    w("From `contacts.json` (`report/contacts_solver.py`, run by `./run study`): each scene's grasp"
       " (`graspcd grasp SCENE --json`) natively (MuJoCo's convex hulls), served with the contact"
       " manifold as shipped (at most 4 points per patch and 8 per geom pair) and served with"
       f" {before} per pair and per patch (every intersecting triangle pair's contact up to"
@@ -619,13 +619,13 @@ def contacts_section(contacts):
 
 
 def race_section(race, fig_dir, fig_rel):
-    """The "The race" section from race.json (study/race/run_race.py)."""
+    """The "The race" section from race.json (report/race/run_race.py)."""
     lines = []
     w = lines.append
     m = race["machine"]
     w("## The race: the hull, convex decompositions and graspcd")
     w("")
-    w("From `race.json` (`study/race/run_race.py build/graspcd`, not part of `./run test`; the"
+    w("From `race.json` (`report/race/run_race.py build/graspcd`, not part of `./run test`; the"
       " decompositions are cached in its `--work` folder, by default `report/out/race`). Each scene's grasp runs as graspcd"
       " serves it (the contact manifold), natively on MuJoCo's convex hull, and natively on"
       " HACD decompositions of the object into at most N convex pieces (`graspcd decompose`,"
@@ -867,7 +867,7 @@ def race_protocol_text(race):
         " in the scene), then by the true penetration into the hand (the support's, like the"
         " judge's, is not the grasp's: its contact with the object is MuJoCo's native one in"
         " every configuration but the decomposed, and an object thrown through it is ejected),"
-        " then by the contact error (`study/race/race_score.py`).")
+        " then by the contact error (`report/race/race_score.py`).")
     return lines
 
 
@@ -984,7 +984,7 @@ def by_geom(total, counts):
 
 
 def real_models_section(real):
-    """The "Real hands and objects" section from study/real_models.py's real_models.json."""
+    """The "Real hands and objects" section from report/real_models.py's real_models.json."""
     lines = []
     w = lines.append
     m = real["machine"]
@@ -992,7 +992,7 @@ def real_models_section(real):
     w("## Real hands and objects")
     w("")
     w(f"The real hands of `../shared/models` (used by path, never copied) in the scenes `mjcf/real_*.xml`,"
-      f" run by `study/real_models.py` on {real['created']} (commit {real['commit']}), {m['cpu']},"
+      f" run by `report/real_models.py` on {real['created']} (commit {real['commit']}), {m['cpu']},"
       f" {m['cores']} cores, {m['os']}; load average {la[0]:.2f} before and {lb[0]:.2f} after (above 1:"
       " others were building or testing on the machine). Detection time per closing grasp step: the"
       " tree queries of all registered pairs over the physics steps of the closing, divided by its"
@@ -1046,7 +1046,7 @@ def real_models_section(real):
                  " (the fingers reach the object; the scene's header says why).")
     w(text)
     w("")
-    w("Reproduce: `/usr/bin/python3 study/real_models.py --out report/out/real_models.json` (needs"
+    w("Reproduce: `/usr/bin/python3 report/real_models.py --out report/out/real_models.json` (needs"
       " `../shared/models` and `build/graspcd`), then `report/make_report.py report/out`.")
     w("")
     return lines
@@ -1312,8 +1312,8 @@ def main():
     table1_figure(study, fig_dir)
     text = report(study, sweep, fig_dir, args.figures, stress, perf)
     # Sections drawn from optional files of other scripts, each before "## Reproduce":
-    # study/real_models.py (the real hands of ../shared/models) and
-    # study/contacts_solver.py (what the solver gets).
+    # report/real_models.py (the real hands of ../shared/models) and
+    # report/contacts_solver.py (what the solver gets).
     for name, draw in (("real_models.json", real_models_section),
                        ("contacts.json", contacts_section)):
         data = load(os.path.join(args.out_dir, name), required=False)

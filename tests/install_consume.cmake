@@ -5,7 +5,7 @@
 #   CXX_COMPILER  BUILD_TYPE  the build's compiler and build type, which the consumer reuses (a
 #                 sanitizer build's libraries need the same compiler's runtimes)
 # Steps: `cmake --install BUILD_DIR --prefix WORK_DIR/prefix`; the prefix holds graspcd::core,
-# graspcd::io, graspcd::mujoco and bin/graspcd, and no CGAL library; the standalone project study/examples/nonconvex_contacts is
+# graspcd::io, graspcd::mujoco and bin/graspcd, and no CGAL library; the standalone project examples/nonconvex_contacts is
 # configured against the prefix alone (CMAKE_PREFIX_PATH) with find_package(graspcd 0.3), built,
 # and run on mjcf/example1.xml: its fingers fall onto the cup, so graspcd must serve calls and
 # hand contacts to MuJoCo. A missing scene must be one line on stderr and exit code 2.
@@ -67,7 +67,7 @@ endforeach()
 
 # 3. Configure and build the example against the prefix only.
 run_checked("configuring the example" ${CMAKE_COMMAND}
-  -S "${SOURCE_DIR}/study/examples/nonconvex_contacts" -B "${example}"
+  -S "${SOURCE_DIR}/examples/nonconvex_contacts" -B "${example}"
   -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=${BUILD_TYPE}
   -DCMAKE_CXX_COMPILER=${CXX_COMPILER} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
 file(STRINGS "${example}/CMakeCache.txt" graspcd_dir REGEX "^graspcd_DIR:")

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "support/envelope_check.h"
-#include "support/temp_dir.h"
+#include "helpers/envelope_check.h"
+#include "helpers/temp_dir.h"
 
 namespace graspcd::cli_testing {
 

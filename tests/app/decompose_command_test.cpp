@@ -16,9 +16,9 @@
 #include "graspcd/grasp/decomposed_scene.h"
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
-#include "support/command_test.h"
-#include "support/envelope_check.h"
-#include "support/test_scale.h"
+#include "helpers/command_test.h"
+#include "helpers/envelope_check.h"
+#include "helpers/test_scale.h"
 
 namespace graspcd::testing {
 namespace {

@@ -17,9 +17,9 @@
 #include "graspcd/decompose/manifest.h"
 #include "graspcd/decompose/vhacd.h"
 #include "graspcd/io/mesh_io.h"
-#include "support/command_test.h"
-#include "support/envelope_check.h"
-#include "support/ring_mesh.h"
+#include "helpers/command_test.h"
+#include "helpers/envelope_check.h"
+#include "helpers/ring_mesh.h"
 
 namespace graspcd::testing {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "support/command_test.h"
+#include "helpers/command_test.h"
 
 namespace fs = std::filesystem;
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "graspcd/core/geometry.h"
-#include "support/command_test.h"
-#include "support/mesh_export.h"
+#include "helpers/command_test.h"
+#include "helpers/mesh_export.h"
 
 namespace graspcd::testing {
 namespace {

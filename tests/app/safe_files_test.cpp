@@ -19,7 +19,7 @@
 #include <thread>
 #include <vector>
 
-#include "support/command_test.h"
+#include "helpers/command_test.h"
 
 namespace {
 

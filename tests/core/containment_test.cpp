@@ -24,8 +24,8 @@
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/support/meshes.h"
 #include "graspcd/support/random_geometry.h"
-#include "support/real_models.h"
-#include "support/test_scale.h"
+#include "helpers/real_models.h"
+#include "helpers/test_scale.h"
 
 namespace graspcd {
 namespace {

@@ -13,7 +13,7 @@
 #include "graspcd/exact/exact.h"
 #include "graspcd/support/meshes.h"
 #include "graspcd/support/random_geometry.h"
-#include "support/tree_agreement.h"
+#include "helpers/tree_agreement.h"
 
 namespace graspcd {
 namespace {

@@ -10,8 +10,8 @@
 #include <random>
 #include <string>
 
-#include "support/real_models.h"
-#include "support/tree_agreement.h"
+#include "helpers/real_models.h"
+#include "helpers/tree_agreement.h"
 
 namespace graspcd {
 namespace {

@@ -15,9 +15,9 @@
 
 #include "graspcd/core/tritri.h"
 #include "graspcd/support/seeded.h"
-#include "support/real_models.h"
-#include "support/tree_agreement.h"
-#include "support/triangle_distance.h"
+#include "helpers/real_models.h"
+#include "helpers/tree_agreement.h"
+#include "helpers/triangle_distance.h"
 
 namespace graspcd {
 namespace {

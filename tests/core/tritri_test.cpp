@@ -23,7 +23,7 @@
 #include "graspcd/core/predicates.h"
 #include "graspcd/exact/exact.h"
 #include "graspcd/support/random_geometry.h"
-#include "support/test_scale.h"
+#include "helpers/test_scale.h"
 
 namespace graspcd {
 namespace {

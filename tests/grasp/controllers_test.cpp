@@ -10,7 +10,7 @@
 #include <functional>
 #include <stdexcept>
 
-#include "support/scene_support.h"
+#include "helpers/scene_support.h"
 
 namespace graspcd::grasp {
 namespace {

@@ -18,7 +18,7 @@
 #include <string>
 
 #include "graspcd/mujoco/model_loading.h"
-#include "support/test_scale.h"
+#include "helpers/test_scale.h"
 
 namespace graspcd::grasp {
 namespace {

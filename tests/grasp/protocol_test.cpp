@@ -15,7 +15,7 @@
 #include <string>
 
 #include "graspcd/grasp/grasp.h"
-#include "support/temp_dir.h"
+#include "helpers/temp_dir.h"
 
 namespace graspcd::grasp {
 namespace {

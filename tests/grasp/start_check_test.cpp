@@ -13,8 +13,8 @@
 #include <utility>
 
 #include "graspcd/core/warnings.h"
-#include "support/ring_mesh.h"
-#include "support/temp_dir.h"
+#include "helpers/ring_mesh.h"
+#include "helpers/temp_dir.h"
 
 namespace graspcd::grasp {
 namespace {

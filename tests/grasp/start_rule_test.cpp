@@ -14,8 +14,8 @@
 
 #include "graspcd/grasp/decomposed_scene.h"
 #include "graspcd/grasp/grasp.h"
-#include "support/ring_mesh.h"
-#include "support/temp_dir.h"
+#include "helpers/ring_mesh.h"
+#include "helpers/temp_dir.h"
 
 namespace graspcd::grasp {
 namespace {

@@ -15,8 +15,8 @@
 #include <string>
 
 #include "graspcd/grasp/grasp.h"
-#include "support/temp_dir.h"
-#include "support/test_scale.h"
+#include "helpers/temp_dir.h"
+#include "helpers/test_scale.h"
 
 namespace graspcd::grasp {
 namespace {

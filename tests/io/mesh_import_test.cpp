@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "graspcd/io/mesh_io.h"
-#include "support/mesh_export.h"
-#include "support/temp_dir.h"
+#include "helpers/mesh_export.h"
+#include "helpers/temp_dir.h"
 
 namespace graspcd::io {
 namespace {

@@ -17,7 +17,7 @@
 
 #include "graspcd/exact/exact.h"
 #include "graspcd/support/seeded.h"
-#include "support/scene_support.h"
+#include "helpers/scene_support.h"
 
 namespace graspcd::mujoco {
 namespace {

@@ -13,7 +13,7 @@
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/nonconvex_contacts.h"
 #include "graspcd/support/meshes.h"
-#include "support/scene_support.h"
+#include "helpers/scene_support.h"
 
 namespace graspcd::mujoco {
 namespace {

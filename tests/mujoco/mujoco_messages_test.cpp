@@ -6,7 +6,7 @@
 #include <string>
 #include <thread>
 
-#include "support/scene_support.h"
+#include "helpers/scene_support.h"
 
 namespace graspcd::mujoco {
 namespace {

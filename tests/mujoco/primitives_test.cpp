@@ -25,7 +25,7 @@
 #include "graspcd/mujoco/collision.h"
 #include "graspcd/mujoco/registry.h"
 #include "graspcd/support/seeded.h"
-#include "support/scene_support.h"
+#include "helpers/scene_support.h"
 
 namespace graspcd::mujoco {
 namespace {

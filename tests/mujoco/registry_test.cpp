@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "graspcd/mujoco/primitives.h"
-#include "support/scene_support.h"
+#include "helpers/scene_support.h"
 
 namespace graspcd::mujoco {
 namespace {

@@ -1,7 +1,7 @@
 // Concave grasps (mjcf/concave_*.xml, docs/real-hands.md "Concave grasps"): scenes where a
 // concavity of the object or of its support carries the load, run through the executable.
 // - concave_project_thinbox: the project's hand; the thumb hangs inside a generated thin-walled
-//   box (study/scenes/generate_scenes.py) and pinches its wall against fingers 1-3.
+//   box (mjcf/generator/generate_scenes.py) and pinches its wall against fingers 1-3.
 // - concave_bowl_lift: the project's hand lifts the can off the floor of a real bowl (the can
 //   against the bowl served by graspcd too).
 // - concave_shadow_mug_hook: the Shadow hand's middle finger curls through the mug's handle.
@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "support/command_test.h"
+#include "helpers/command_test.h"
 
 namespace graspcd::testing {
 namespace {

@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "graspcd/grasp/grasp.h"
-#include "support/command_test.h"
+#include "helpers/command_test.h"
 
 namespace graspcd::grasp {
 namespace {

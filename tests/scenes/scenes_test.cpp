@@ -1,4 +1,4 @@
-// The generated scenes in mjcf/ (study/scenes/generate_scenes.py): every scene loads; the arm and
+// The generated scenes in mjcf/ (mjcf/generator/generate_scenes.py): every scene loads; the arm and
 // hand have the same kinematics in every scene (3 arm hinges, 4 fingers x 3 segments named
 // finger{1..4}_{A,B,C}, a motor per joint); the box hand's segments are boxes and the triangle
 // hand's are meshes of 100-5000 faces; every mesh is closed and consistently outward-oriented; the

@@ -5,12 +5,12 @@ Usage: slurm_test.py GRASPCD SOURCE_DIR WORK_DIR MODELS_DIR
 
 One cluster (slurm_cluster.py: munged, slurmctld and slurmd of this machine, private to the run)
 serves every test of this file:
-  - the sweep: study/slurm/sweep.sbatch as a 2-task array (the quick sweep, one repeat), then its
+  - the sweep: cluster/sweep.sbatch as a 2-task array (the quick sweep, one repeat), then its
     merge job with --dependency=afterok; the merged sweep.json must equal an unsharded run's in
     every point's errors and counters (timings removed); `study --merge` with a shard missing
     names it;
   - a failed array: its afterok merge never runs and is cancelled (kill_invalid_depend);
-  - an object set: study/slurm/validate_objects.sbatch on three small objects of MODELS_DIR and
+  - an object set: cluster/validate_objects.sbatch on three small objects of MODELS_DIR and
     a malformed OBJ (SAT, --fit, the project's hand) as a 2-task array and its merge; the shard
     with the refused object still completes, the merge exits 2 as the unsharded run does, and the
     merged rows equal the unsharded `validate --objects` run's (skipped with a message when
@@ -110,7 +110,7 @@ class SlurmTest(unittest.TestCase):
         r = graspcd("study", "--quick", "--no-table", "--repeats", "1", "--out", whole)
         self.assertEqual(r.returncode, 0, r.stderr)
         env = {"OUT": parts, "SWEEP_ARGS": "--quick --repeats 1"}
-        merge, states = self.array_and_merge("study/slurm/sweep.sbatch", env)
+        merge, states = self.array_and_merge("cluster/sweep.sbatch", env)
         self.assertEqual(len(states), 3, states)  # two array tasks and the merge
         self.assert_completed(states)
         a = load(os.path.join(whole, "sweep.json"))
@@ -132,7 +132,7 @@ class SlurmTest(unittest.TestCase):
     def test_a_failed_shard_cancels_the_merge(self):
         out = os.path.join(WORK, "sweep-failed")
         env = {"OUT": out, "SWEEP_ARGS": "--no-such-option"}
-        merge, states = self.array_and_merge("study/slurm/sweep.sbatch", env)
+        merge, states = self.array_and_merge("cluster/sweep.sbatch", env)
         for task, (state, _) in states.items():
             expected = "CANCELLED" if task == merge else "FAILED"
             self.assertEqual(state, expected, f"{task}: {states}\n{self.job_outputs()}")
@@ -156,7 +156,7 @@ class SlurmTest(unittest.TestCase):
         self.assertIn(f"warning: {objects}/{BAD_OBJECT}:4: face 1: vertex index 7", r.stderr)
         parts = os.path.join(WORK, "objects-parts")
         env = {"OUT": parts, "OBJECTS": objects, "VALIDATE_ARGS": " ".join(args)}
-        merge, states = self.array_and_merge("study/slurm/validate_objects.sbatch", env)
+        merge, states = self.array_and_merge("cluster/validate_objects.sbatch", env)
         self.assertEqual(len(states), 3, states)
         # The shards complete (a refused object is a row of the shard's file); the merge, which
         # writes the whole table, exits 2 as the unsharded run does.

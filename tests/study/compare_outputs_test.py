@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""study/compare_outputs.py: what it removes (timings, the machine, the provenance envelope, empty
+"""report/compare_outputs.py: what it removes (timings, the machine, the provenance envelope, empty
 warnings, checkout paths) and what it must still see (any answer, a missing file, a warning).
 Run by ctest as compare_outputs_test; exit 0 when every check holds."""
 
@@ -10,7 +10,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-SCRIPT = Path(__file__).resolve().parents[2] / "study" / "compare_outputs.py"
+SCRIPT = Path(__file__).resolve().parents[2] / "report" / "compare_outputs.py"
 
 BASE = {
     "graspcd": {"version": "0.1.0", "commit": "abc", "dirty": False},

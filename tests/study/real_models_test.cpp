@@ -13,7 +13,7 @@
 #include "graspcd/core/separators.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/study/validate.h"
-#include "support/test_scale.h"
+#include "helpers/test_scale.h"
 
 namespace graspcd::study {
 namespace {

@@ -17,9 +17,9 @@
 #include <string>
 
 #include "graspcd/core/sat.h"
-#include "support/envelope_check.h"
-#include "support/temp_dir.h"
-#include "support/test_scale.h"
+#include "helpers/envelope_check.h"
+#include "helpers/temp_dir.h"
+#include "helpers/test_scale.h"
 
 namespace graspcd::study {
 namespace {

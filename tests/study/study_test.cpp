@@ -13,9 +13,9 @@
 #include "graspcd/mujoco/model_loading.h"
 #include "graspcd/study/recording.h"
 #include "graspcd/study/replay.h"
-#include "support/command_test.h"
-#include "support/envelope_check.h"
-#include "support/test_scale.h"
+#include "helpers/command_test.h"
+#include "helpers/envelope_check.h"
+#include "helpers/test_scale.h"
 
 namespace {
 

@@ -16,8 +16,8 @@
 #include "graspcd/core/obb_tree.h"
 #include "graspcd/mujoco/registry.h"
 #include "graspcd/study/recording.h"
-#include "support/command_test.h"
-#include "support/test_scale.h"
+#include "helpers/command_test.h"
+#include "helpers/test_scale.h"
 
 namespace {
 

@@ -22,9 +22,9 @@
 #include "graspcd/core/sat.h"
 #include "graspcd/core/tree_query.h"
 #include "graspcd/io/mesh_io.h"
-#include "support/envelope_check.h"
-#include "support/temp_dir.h"
-#include "support/test_scale.h"
+#include "helpers/envelope_check.h"
+#include "helpers/temp_dir.h"
+#include "helpers/test_scale.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The grasp of paper section 9 on our scenes (mjcf/, study/scenes/generate_scenes.py): the fingers
+// The grasp of paper section 9 on our scenes (mjcf/, mjcf/generator/generate_scenes.py): the fingers
 // close in grasp steps of 0.003 rad until their segments' detectors report contact with the
 // object, the hand squeezes, the arm lifts the object with gravity on, and holds it.
 //

@@ -3,8 +3,8 @@
 files), after removing what a run may change without changing an answer: timings, the machine, the
 build and the provenance envelope.
 
-    /usr/bin/python3 study/compare_outputs.py BEFORE AFTER
-    /usr/bin/python3 study/compare_outputs.py --run GRASPCD OUT
+    /usr/bin/python3 report/compare_outputs.py BEFORE AFTER
+    /usr/bin/python3 report/compare_outputs.py --run GRASPCD OUT
 
 --run writes the answers a change must keep into OUT with the executable GRASPCD: `study --quick`
 (OUT/study/), `stress --quick --json` (OUT/stress.json), `validate --json` of example1,

@@ -3,7 +3,7 @@
 repetitions of every benchmark, and every comparison of docs/performance.md as a ratio of ours to
 the peer measured in the same run, with its target and whether it is met.
 
-Usage: /usr/bin/python3 study/bench/perf_summary.py FCL_BENCH.json MUJOCO_BENCH.json > perf.json
+Usage: /usr/bin/python3 bench/perf_summary.py FCL_BENCH.json MUJOCO_BENCH.json > perf.json
 
 A ratio's median is the ratio of the two medians; its min and max are those of the ratios of
 repetition i of ours to repetition i of the peer (Google Benchmark runs the repetitions of one

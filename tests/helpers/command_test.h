@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "support/temp_dir.h"
+#include "helpers/temp_dir.h"
 
 namespace graspcd::testing {
 

@@ -15,7 +15,7 @@
 // of 0.01 rad at which the served pairs report finger-cup contact (mj_forward, the bridge on),
 // plus 0.01 rad; it is found once, before the benchmarks.
 //
-// Run: build/study/graspcd_mujoco_bench --benchmark_repetitions=5
+// Run: build/bench/graspcd_mujoco_bench --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 #include <mujoco/mujoco.h>
 

@@ -44,9 +44,9 @@
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/support/meshes.h"
 #include "graspcd/support/random_geometry.h"
-#include "support/contact_rays.h"
-#include "support/real_models.h"
-#include "support/test_scale.h"
+#include "helpers/contact_rays.h"
+#include "helpers/real_models.h"
+#include "helpers/test_scale.h"
 
 namespace graspcd {
 namespace {
@@ -80,7 +80,7 @@ std::vector<TrianglePair> our_pairs(const ObbTree& ta, const ObbTree& tb, const 
   return pairs;
 }
 
-// As tests/support/tree_agreement.h cases_around, without the CGAL truth: on each contact ray
+// As tests/helpers/tree_agreement.h cases_around, without the CGAL truth: on each contact ray
 // (bracketed by our query), poses at both sides of the transition (touching to within rounding),
 // just outside (1e-4 of the size), just inside (1e-3) and deep inside (0.25).
 std::vector<PoseCase> poses_around(const ObbTree& ta, const ObbTree& tb, double size,

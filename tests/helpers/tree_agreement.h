@@ -12,8 +12,8 @@
 #include "graspcd/exact/exact.h"
 #include "graspcd/support/meshes.h"
 #include "graspcd/support/random_geometry.h"
-#include "support/contact_rays.h"
-#include "support/test_scale.h"
+#include "helpers/contact_rays.h"
+#include "helpers/test_scale.h"
 
 namespace graspcd::testing {
 

@@ -11,7 +11,7 @@ machine, the commit and the load average before and after (others building on th
 there). Needs ../shared/models beside the project: without it, says so and exits 0 writing nothing.
 
 Usage, from the project's root, after building build/graspcd (Release):
-    /usr/bin/python3 study/real_models.py [--repeats 3] [--timeout 120] [--graspcd build/graspcd]
+    /usr/bin/python3 report/real_models.py [--repeats 3] [--timeout 120] [--graspcd build/graspcd]
         [--out report/data/real_models.json]
 report/make_report.py draws the "Real hands and objects" section from the file when it sits
 beside study.json.
