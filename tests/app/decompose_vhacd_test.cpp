@@ -18,6 +18,7 @@
 #include "graspcd/decompose/vhacd.h"
 #include "graspcd/io/mesh_io.h"
 #include "helpers/command_test.h"
+#include "helpers/convex_check.h"
 #include "helpers/envelope_check.h"
 #include "helpers/ring_mesh.h"
 
@@ -27,19 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kModels = GRASPCD_MODELS_DIR;
-
-// Every vertex of the piece on the inner side of every face's plane, within `tol` metres.
-void expect_convex(const TriangleMesh& hull, double tol, const std::string& name) {
-  ASSERT_GE(hull.faces.size(), 4u) << name;
-  for (std::size_t f = 0; f < hull.faces.size(); ++f) {
-    const Triangle t = hull.triangle(f);
-    const Vec3 n = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
-    if (n.norm() == 0) continue;
-    for (const Vec3& v : hull.vertices) {
-      ASSERT_LE(n.normalized().dot(v - t.v[0]), tol) << name << " face " << f;
-    }
-  }
-}
 
 class DecomposeVhacd : public CommandTest {
  protected:

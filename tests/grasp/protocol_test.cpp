@@ -15,6 +15,7 @@
 #include <string>
 
 #include "graspcd/grasp/grasp.h"
+#include "helpers/scene_text.h"
 #include "helpers/temp_dir.h"
 
 namespace graspcd::grasp {
@@ -24,20 +25,8 @@ namespace fs = std::filesystem;
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// Replaces the one occurrence of `from` in `text`.
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
+using testing::read_text;
+using testing::replaced;
 
 class Protocol : public testing::TempDirTest {
  protected:

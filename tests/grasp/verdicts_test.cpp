@@ -15,6 +15,7 @@
 #include <string>
 
 #include "graspcd/grasp/grasp.h"
+#include "helpers/scene_text.h"
 #include "helpers/temp_dir.h"
 #include "helpers/test_scale.h"
 
@@ -25,20 +26,8 @@ namespace fs = std::filesystem;
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// Replaces the one occurrence of `from` in `text`.
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
+using testing::read_text;
+using testing::replaced;
 
 // The whole grasps below (about 30 s each under the sanitizers) run in the Release pass; the
 // sanitizer pass watches the object in the short grasps of EjectionVerdict.
