@@ -16,6 +16,7 @@
 #include "graspcd/core/geometry.h"
 #include "helpers/command_test.h"
 #include "helpers/mesh_export.h"
+#include "helpers/mesh_text.h"
 
 namespace graspcd::testing {
 namespace {
@@ -41,38 +42,6 @@ TriangleMesh cube30() {
   m.faces = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
              {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
   return m;
-}
-
-std::string ascii_ply(const TriangleMesh& m) {
-  std::ostringstream out;
-  out << "ply\nformat ascii 1.0\nelement vertex " << m.vertices.size()
-      << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << m.faces.size()
-      << "\nproperty list uchar int vertex_indices\nend_header\n";
-  for (const Vec3& v : m.vertices) out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
-  for (const auto& f : m.faces) out << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
-  return out.str();
-}
-
-std::string ascii_stl(const TriangleMesh& m) {
-  std::ostringstream out;
-  out << "solid box\n";
-  for (const auto& f : m.faces) {
-    out << "facet normal 0 0 0\n outer loop\n";
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& v = m.vertices[f[k]];
-      out << "  vertex " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
-    }
-    out << " endloop\nendfacet\n";
-  }
-  return out.str() + "endsolid box\n";
-}
-
-std::string off_of(const TriangleMesh& m) {
-  std::ostringstream out;
-  out << "OFF\n" << m.vertices.size() << ' ' << m.faces.size() << " 0\n";
-  for (const Vec3& v : m.vertices) out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
-  for (const auto& f : m.faces) out << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
-  return out.str();
 }
 
 class ObjectFormats : public CommandTest {

@@ -1,6 +1,6 @@
-// Checks that a detector's tree query gives CGAL's brute-force answer (src/graspcd/exact): the collision
-// answer and the sorted intersecting triangle pairs in all-contacts mode, the answer and a 0/1
-// count in first-contact mode. Shared by the tree query and the separator tests.
+// Checks that a detector's tree query gives CGAL's brute-force answer (src/graspcd/exact): the
+// collision answer and the sorted intersecting triangle pairs in all-contacts mode, the answer and
+// a 0/1 count in first-contact mode. Shared by the tree query and the separator tests.
 #pragma once
 
 #include <gtest/gtest.h>

@@ -15,10 +15,15 @@
 
 #include "graspcd/io/mesh_io.h"
 #include "helpers/mesh_export.h"
+#include "helpers/mesh_text.h"
 #include "helpers/temp_dir.h"
 
 namespace graspcd::io {
 namespace {
+
+using testing::ascii_ply;
+using testing::ascii_stl;
+using testing::off_of;
 
 // A box 2 x 3 x 4 with a corner at (1, -1, 0.5): every coordinate exact in single precision.
 TriangleMesh box() {
@@ -64,39 +69,6 @@ class MeshImportTest : public testing::TempDirTest {
     return path;
   }
 };
-
-std::string ascii_stl(const TriangleMesh& m) {
-  std::ostringstream out;
-  out << "solid box\n";
-  for (const auto& f : m.faces) {
-    out << "  facet normal 0 0 0\n    outer loop\n";
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& v = m.vertices[f[k]];
-      out << "      vertex " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
-    }
-    out << "    endloop\n  endfacet\n";
-  }
-  out << "endsolid box\n";
-  return out.str();
-}
-
-std::string off_of(const TriangleMesh& m) {
-  std::ostringstream out;
-  out << "OFF\n# a box\n" << m.vertices.size() << ' ' << m.faces.size() << " 0\n";
-  for (const Vec3& v : m.vertices) out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
-  for (const auto& f : m.faces) out << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
-  return out.str();
-}
-
-std::string ascii_ply(const TriangleMesh& m) {
-  std::ostringstream out;
-  out << "ply\nformat ascii 1.0\nelement vertex " << m.vertices.size()
-      << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << m.faces.size()
-      << "\nproperty list uchar int vertex_indices\nend_header\n";
-  for (const Vec3& v : m.vertices) out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
-  for (const auto& f : m.faces) out << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
-  return out.str();
-}
 
 // The message of the InputError load_mesh throws, or "" if it loads.
 std::string load_error(const std::string& path) {

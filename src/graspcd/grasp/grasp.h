@@ -1,5 +1,5 @@
-// The grasp of paper section 9 on our scenes (mjcf/, mjcf/generator/generate_scenes.py): the fingers
-// close in grasp steps of 0.003 rad until their segments' detectors report contact with the
+// The grasp of paper section 9 on our scenes (mjcf/, mjcf/generator/generate_scenes.py): the
+// fingers close in grasp steps of 0.003 rad until their segments' detectors report contact with the
 // object, the hand squeezes, the arm lifts the object with gravity on, and holds it.
 //
 // Scene contract (the header comment of mjcf/example1.xml): hinge joints arm1..arm3 and
