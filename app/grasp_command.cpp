@@ -436,7 +436,7 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
     grasp.max_contacts = choice->max_contacts;
   }
   if (app.count("--noslip") > 0) grasp.noslip_iterations = options.noslip;
-  grasp.multiccd = options.multiccd;
+  if (app.count("--multiccd") > 0) grasp.multiccd = options.multiccd;
   grasp.true_penetration = true;  // every run of the command measures it
   if (app.count("--method") > 0) grasp.method = options.method.method;
   if (app.count("--cap") > 0) grasp.cap = options.method.cap;
@@ -604,7 +604,7 @@ Command add_grasp_command(CLI::App& parent) {
   app->add_flag("--multiccd", options->multiccd,
                 "MuJoCo's multi-point convex collision (mjENBL_MULTICCD) for what MuJoCo "
                 "collides itself: --native's hulls, --decomposed's pieces, the pairs graspcd "
-                "does not serve (default: the scene's flag, MuJoCo's off)");
+                "does not serve (--multiccd=false: off; default: the scene's flag, MuJoCo's off)");
   app->add_option("--max-steps", options->max_steps, "Most closing grasp steps")
       ->check(positive_number())
       ->capture_default_str();
@@ -726,8 +726,9 @@ Command add_grasp_command(CLI::App& parent) {
       "pair instead of 1. Plane-mesh (a floor), box-box and capsule-box have routines of their "
       "own and do not change. It reaches --native's hulls, --decomposed's pieces and, in a "
       "served run, only the pairs graspcd does not serve (the object on its table); graspcd's "
-      "contacts are its own. JSON multiccd records what ran (a scene whose MJCF enables it "
-      "runs with it too); the text's summary says 'multiccd on|off'.\n"
+      "contacts are its own. Without the flag the scene's MJCF decides (<flag "
+      "multiccd=\"enable\"/>, MuJoCo's default off); --multiccd=false turns it off. JSON "
+      "multiccd records what ran; the text's summary says 'multiccd on|off'.\n"
       "Warnings: the pair registry's findings that do not stop the grasp (a served geom with a "
       "margin, an open mesh inside which containment is not checked), one line 'warning: "
       "CONFIG: message' each on stderr, and in the JSON's warnings.\n"

@@ -82,8 +82,9 @@ struct GraspOptions {
   // or capsule-box, which have their own routines) get, beside the first contact, up to four
   // more found by tilting the two geoms 1e-3 rad about the first contact's tangents. It applies
   // to whatever collides natively (native, decomposed, and the unserved pairs of a served run),
-  // never to graspcd's served pairs. false: the scene's flag (MuJoCo's default: off).
-  bool multiccd = false;
+  // never to graspcd's served pairs. true: on, false: off; none: the scene's flag (MuJoCo's
+  // default: off; MJCF <flag multiccd="enable"/>).
+  std::optional<bool> multiccd;
   // Called after each closing grasp step with the model, the state after the step's last physics
   // step and the 1-based step number (the study records the poses it replays, src/graspcd/study).
   std::function<void(const mjModel*, const mjData*, int)> on_grasp_step;
