@@ -360,6 +360,9 @@ PERF_GROUPS = [
               " physics step)"),
     ("grasp_reuse", "Whole grasps with contacts reused across steps within 20 µm (opt-in"
                     " \"contact_reuse\"; exact contacts are the default), served against native"),
+    ("grasp_multiccd", "Whole grasps against MuJoCo with its multi-point convex collision"
+                       " (native-multiccd, `grasp --multiccd`): served against it, and it against"
+                       " plain native"),
 ]
 
 
