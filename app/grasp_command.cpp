@@ -63,6 +63,7 @@ struct GraspCliOptions {
   bool judge = false;          // --judge: every closing step's contacts against CGAL (the race)
   bool force = false;          // --force: --write-scene may replace files graspcd did not write
   int noslip = 0;              // --noslip N: MuJoCo's noslip iterations (default: the scene's)
+  bool multiccd = false;       // --multiccd: MuJoCo's multi-point convex collision for the run
 };
 
 namespace fs = std::filesystem;
@@ -261,7 +262,7 @@ void print_text(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
       << " s simulated, " << std::setprecision(4) << r.step_wall_ms << " ms per physics step; "
       << r.contained_calls << " containment findings; " << r.nonfinite_skips
       << " non-finite skips; " << r.reused_calls << " reused; noslip " << r.noslip_iterations
-      << " iterations\n";
+      << " iterations; multiccd " << (r.multiccd ? "on" : "off") << '\n';
   if (decomposed) {
     out << "# decomposed: " << decomposed->replaced_geoms << " geom(s) of " << decomposed->source
         << " collide as " << decomposed->pieces << " convex pieces each (native)\n";
@@ -352,6 +353,7 @@ void print_json(const grasp::GraspResult& r, const std::optional<ObjectRun>& obj
         {"partial", r.true_penetration.partial},
         {"unmeasured", r.true_penetration.unmeasured}}},
       {"noslip_iterations", r.noslip_iterations},
+      {"multiccd", r.multiccd},
       {"ejected", r.ejected ? nlohmann::json{{"t", r.ejected->time},
                                              {"speed", r.ejected->speed},
                                              {"cause", r.ejected->cause}}
@@ -434,6 +436,7 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
     grasp.max_contacts = choice->max_contacts;
   }
   if (app.count("--noslip") > 0) grasp.noslip_iterations = options.noslip;
+  if (app.count("--multiccd") > 0) grasp.multiccd = options.multiccd;
   grasp.true_penetration = true;  // every run of the command measures it
   if (app.count("--method") > 0) grasp.method = options.method.method;
   if (app.count("--cap") > 0) grasp.cap = options.method.cap;
@@ -598,6 +601,10 @@ Command add_grasp_command(CLI::App& parent) {
                   "MuJoCo's noslip solver iterations (mjOption.noslip_iterations, 0: off) for "
                   "every configuration (default: the scene's, MuJoCo's 0)")
       ->check(CLI::Range(0, 1000));
+  app->add_flag("--multiccd", options->multiccd,
+                "MuJoCo's multi-point convex collision (mjENBL_MULTICCD) for what MuJoCo "
+                "collides itself: --native's hulls, --decomposed's pieces, the pairs graspcd "
+                "does not serve (--multiccd=false: off; default: the scene's flag, MuJoCo's off)");
   app->add_option("--max-steps", options->max_steps, "Most closing grasp steps")
       ->check(positive_number())
       ->capture_default_str();
@@ -661,7 +668,8 @@ Command add_grasp_command(CLI::App& parent) {
       "J, every physics step), true_penetration_max (m) and true_penetration_step (its grasp "
       "step, or null when none was found) with true_penetration {max, step, time, phase, geom, "
       "side (hand or support), hand_max, support_max, measures (grasp steps measured), pairs, "
-      "probe_spacing (m), partial, unmeasured} (see below), noslip_iterations, ejected ({t, "
+      "probe_spacing (m), partial, unmeasured} (see below), noslip_iterations, multiccd, "
+      "ejected ({t, "
       "speed, cause}: when, how fast and why the "
       "object was seen thrown out, cause speed, below or away; null when not), "
       "detection_ns_close, detection_ns_total, physics_steps, sim_time, ms_per_physics_step, "
@@ -709,6 +717,18 @@ Command add_grasp_command(CLI::App& parent) {
       "--noslip N: MuJoCo's noslip solver (mjOption.noslip_iterations: N iterations after the "
       "main solver that remove the contacts' slip) in every configuration; default the "
       "scene's (0, off); JSON noslip_iterations records what ran.\n"
+      "--multiccd: MuJoCo's multi-point convex collision (mjOption.enableflags |= "
+      "mjENBL_MULTICCD; MJCF <flag multiccd=\"enable\"/>) for the run. MuJoCo 2.2 applies it in "
+      "its general convex routine: a pair of a mesh with a mesh, box, cylinder or capsule (and "
+      "cylinder, capsule and box pairs that routine takes), not a sphere or ellipsoid; after "
+      "the first contact it tilts the two geoms 1e-3 rad either way about the contact's two "
+      "tangents and keeps each distinct contact found, at the first one's depth: up to 5 per "
+      "pair instead of 1. Plane-mesh (a floor), box-box and capsule-box have routines of their "
+      "own and do not change. It reaches --native's hulls, --decomposed's pieces and, in a "
+      "served run, only the pairs graspcd does not serve (the object on its table); graspcd's "
+      "contacts are its own. Without the flag the scene's MJCF decides (<flag "
+      "multiccd=\"enable\"/>, MuJoCo's default off); --multiccd=false turns it off. JSON "
+      "multiccd records what ran; the text's summary says 'multiccd on|off'.\n"
       "Warnings: the pair registry's findings that do not stop the grasp (a served geom with a "
       "margin, an open mesh inside which containment is not checked), one line 'warning: "
       "CONFIG: message' each on stderr, and in the JSON's warnings.\n"

@@ -246,6 +246,8 @@ void BM_NoopDelegated(benchmark::State& state) {
 // it, and any state carried from step to step pays its way. One iteration is one whole grasp;
 // the reported time is per physics step. Counters: physics steps, most finger-object contacts
 // in one step, and whether the object was held. Variants: "native" (MuJoCo's own collision),
+// "native-multiccd" (the same with MuJoCo's multi-point convex collision, mjENBL_MULTICCD: up to 5
+// contacts per convex pair instead of 1; grasp --multiccd),
 // "served" (graspcd, the config as shipped: each tree query restarted from its front, exact
 // contacts every step), "served-roots" (the same with "front_list" off: every query from the
 // roots) and "served-reuse" (the config with "contact_reuse" 20 um: a touching pair's contacts
@@ -254,7 +256,8 @@ constexpr double kWholeGraspReuse = 2e-5;  // metres
 
 void whole_grasp(benchmark::State& state, const std::string& scene, const std::string& variant) {
   graspcd::grasp::GraspOptions options;
-  options.native = variant == "native";
+  options.native = variant == "native" || variant == "native-multiccd";
+  if (variant == "native-multiccd") options.multiccd = true;
   if (variant == "served-roots") options.front_list = false;
   if (variant == "served-reuse") options.contact_reuse = kWholeGraspReuse;
   long steps = 0;
@@ -285,7 +288,8 @@ void register_whole_grasps(int repetitions) {
   for (int k = 0; k < repetitions; ++k) {
     for (const char* scene : kGraspScenes) {
       const std::string name = std::string(scene).substr(0, std::string(scene).size() - 4);
-      for (const char* variant : {"native", "served", "served-roots", "served-reuse"}) {
+      for (const char* variant :
+           {"native", "native-multiccd", "served", "served-roots", "served-reuse"}) {
         benchmark::RegisterBenchmark(
             ("BM_WholeGrasp/" + name + "/" + variant + "/rep:" + std::to_string(k)).c_str(),
             [scene, variant](benchmark::State& st) { whole_grasp(st, scene, variant); })

@@ -183,6 +183,21 @@ def main():
                     reuse, native, 2.0, max_contacts=rc.get("max_contacts"),
                     mean_contacts=rc.get("mean_contacts"), reused_calls=rc.get("reused_calls"),
                     held=rc.get("held") == 1))
+        # MuJoCo natively with its multi-point convex collision (grasp --multiccd): graspcd's
+        # served step against it, and what multiccd costs MuJoCo (no target: a reference).
+        multi = "/".join(parts[:2] + ["native-multiccd"] + parts[3:])
+        mc = runs.get(multi, {}).get("counters", {})
+        add(compare(runs, "grasp_multiccd",
+                    f"whole grasp {parts[1]}, served / native with multiccd per physics step",
+                    name, multi, None, max_contacts=c.get("max_contacts"),
+                    native_max_contacts=mc.get("max_contacts"),
+                    native_mean_contacts=mc.get("mean_contacts"), held=c.get("held") == 1,
+                    native_held=mc.get("held") == 1))
+        add(compare(runs, "grasp_multiccd",
+                    f"whole grasp {parts[1]}, native with multiccd / native per physics step",
+                    multi, native, None, max_contacts=mc.get("max_contacts"),
+                    native_max_contacts=runs.get(native, {}).get("counters", {}).get(
+                        "max_contacts"), held=mc.get("held") == 1))
     json.dump(out, sys.stdout, indent=1, sort_keys=True)
     sys.stdout.write("\n")
     # A short table on stderr.

@@ -360,6 +360,9 @@ PERF_GROUPS = [
               " physics step)"),
     ("grasp_reuse", "Whole grasps with contacts reused across steps within 20 µm (opt-in"
                     " \"contact_reuse\"; exact contacts are the default), served against native"),
+    ("grasp_multiccd", "Whole grasps against MuJoCo with its multi-point convex collision"
+                       " (native-multiccd, `grasp --multiccd`): served against it, and it against"
+                       " plain native"),
 ]
 
 
@@ -630,7 +633,11 @@ def race_section(race, fig_dir, fig_rel):
       " serves it (the contact manifold), natively on MuJoCo's convex hull, and natively on"
       " HACD decompositions of the object into at most N convex pieces (`graspcd decompose`,"
       " `grasp --decomposed`; decomposed-N), and V-HACD's where raced (`decompose --engine"
-      " vhacd`; vhacd-N). The step cost is the wall time per physics step over the whole"
+      " vhacd`; vhacd-N). MuJoCo's native configurations also ran with its multi-point convex"
+      " collision where raced (`grasp --multiccd`, `run_race.py --multiccd 0,1`: up to 5"
+      " contacts per convex pair instead of 1; \"native hull multiccd\", \"decomposed-N"
+      " multiccd\", in the figure \"mc\"); graspcd's served pairs are not convex and are its own,"
+      " so its row runs without it. The step cost is the wall time per physics step over the whole"
       " grasp (single runs one after another, not a benchmark); contacts are hand-object"
       " contacts per physics step; the contact error is phantom plus missed contacts per closing"
       " grasp step, judged by CGAL on the true meshes (`grasp --judge`: a phantom's point lies"
@@ -699,6 +706,14 @@ def race_section(race, fig_dir, fig_rel):
               f" {', '.join(f'{x:.1f}' for x in p['load_average'])} |"
               f" {p['wall_seconds'] / 60:.1f} min |")
     for scene, e in race["scenes"].items():
+        for part in e.get("merged_rows", []):
+            p = part["provenance"]
+            g = p.get("graspcd", {})
+            when = p.get("date") or p.get("machine", {}).get("date", "?")
+            w("")
+            w(f"{scene}: the rows of {', '.join(part['configurations'])} come from"
+              f" {part['file']} (graspcd {g.get('version', '?')} {g.get('commit', '?')[:7]},"
+              f" {when}).")
         if e.get("note"):
             w("")
             w(f"{scene}: {e['note']}")
@@ -777,7 +792,8 @@ def race_section(race, fig_dir, fig_rel):
             points[good][0].append(r["ms_per_physics_step"])
             points[good][1].append(r["contact_error_per_step"])
             points[good][2].append(tp)
-            label = r["configuration"].replace("decomposed-", "d").replace("vhacd-", "v")
+            label = (r["configuration"].replace("decomposed-", "d").replace("vhacd-", "v")
+                     .replace(" multiccd", " mc"))
             if noslip:
                 label += f" ns{noslip}"
             ax.annotate(label, (r["ms_per_physics_step"], r["contact_error_per_step"]),
@@ -873,8 +889,8 @@ def race_protocol_text(race):
 
 def race_findings(race):
     """The race's findings, computed from the rows: where exactness changes the outcome (graspcd
-    keeps the object and a cheaper configuration does not, at the same noslip setting) and where a
-    decomposition is as good and cheaper (no worse an outcome, a true penetration no deeper than
+    keeps the object and a cheaper configuration does not, at the same noslip setting) and where
+    MuJoCo's own route, the hull or a decomposition, is as good and cheaper (no worse an outcome, a true penetration no deeper than
     graspcd's by more than the start check's 0.5 mm, a lower step cost)."""
     lines = []
     w = lines.append
@@ -905,7 +921,7 @@ def race_findings(race):
             o_err = round(ours["contact_error_per_step"], 2)
             good = []
             for r in cheaper:
-                if not r["configuration"].startswith(("decomposed", "vhacd")):
+                if r["configuration"].startswith("graspcd"):
                     continue
                 if race_score.RANK[race_score.row_outcome(r)] > o_rank:
                     continue
@@ -952,7 +968,8 @@ def race_findings(race):
     w("")
     lines.extend(exact or ["- none of these scenes."])
     w("")
-    w("Where a decomposition is as good and cheaper: a decomposition's run with an outcome no"
+    w("Where MuJoCo's own route is as good and cheaper: a run of the hull or of a decomposition"
+      " (with or without multiccd) with an outcome no"
       " worse than graspcd's, a true penetration into the hand no deeper than graspcd's by more"
       f" than {1000 * PENETRATION_SLACK:g} mm (the start check's tolerance; rows of an earlier"
       " race, without true penetration, by outcome and contact error alone), no more contact"

@@ -4,7 +4,8 @@
 usage: run_race.py GRASPCD [--out FILE] [--work DIR] [--scenes S1,S2,...] [--pieces 4,8,16]
                    [--object "NAME=FILE [grasp --object options]"]... [--scene-pieces S=4,8 ...]
                    [--simplify-above FACES=F] [--merge OLD.json] [--noslip 0,10]
-                   [--engines hacd,vhacd] [--vhacd-pieces 16]
+                   [--engines hacd,vhacd] [--vhacd-pieces 16] [--multiccd 0,1]
+                   [--configurations "native hull*,decomposed-*"]
 
 For each scene (default: examples 1-3; mjcf/S.xml) and each --object (a user's mesh through
 `graspcd grasp --object FILE OPTIONS --write-scene WORK/scenes/NAME`, raced as that scene under
@@ -46,12 +47,26 @@ missed contacts per closing step and the step cost; the report scores it (outcom
 penetration into the hand, then contact error). A run the grasp refuses at the start (exit code 2, "cannot start ..." or "the
 start state is not valid ...") is a row "cannot start" with that message; any other failed run a
 row "cannot start" with its message too; a decomposition that fails is recorded with its message
-and raced no further. --engines hacd,vhacd decomposes with each engine `graspcd decompose
+and raced no further.
+
+--multiccd 0,1 (the default) races MuJoCo's native configurations, the hull and the pieces, once
+without and once with MuJoCo's multi-point convex collision (`grasp --multiccd`: up to 5 contacts
+per convex pair instead of 1); a configuration with it is named with " multiccd" after its name
+("native hull multiccd", "decomposed-16 multiccd"), and every row records "multiccd". graspcd's
+served pairs are not convex and are graspcd's own: its row runs without it ("graspcd", multiccd
+false); "graspcd multiccd" (the pairs graspcd does not serve, the object on its table, with it) is
+raced only when --configurations names it. --configurations LIST (comma-separated names or
+fnmatch patterns, e.g. "native hull*,decomposed-*") races only the configurations it matches, and
+decomposes only for those: graspcd's rows can be raced apart from the baselines and the two files
+joined with --merge, which keeps, for a scene raced in both, the merged file's rows of the
+configurations and noslip values this run did not race (each with that file's provenance, in
+"merged_rows"). --engines hacd,vhacd decomposes with each engine `graspcd decompose
 --engine` offers (HACD always: configuration decomposed-N; V-HACD, when the executable has it:
 vhacd-N, with --vhacd-pieces' counts when given, else the scene's), cached apart in --work.
 """
 import argparse
 import datetime
+import fnmatch
 import json
 import os
 import platform
@@ -174,13 +189,14 @@ def grasp_run(command):
     return json.loads(done.stdout), None
 
 
-def refused_row(name, noslip, message):
+def refused_row(name, noslip, message, multiccd=False):
     """The row of a run that did not start (or failed): no measures."""
     return {"configuration": name, "noslip": noslip, "outcome": "cannot start",
             "message": message, "gripped": False, "held": False, "reason": None,
             "tilt_deg": None, "tilt_final_deg": None, "max_speed": None,
             "kinetic_energy_max": None, "true_penetration_max": None, "true_penetration": None,
-            "ms_per_physics_step": None, "contacts_per_step": None, "phantom": None,
+            "multiccd": multiccd, "ms_per_physics_step": None, "contacts_per_step": None,
+            "phantom": None,
             "missed": None, "contact_error_per_step": None, "first_contact": {},
             "cgal_first_contact": {}, "cgal_first_contact_body": {}}
 
@@ -190,6 +206,7 @@ def row(name, g, noslip=None):
     tp = g.get("true_penetration")
     return {"configuration": name,
             "noslip": g.get("noslip_iterations", noslip),
+            "multiccd": g.get("multiccd", False),
             "outcome": race_score.outcome(g),
             "reason": g.get("reason"),
             "ejected": g.get("ejected"),
@@ -212,22 +229,63 @@ def row(name, g, noslip=None):
             "contact_error_per_step": judge["contact_error_per_step"]}
 
 
-def race_rows(name, command, noslips):
+def configuration_names(name, multiccds):
+    """The configurations of one collision route: `name` without MuJoCo's multiccd, and
+    "`name` multiccd" with it, for the values in `multiccds` (0, 1)."""
+    return [(name + (" multiccd" if m else ""), bool(m)) for m in multiccds]
+
+
+def selected(name, patterns):
+    """Whether --configurations' patterns (None: the default) race configuration `name`. The
+    default races every configuration but "graspcd multiccd", which only a pattern naming it
+    races."""
+    if patterns is None:
+        return name != "graspcd multiccd"
+    return any(fnmatch.fnmatchcase(name, p) for p in patterns)
+
+
+def race_rows(name, command, noslips, multiccd=False):
     """The rows of one configuration, one per noslip value, and the first run's JSON (or None)."""
     rows, first = [], None
+    if multiccd:
+        command = command + ["--multiccd"]
     for n in noslips:
         g, message = grasp_run(command + ["--noslip", str(n)])
         if g is None:
             print(f"[race]   {name} noslip {n}: cannot start: {message}", file=sys.stderr)
-            rows.append(refused_row(name, n, message))
+            rows.append(refused_row(name, n, message, multiccd))
             continue
         first = first or g
         r = row(name, g, n)
         print(f"[race]   {name} noslip {n}: {r['outcome']}, true penetration"
               f" {1000 * r['true_penetration_max']:.2f} mm,"
-              f" {r['ms_per_physics_step']:.3f} ms per step", file=sys.stderr)
+              f" {r['ms_per_physics_step']:.3f} ms per step,"
+              f" {r['contacts_per_step']:.2f} contacts per step", file=sys.stderr)
         rows.append(r)
     return rows, first
+
+
+def row_key(r):
+    """What one row races: its configuration and noslip value."""
+    return (r["configuration"], r.get("noslip"))
+
+
+def merge_rows(entry, old_entry, old, file):
+    """--merge for a scene raced now and in the merged file `old` (its entry `old_entry`): the
+    old rows of configurations and noslip values not raced now are kept, after the new ones, and
+    "merged_rows" says where they came from (the file, its configurations and the old scene's
+    provenance); so are the old decompositions not made now."""
+    raced = {row_key(r) for r in entry["rows"]}
+    kept = [r for r in old_entry["rows"] if row_key(r) not in raced]
+    if not kept:
+        return
+    entry["rows"].extend(kept)
+    for key, d in old_entry.get("decompositions", {}).items():
+        entry["decompositions"].setdefault(key, d)
+    entry.setdefault("merged_rows", []).append(
+        {"file": os.path.basename(file),
+         "configurations": sorted({r["configuration"] for r in kept}),
+         "provenance": old_entry.get("provenance", {"machine": old.get("machine")})})
 
 
 def engines_available(graspcd):
@@ -261,8 +319,22 @@ def main():
                         help="decomposition engines, those the executable offers (hacd, vhacd)")
     parser.add_argument("--vhacd-pieces",
                         help="V-HACD's piece counts for every scene (default: HACD's)")
+    parser.add_argument("--multiccd", default="0,1",
+                        help="MuJoCo's multi-point convex collision for the native and decomposed"
+                             " configurations: 0 without, 1 with (grasp --multiccd), one run each")
+    parser.add_argument("--configurations",
+                        help="comma-separated configuration names or fnmatch patterns to race"
+                             " (default: all but \"graspcd multiccd\")")
     args = parser.parse_args()
     noslips = [int(n) for n in args.noslip.split(",") if n]
+    try:
+        multiccds = [int(m) for m in args.multiccd.split(",") if m]
+    except ValueError:
+        multiccds = None
+    if not multiccds or any(m not in (0, 1) for m in multiccds):
+        fail(f"--multiccd {args.multiccd!r}: give 0, 1 or 0,1")
+    patterns = (None if args.configurations is None else
+                [p.strip() for p in args.configurations.split(",") if p.strip()])
     offered = engines_available(args.graspcd)
     engines = [e for e in args.engines.split(",") if e in offered]
     simplify_above = None
@@ -280,6 +352,7 @@ def main():
     notes = dict(spec.partition("=")[::2] for spec in args.scene_note)
     result = {"machine": machine(), "pieces": pieces, "noslip": noslips, "engines": engines,
               "engines_asked": args.engines.split(","), "protocol": "outcome",
+              "multiccd": multiccds, "configurations": patterns,
               "command": [os.path.relpath(sys.argv[0], ROOT)] + sys.argv[1:], "scenes": {}}
     race_started = time.time()
     scenes = [(s, os.path.join(ROOT, "mjcf", s + ".xml"), None)
@@ -305,12 +378,25 @@ def main():
                              {"above": simplify_above[0], "max_faces": simplify,
                               "source_faces": faces})
         base = [args.graspcd, "grasp", scene, "--judge", "--json"]
-        print(f"[race] {scene_name}: graspcd, native", file=sys.stderr)
-        rows, first = race_rows("graspcd", base, noslips)
-        entry["rows"].extend(rows)
-        rows, native = race_rows("native hull", base + ["--native"], noslips)
-        entry["rows"].extend(rows)
-        first = first or native
+        first = None
+
+        def race(route, command):
+            # Each configuration of one route (with and without multiccd) that --configurations
+            # selects, its rows added to the scene's; the first run's JSON kept for provenance.
+            nonlocal first
+            multis = [0, 1] if route == "graspcd" else multiccds
+            if route == "graspcd" and 1 not in multiccds:
+                multis = [0]
+            for name, multiccd in configuration_names(route, multis):
+                if not selected(name, patterns):
+                    continue
+                print(f"[race] {scene_name}: {name}", file=sys.stderr)
+                rows, g = race_rows(name, command, noslips, multiccd)
+                entry["rows"].extend(rows)
+                first = first or g
+
+        race("graspcd", base)
+        race("native hull", base + ["--native"])
         vhacd_counts = counts if args.vhacd_pieces is None else \
             [int(p) for p in args.vhacd_pieces.split(",") if p]
         if "vhacd" in engines:
@@ -326,6 +412,9 @@ def main():
                 manifest = os.path.join(out, "decomposition.json")
                 name = f"{'decomposed' if engine == 'hacd' else engine}-{n}"
                 key = str(n) if engine == "hacd" else f"{engine}-{n}"
+                if not any(selected(c, patterns)
+                           for c, _ in configuration_names(name, multiccds)):
+                    continue
                 if not os.path.exists(manifest):
                     print(f"[race] {scene_name}: decompose {stem} into at most {n} with {engine}"
                           + ("" if simplified is None else f" (--simplify {simplified})"),
@@ -353,10 +442,7 @@ def main():
                     "volume": d.get("volume"),
                     "source_faces": d.get("source_faces"), "simplify": d.get("simplify"),
                     "graspcd": d.get("graspcd", {}).get("commit")}
-                print(f"[race] {scene_name}: {name}", file=sys.stderr)
-                rows, g = race_rows(name, base + ["--decomposed", out], noslips)
-                entry["rows"].extend(rows)
-                first = first or g
+                race(name, base + ["--decomposed", out])
         if first is None:
             first = {}
         entry["provenance"] = provenance(first, started)
@@ -374,6 +460,7 @@ def main():
              "scenes": [s for s in old["scenes"] if s not in result["scenes"]]})
         for scene_name, entry in old["scenes"].items():
             if scene_name in result["scenes"]:
+                merge_rows(result["scenes"][scene_name], entry, old, merged)
                 continue
             entry.setdefault("pieces", old["pieces"])
             # A scene of a run before per-scene provenance: the old run's machine and date.

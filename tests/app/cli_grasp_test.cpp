@@ -60,6 +60,59 @@ TEST_F(CliTest, GraspNativeHasNoDetectionTime) {
   EXPECT_GT(doc.at("physics_steps").get<long>(), 0);
 }
 
+// --multiccd: MuJoCo's multi-point convex collision for what MuJoCo collides itself. Natively,
+// example 1's fingers (meshes) on the cup's hull get one contact per pair without it and more with
+// it; a scene whose MJCF enables it runs with it unless --multiccd=false; the JSON and the text
+// say what ran; a value that is not a truth value is one line and exit code 2.
+TEST_F(CliTest, GraspMulticcdReachesMujocosNativeCollision) {
+  const std::string scene = shipped_scene("example1");
+  const auto grasp = [&](const std::string& path, const std::string& args) {
+    const Result r = run("grasp " + path + " --native --max-steps 150 --json " + args);
+    EXPECT_EQ(r.exit_code, 0) << args << ": " << r.err;
+    return r.exit_code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::object();
+  };
+  const nlohmann::json off = grasp(scene, "");
+  const nlohmann::json on = grasp(scene, "--multiccd");
+  ASSERT_TRUE(off.contains("multiccd") && on.contains("multiccd"));
+  EXPECT_EQ(off.at("multiccd"), false);
+  EXPECT_EQ(on.at("multiccd"), true);
+  // The fingers reach the cup in both runs; one contact per convex pair is MuJoCo's without it.
+  EXPECT_GT(off.at("max_contacts").get<int>(), 0);
+  EXPECT_EQ(off.at("max_pair_contacts"), 1);
+  EXPECT_GT(on.at("max_pair_contacts").get<int>(), 1);
+  EXPECT_LE(on.at("max_pair_contacts").get<int>(), 5);  // the first and 4 tilted searches
+
+  // The scene's own flag, and --multiccd=false against it.
+  std::string xml = read_file(scene);
+  const std::string option = "<option timestep=\"0.002\" gravity=\"0 0 -9.81\"/>";
+  ASSERT_NE(xml.find(option), std::string::npos);
+  xml.replace(xml.find(option), option.size(),
+              "<option timestep=\"0.002\" gravity=\"0 0 -9.81\"><flag multiccd=\"enable\"/>"
+              "</option>");
+  const std::string mjcf = fs::path(scene).parent_path().string();
+  const std::string meshdir = "meshdir=\"meshes\"";
+  ASSERT_NE(xml.find(meshdir), std::string::npos);
+  xml.replace(xml.find(meshdir), meshdir.size(), "meshdir=\"" + mjcf + "/meshes\"");
+  const std::string flagged = write("flagged.xml", xml);
+  fs::copy_file(fs::path(mjcf) / "example1.pairs.json", dir_ / "flagged.pairs.json");
+  const nlohmann::json scene_on = grasp(flagged, "");
+  ASSERT_TRUE(scene_on.contains("multiccd"));
+  EXPECT_EQ(scene_on.at("multiccd"), true);
+  EXPECT_EQ(scene_on.at("max_pair_contacts"), on.at("max_pair_contacts"));
+  const nlohmann::json turned_off = grasp(flagged, "--multiccd=false");
+  ASSERT_TRUE(turned_off.contains("multiccd"));
+  EXPECT_EQ(turned_off.at("multiccd"), false);
+  EXPECT_EQ(turned_off.at("max_pair_contacts"), 1);
+
+  const Result text = run("grasp " + shipped_scene("example2") + " --max-steps 2 --multiccd");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("; multiccd on\n"), std::string::npos) << text.out;
+  const Result bad = run("grasp " + scene + " --native --multiccd=sometimes");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_NE(bad.err.find("--multiccd"), std::string::npos) << bad.err;
+}
+
 // --contact-reuse (registry.h, "contact_reuse"): touching pairs answered by their kept contacts,
 // counted in reused_calls; 0 is the exact default; out of range, not a number, or with --native,
 // one line and exit code 2.

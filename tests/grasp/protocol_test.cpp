@@ -51,11 +51,13 @@ class Protocol : public testing::TempDirTest {
 TEST_F(Protocol, ACanThrownThroughTheFloorIsEjectedWithItsTruePenetrationMeasured) {
   GraspOptions options;
   options.noslip_iterations = 7;
+  options.multiccd = true;
   const GraspResult r =
       example2("<contact><exclude body1=\"world\" body2=\"object\"/></contact>", options);
   ASSERT_TRUE(r.ejected.has_value());
   EXPECT_FALSE(r.held);
   EXPECT_EQ(r.noslip_iterations, 7);
+  EXPECT_TRUE(r.multiccd);  // asked for, on MuJoCo's native collision
   // Every grasp step of every phase measured (5 physics steps each), every one after the can
   // started to fall found it below the floor: the deepest at the last, the can's free fall over
   // the whole run less the height of its lowest point (it started 0.5 mm or less above the floor).
@@ -82,6 +84,7 @@ TEST_F(Protocol, ACanStandingOnTheFloorIsMeasuredAtRestWithoutNoslip) {
   const GraspResult r = example2("");
   EXPECT_FALSE(r.ejected.has_value());
   EXPECT_EQ(r.noslip_iterations, 0);  // the scene's
+  EXPECT_FALSE(r.multiccd);           // the scene's: MuJoCo's default, off
   const TruePenetration& p = r.true_penetration;
   EXPECT_EQ(p.measures, r.physics_steps / 5);
   // MuJoCo's soft contact lets the can sink into the floor about a millimetre as the fingers

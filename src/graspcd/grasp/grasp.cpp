@@ -102,6 +102,13 @@ GraspConfig load_grasp_config(const mjModel* m, const std::string& config_path,
 GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options) {
   const auto model = mujoco::load_model(scene_path);
   if (options.noslip_iterations) model->opt.noslip_iterations = *options.noslip_iterations;
+  if (options.multiccd) {
+    if (*options.multiccd) {
+      model->opt.enableflags |= mjENBL_MULTICCD;
+    } else {
+      model->opt.enableflags &= ~static_cast<int>(mjENBL_MULTICCD);
+    }
+  }
   const mjModel* m = model.get();
   // A decomposed scene's true object (its start and its penetration are the true meshes').
   bool decomposed = false;
@@ -130,6 +137,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   result.native = options.native;
   result.method = options.native ? "native" : method_name(config.method);
   result.noslip_iterations = m->opt.noslip_iterations;
+  result.multiccd = (m->opt.enableflags & mjENBL_MULTICCD) != 0;
 
   // A hand driven through its own actuators (the config's "grasp" section), or ours.
   std::unique_ptr<HandRun> run;

@@ -76,6 +76,15 @@ struct GraspOptions {
   // MuJoCo's noslip solver iterations (mjOption.noslip_iterations: after the main solver, a pass
   // that removes the contacts' slip); none: the scene's (MuJoCo's default 0, off).
   std::optional<int> noslip_iterations;
+  // MuJoCo's multi-point convex collision (mjENBL_MULTICCD in mjOption.enableflags) for the run:
+  // the pairs MuJoCo collides itself through its general convex routine (mesh-mesh, mesh-box,
+  // cylinder and capsule pairs with a mesh; not spheres and ellipsoids, not plane-mesh, box-box
+  // or capsule-box, which have their own routines) get, beside the first contact, up to four
+  // more found by tilting the two geoms 1e-3 rad about the first contact's tangents. It applies
+  // to whatever collides natively (native, decomposed, and the unserved pairs of a served run),
+  // never to graspcd's served pairs. true: on, false: off; none: the scene's flag (MuJoCo's
+  // default: off; MJCF <flag multiccd="enable"/>).
+  std::optional<bool> multiccd;
   // Called after each closing grasp step with the model, the state after the step's last physics
   // step and the 1-based step number (the study records the poses it replays, src/graspcd/study).
   std::function<void(const mjModel*, const mjData*, int)> on_grasp_step;
@@ -142,6 +151,7 @@ struct GraspResult {
   // collided (true_penetration.h), with GraspOptions::true_penetration; else measures == 0.
   TruePenetration true_penetration;
   int noslip_iterations = 0;        // MuJoCo's noslip iterations the run used (GraspOptions)
+  bool multiccd = false;            // whether the run's model had mjENBL_MULTICCD on (GraspOptions)
   std::optional<Ejection> ejected;  // the first sign that the object was thrown out, if any
   // The object's largest move (its origin, in the world) from where it was at the start of the
   // squeeze, over the squeeze and the settling, m; more than kSqueezePush: pushed (grasp.h).

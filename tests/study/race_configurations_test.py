@@ -1,0 +1,78 @@
+#!/usr/bin/python3
+"""report/race/run_race.py: the configurations a race runs (--multiccd, --configurations) and
+--merge of a scene raced in two files, on made-up rows. A configuration with MuJoCo's multiccd is
+named after its route with " multiccd"; the default races every configuration but "graspcd
+multiccd"; patterns select by name; --merge keeps the merged file's rows of configurations and
+noslip values not raced now, and says where they came from. Run by ctest as
+race_configurations_test; exit 0 when every check holds."""
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "report" / "race"))
+import run_race  # noqa: E402
+
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+
+
+# Names: without and with multiccd, in the order of --multiccd.
+check(run_race.configuration_names("native hull", [0, 1])
+      == [("native hull", False), ("native hull multiccd", True)], "native hull, 0 and 1")
+check(run_race.configuration_names("decomposed-16", [1])
+      == [("decomposed-16 multiccd", True)], "decomposed-16, 1 only")
+
+# The default: all but graspcd with multiccd.
+for name in ("graspcd", "native hull", "native hull multiccd", "decomposed-16",
+             "vhacd-16 multiccd"):
+    check(run_race.selected(name, None), f"{name} raced by default")
+check(not run_race.selected("graspcd multiccd", None), "graspcd multiccd not raced by default")
+
+# The baselines only, as the multiccd race ran them: every native and decomposed configuration.
+baselines = ["native hull*", "decomposed-*", "vhacd-*"]
+for name in ("native hull", "native hull multiccd", "decomposed-8", "decomposed-16 multiccd",
+             "vhacd-16"):
+    check(run_race.selected(name, baselines), f"{name} is a baseline")
+for name in ("graspcd", "graspcd multiccd"):
+    check(not run_race.selected(name, baselines), f"{name} is not a baseline")
+# graspcd's rows alone, raced again later; a name is matched whole, not as a prefix.
+check(run_race.selected("graspcd", ["graspcd"]), "graspcd by name")
+check(not run_race.selected("graspcd multiccd", ["graspcd"]), "a name is not a prefix")
+check(run_race.selected("graspcd multiccd", ["graspcd*"]), "graspcd* names both")
+
+
+def row(configuration, noslip, outcome):
+    return {"configuration": configuration, "noslip": noslip, "outcome": outcome}
+
+
+# --merge of a scene raced now (graspcd) and in the merged file (the baselines, and an older
+# graspcd row at the same noslip, which the new one replaces).
+new = {"rows": [row("graspcd", 0, "held")], "decompositions": {}}
+old_entry = {"rows": [row("graspcd", 0, "dropped"), row("native hull", 0, "ejected"),
+                      row("native hull multiccd", 0, "held"), row("decomposed-16", 0, "held")],
+             "decompositions": {"16": {"engine": "hacd", "pieces": 16}},
+             "provenance": {"graspcd": {"version": "0.3.0", "commit": "abc"}, "date": "then"}}
+old = {"machine": {}, "scenes": {"s": old_entry}}
+run_race.merge_rows(new, old_entry, old, "/somewhere/baselines.json")
+keys = [run_race.row_key(r) for r in new["rows"]]
+check(keys == [("graspcd", 0), ("native hull", 0), ("native hull multiccd", 0),
+               ("decomposed-16", 0)], f"merged rows {keys}")
+check(new["rows"][0]["outcome"] == "held", "the row raced now wins")
+check(new["decompositions"].get("16", {}).get("pieces") == 16, "the merged decomposition kept")
+merged = new.get("merged_rows", [])
+check(len(merged) == 1 and merged[0]["file"] == "baselines.json"
+      and merged[0]["configurations"] == ["decomposed-16", "native hull",
+                                          "native hull multiccd"]
+      and merged[0]["provenance"]["date"] == "then", f"merged_rows {merged}")
+# Nothing left to take: no note.
+again = {"rows": list(new["rows"]), "decompositions": {}}
+run_race.merge_rows(again, old_entry, old, "baselines.json")
+check("merged_rows" not in again and len(again["rows"]) == 4, "nothing merged twice")
+
+for f in failures:
+    print(f"race_configurations_test: FAILED: {f}", file=sys.stderr)
+sys.exit(1 if failures else 0)
