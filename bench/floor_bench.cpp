@@ -299,8 +299,10 @@ void grasp(benchmark::State& state, const std::string& scene, const std::string&
 }
 
 // One pass of `work` over the recording per iteration, its time divided by the physics steps.
+// Never inlined: bench/callgrind_step.py counts its instructions (inclusive) per part.
 template <typename Work>
-void pass(benchmark::State& state, const Recording& rec, std::size_t cases, Work work) {
+[[gnu::noinline]] void pass(benchmark::State& state, const Recording& rec, std::size_t cases,
+                            Work work) {
   const auto steps = static_cast<double>(rec.result.physics_steps);
   double total = 0;
   for (auto _ : state) {
