@@ -3,10 +3,11 @@
 
 Runs `graspcd grasp SCENE --json` (served; --native: MuJoCo's own collision; --decomposed DIR: the
 object as the convex pieces of `graspcd decompose`) under callgrind, collecting only inside
-mj_step1 and mj_step2 (--toggle-collect), so that loading, tree builds, the start check and the
+mj_step1, mj_step2 and mj_step (--toggle-collect: the grasp of our hands steps as mj_step1, control,
+mj_step2; a driven real hand as mj_step), so that loading, tree builds, the start check and the
 grasp's own measures between steps are not counted. callgrind_annotate --inclusive=yes then gives
 each function's instructions with its callees; divided by the grasp's physics steps:
-  step               mj_step1 + mj_step2
+  step               mj_step1 + mj_step2 + mj_step
   graspcd_function   graspcd's collision function (collide_geoms), inclusive: the served pairs
                      and the pairs it hands to MuJoCo's originals
   served             of which the served pairs (collide_served_pair), and within them the tree
@@ -89,7 +90,7 @@ def grasp_split(args, work):
     if args.decomposed:
         command += ["--decomposed", args.decomposed]
     run = callgrind(["--collect-atstart=no", "--toggle-collect=mj_step1",
-                     "--toggle-collect=mj_step2", *command], out_file)
+                     "--toggle-collect=mj_step2", "--toggle-collect=mj_step", *command], out_file)
     if run.returncode != 0:
         last = (run.stderr.strip().splitlines() or ["(no message)"])[-1]
         fail(f"{args.scene}: graspcd grasp exited with {run.returncode}: {last}", 1)
@@ -99,7 +100,9 @@ def grasp_split(args, work):
         fail(f"{args.scene}: graspcd grasp printed no JSON", 1)
     steps = result["physics_steps"]
     c = inclusive(out_file)
-    step = total(c, r"^mj_step1$", r"^mj_step2$")
+    step = total(c, r"^mj_step1$", r"^mj_step2$", r"^mj_step$")
+    if step is None:
+        fail(f"{args.scene}: no physics step in the profile (mj_step1, mj_step2, mj_step)", 1)
     function = find(c, r"graspcd::mujoco::collide_geoms\(")
     served = find(c, r"graspcd::mujoco::collide_served_pair\(")
     solver = find(c, r"^mj_fwdConstraint$")
