@@ -3,7 +3,14 @@
 repetitions of every benchmark, and every comparison of docs/performance.md as a ratio of ours to
 the peer measured in the same run, with its target and whether it is met.
 
-Usage: /usr/bin/python3 bench/perf_summary.py FCL_BENCH.json MUJOCO_BENCH.json > perf.json
+Usage: /usr/bin/python3 bench/perf_summary.py FCL_BENCH.json MUJOCO_BENCH.json [FLOOR_BENCH.json]
+       > perf.json
+
+With FLOOR_BENCH.json (graspcd_floor_bench), perf.json also carries "floor": per scene, the time
+per physics step (medians over the repetitions, microseconds) of the served, native and replayed
+grasps and of the floor's parts, the floor (replay + tritri + contact + write), graspcd's part
+(served - replay), the floor of that part (tritri + contact + write) and their ratio, with the
+ratio's min and max over the repetitions (repetition K of every part of a scene paired).
 
 A ratio's median is the ratio of the two medians; its min and max are those of the ratios of
 repetition i of ours to repetition i of the peer (Google Benchmark runs the repetitions of one
@@ -85,12 +92,62 @@ def compare(runs, group, label, ours, peer, target=None, **extra):
     return c
 
 
+# The floor's parts (floor_bench.cpp), each a time per physics step.
+FLOOR_PARTS = ("served", "native", "replay", "tritri", "contact", "write")
+
+
+def floor_summary(runs):
+    """Per scene of BM_Floor: the parts' medians, the floor and graspcd's part against its floor."""
+    scenes = sorted({name.split("/")[1] for name in runs if name.startswith("BM_Floor/")})
+    out = {}
+    for scene in scenes:
+        times = {p: runs.get(f"BM_Floor/{scene}/{p}", {}).get("times", []) for p in FLOOR_PARTS}
+        if not all(times[p] for p in ("served", "replay", "tritri", "contact", "write")):
+            continue
+        reps = min(len(times[p]) for p in ("served", "replay", "tritri", "contact", "write"))
+
+        def at(p, i):
+            return times[p][i]
+
+        part_floor = [at("tritri", i) + at("contact", i) + at("write", i) for i in range(reps)]
+        part = [at("served", i) - at("replay", i) for i in range(reps)]
+        ratio = [x / y for x, y in zip(part, part_floor)]
+        med = {p: statistics.median(times[p]) if times[p] else None for p in FLOOR_PARTS}
+        counters = runs[f"BM_Floor/{scene}/served"]["counters"]
+        floor = med["replay"] + med["tritri"] + med["contact"] + med["write"]
+        graspcd_part = med["served"] - med["replay"]
+        graspcd_floor = med["tritri"] + med["contact"] + med["write"]
+        out[scene] = {
+            "unit": "us per physics step",
+            "repetitions": reps,
+            **{p: med[p] for p in FLOOR_PARTS},
+            "floor": floor,
+            "graspcd_part": graspcd_part,
+            "graspcd_floor": graspcd_floor,
+            "graspcd_part_over_floor": graspcd_part / graspcd_floor if graspcd_floor else None,
+            "graspcd_part_over_floor_min": min(ratio) if graspcd_floor else None,
+            "graspcd_part_over_floor_max": max(ratio) if graspcd_floor else None,
+            "served_over_floor": med["served"] / floor,
+            "served_over_native": med["served"] / med["native"] if med["native"] else None,
+            "physics_steps": counters.get("physics_steps"),
+            "tri_pairs_per_step": counters.get("tri_pairs"),
+            "contacts_per_step": counters.get("contacts"),
+            "served_calls_per_step": counters.get("served_calls"),
+            "ns_per_tritri": runs[f"BM_Floor/{scene}/tritri"]["counters"].get("ns_each"),
+            "ns_per_contact": runs[f"BM_Floor/{scene}/contact"]["counters"].get("ns_each"),
+            "ns_per_write": runs[f"BM_Floor/{scene}/write"]["counters"].get("ns_each"),
+        }
+    return out
+
+
 def main():
-    if len(sys.argv) != 3:
-        fail("usage: perf_summary.py FCL_BENCH.json MUJOCO_BENCH.json")
+    if len(sys.argv) not in (3, 4):
+        fail("usage: perf_summary.py FCL_BENCH.json MUJOCO_BENCH.json [FLOOR_BENCH.json]")
     fcl_data, mj_data = load(sys.argv[1]), load(sys.argv[2])
     runs = repetitions(fcl_data)
     runs.update(repetitions(mj_data))
+    if len(sys.argv) == 4:
+        runs.update(repetitions(load(sys.argv[3])))
     out = {"context": fcl_data["context"],
            "benchmarks": {name: summary(e) for name, e in sorted(runs.items())},
            "comparisons": []}
@@ -198,6 +255,9 @@ def main():
                     multi, native, None, max_contacts=mc.get("max_contacts"),
                     native_max_contacts=runs.get(native, {}).get("counters", {}).get(
                         "max_contacts"), held=mc.get("held") == 1))
+    floor = floor_summary(runs)
+    if floor:
+        out["floor"] = floor
     json.dump(out, sys.stdout, indent=1, sort_keys=True)
     sys.stdout.write("\n")
     # A short table on stderr.
@@ -206,6 +266,13 @@ def main():
         target = "" if c["target"] is None else f" (target <= {c['target']}{met})"
         print(f"{c['group']:16s} {c['label']:60s} {c['ratio_median']:.3f}"
               f" [{c['ratio_min']:.3f}, {c['ratio_max']:.3f}]{target}", file=sys.stderr)
+    for scene, f in floor.items():
+        native = "-" if f["native"] is None else f"{f['native']:.1f}"
+        ratio = "-" if f["graspcd_part_over_floor"] is None else \
+            f"{f['graspcd_part_over_floor']:.2f}"
+        print(f"floor            {scene:28s} served {f['served']:.1f} native {native}"
+              f" floor {f['floor']:.1f} us/step; graspcd {f['graspcd_part']:.1f}"
+              f" / its floor {f['graspcd_floor']:.1f} = {ratio}", file=sys.stderr)
 
 
 if __name__ == "__main__":

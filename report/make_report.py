@@ -487,10 +487,42 @@ def perf_section(perf, fig_dir, fig_rel):
                 f"{int(c['faces'])}: {c['ours_ns_per_nlogn']:.3g} (FCL {c['peer_ns_per_nlogn']:.3g})"
                 for c in rows) + ".")
         w("")
+    lines.extend(perf_floor_table(perf))
     for f in perf_figures(perf, fig_dir):
         w(f"![{f[:-4]}]({fig_rel}/{f})")
         w("")
     lines.extend(perf_closing_note(perf))
+    return lines
+
+
+def perf_floor_table(perf):
+    """The floor of a served step (graspcd_floor_bench; docs/performance.md), when perf.json has
+    it: per scene, µs per physics step."""
+    floor = perf.get("floor")
+    if not floor:
+        return []
+    lines = ["### The floor of a served step", "",
+             "A served step's floor is MuJoCo's own step with the same contacts (the grasp replayed"
+             " from its recorded contacts, trajectory checked bit for bit) plus one certified"
+             " triangle test and one contact routine per intersecting triangle pair plus one"
+             " contact written per kept contact; graspcd's part is the served step less the"
+             " replay. µs per physics step, medians (docs/performance.md).", "",
+             "| scene | native | served | replay | triangle tests + contacts | writes | floor |"
+             " served / floor | graspcd's part / its floor |",
+             "|---|---|---|---|---|---|---|---|---|"]
+
+    def us(x):
+        return "-" if x is None else f"{x:.1f}"
+
+    for scene, f in sorted(floor.items()):
+        ratio = f.get("graspcd_part_over_floor")
+        span = ("-" if ratio is None else
+                f"{ratio:.2f} [{f['graspcd_part_over_floor_min']:.2f},"
+                f" {f['graspcd_part_over_floor_max']:.2f}]")
+        lines.append(f"| {scene} | {us(f['native'])} | {us(f['served'])} | {us(f['replay'])} |"
+                     f" {us(f['tritri'] + f['contact'])} | {us(f['write'])} | {us(f['floor'])} |"
+                     f" {f['served_over_floor']:.2f} | {span} |")
+    lines.append("")
     return lines
 
 

@@ -12,10 +12,7 @@
 #include "graspcd/mujoco/collision_pose.h"
 
 namespace graspcd::mujoco {
-namespace {
 
-// Writes one contact in the world frame: frame[0..2] the normal, frame[3..5] and [6..8] a
-// right-handed tangent basis (the axis least aligned with the normal, crossed with it).
 void write_contact(const TriContact& c, const Mat3& R1, const Vec3& p1, mjContact& out) {
   const Vec3 pos = R1 * c.pos + p1;
   const Vec3 n = (R1 * c.normal).normalized();
@@ -33,6 +30,8 @@ void write_contact(const TriContact& c, const Mat3& R1, const Vec3& p1, mjContac
     out.frame[6 + k] = t2[k];
   }
 }
+
+namespace {
 
 // Writes `contacts` (geom1's frame) into `con` in the world frame, at most mjMAXCONPAIR; returns
 // how many.

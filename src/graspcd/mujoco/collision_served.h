@@ -7,6 +7,12 @@
 
 namespace graspcd::mujoco {
 
+// Writes one contact `c` of geom1's frame (geom1 placed at rotation R1, position p1) into `out` in
+// the world frame: dist = -depth, frame[0..2] the unit normal, frame[3..5] and [6..8] a
+// right-handed tangent basis (the axis least aligned with the normal, crossed with it). The tree
+// path's write of each kept contact; MuJoCo fills the rest of `out`.
+void write_contact(const TriContact& c, const Mat3& R1, const Vec3& p1, mjContact& out);
+
 // Runs a served pair by its path (registry.h); a pair whose placement in `d` holds a bad number
 // is skipped and counted (collision.h, "Non-finite state"). Trees: the tree query with the pair's
 // detector in all-contacts mode, the contact manifold of the intersecting triangle pairs
