@@ -12,6 +12,11 @@ namespace graspcd {
 #if defined(__AVX2__)
 namespace {
 
+// (x0, x1, x2, x2): three values in lanes 0-2; lane 3, which no answer reads (greater3), repeats
+// lane 2 rather than holding a zero, which GCC builds with a register-to-register VMOVQ that
+// valgrind (3.19) cannot run.
+inline __m256d lanes3(double x0, double x1, double x2) { return _mm256_set_pd(x2, x2, x1, x0); }
+
 // |x| lanewise: the sign bit cleared, as std::fabs does.
 inline __m256d abs4(__m256d x) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), x); }
 
@@ -34,12 +39,12 @@ inline unsigned greater3(__m256d x, __m256d y) {
 int sat_separating_axis_in_a_avx2(const double* R, const double* T, const double* a,
                                   const double* b, double slack) {
   const __m256d s = _mm256_set1_pd(slack);
-  const __m256d av = _mm256_set_pd(0, a[2], a[1], a[0]);
-  const __m256d bv = _mm256_set_pd(0, b[2], b[1], b[0]);
+  const __m256d av = lanes3(a[0], a[1], a[2]);
+  const __m256d bv = lanes3(b[0], b[1], b[2]);
   // Columns c_j = R(., j) and rows r_i = R(i, .), lane 3 zero.
   __m256d col[3], row[3];
-  for (int j = 0; j < 3; ++j) col[j] = _mm256_set_pd(0, R[3 * j + 2], R[3 * j + 1], R[3 * j]);
-  for (int i = 0; i < 3; ++i) row[i] = _mm256_set_pd(0, R[i + 6], R[i + 3], R[i]);
+  for (int j = 0; j < 3; ++j) col[j] = lanes3(R[3 * j], R[3 * j + 1], R[3 * j + 2]);
+  for (int i = 0; i < 3; ++i) row[i] = lanes3(R[i], R[i + 3], R[i + 6]);
   const __m256d acol0 = abs4(col[0]), acol1 = abs4(col[1]), acol2 = abs4(col[2]);
   const __m256d arow[3] = {abs4(row[0]), abs4(row[1]), abs4(row[2])};
 
@@ -47,7 +52,7 @@ int sat_separating_axis_in_a_avx2(const double* R, const double* T, const double
   const __m256d rb_a = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(b[0]), acol0),
                                                    _mm256_mul_pd(_mm256_set1_pd(b[1]), acol1)),
                                      _mm256_mul_pd(_mm256_set1_pd(b[2]), acol2));
-  const __m256d tv = _mm256_set_pd(0, T[2], T[1], T[0]);
+  const __m256d tv = lanes3(T[0], T[1], T[2]);
   unsigned mask = greater3(abs4(tv), _mm256_add_pd(_mm256_add_pd(av, rb_a), s));
   // L = B_j: |(T0 R(0,j) + T1 R(1,j)) + T2 R(2,j)| > (ra + b_j) + slack,
   // ra = (a0 |R(0,j)| + a1 |R(1,j)|) + a2 |R(2,j)|.
