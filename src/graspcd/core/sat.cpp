@@ -6,30 +6,6 @@
 
 namespace graspcd {
 
-namespace {
-bool detect_avx2() {
-#if defined(__x86_64__) || defined(__i386__)
-  return __builtin_cpu_supports("avx2");
-#else
-  return false;
-#endif
-}
-}  // namespace
-
-// Zero (scalar) until this dynamic initialisation runs: any test before it is the scalar one.
-std::atomic<bool> detail::sat_avx2_on{detect_avx2()};
-
-bool sat_avx2_supported() {
-  static const bool supported = detect_avx2();
-  return supported;
-}
-
-bool sat_use_avx2(bool on) {
-  const bool used = on && sat_avx2_supported();
-  detail::sat_avx2_on.store(used, std::memory_order_relaxed);
-  return used;
-}
-
 // Gottschalk, Lin, Manocha 1996 / Ericson 4.4.1, eq. (4) of the paper on the 15 candidate axes.
 SatAxis sat_separating_axis(const Obb& a, const Obb& b, SatAxis first_axis) {
   // B in A's frame.

@@ -1,11 +1,10 @@
 // The separating axis test between two oriented boxes (paper eq. 4).
 #pragma once
 
-#include <atomic>
 #include <cmath>
 
+#include "graspcd/core/avx2.h"
 #include "graspcd/core/obb.h"
-#include "graspcd/core/sat_avx2.h"
 
 namespace graspcd {
 
@@ -59,16 +58,6 @@ inline bool sat_axis_separates(const Mat3& R, const Mat3& absR, const Vec3& T, c
   return sat_axis_gap(R, absR, T, a, b, slack, axis) > 0;
 }
 
-// Whether the processor has AVX2 (__builtin_cpu_supports), and whether the 15-axis test uses it
-// (sat_avx2.h): on from the start where it is supported. sat_use_avx2(false) keeps the scalar test,
-// sat_use_avx2(true) takes AVX2 where supported; it returns whether AVX2 is then used. Only a
-// matter of speed: both give the same axis bit for bit. Process-wide.
-bool sat_avx2_supported();
-bool sat_use_avx2(bool on);
-namespace detail {
-extern std::atomic<bool> sat_avx2_on;
-}  // namespace detail
-
 // The 15-axis test of sat_separating_axis_in_a in scalar code, no hint, given |R|.
 [[gnu::always_inline]] inline SatAxis sat_separating_axis_in_a_scalar(const Mat3& R,
                                                                       const Mat3& absR,
@@ -111,9 +100,9 @@ extern std::atomic<bool> sat_avx2_on;
 // two trees (tree_query.h) pays 15 gap tests per node pair. The slack (metres, tolerances.h) must
 // cover the rounding of R and T as the caller computed them. `first_axis` (if not kSatNoAxis) is
 // tried first; the others follow in the order 1, 2, ..., 15, so the result is the same axis
-// sat_separating_axis reports. The others go to the AVX2 kernel when it is on (sat_use_avx2), to
-// the scalar test otherwise: the same answer. (A hint that did not separate is tested again in its
-// place, which cannot change the answer.) Always inlined (GCC declined on its own): in the tree
+// sat_separating_axis reports. The others go to the AVX2 kernel when it is on (avx2.h, use_avx2),
+// to the scalar test otherwise: the same answer. (A hint that did not separate is tested again in
+// its place, which cannot change the answer.) Always inlined (GCC declined on its own): in the tree
 // descent the constant hint of SatSeparator then folds away, and the call with its |R| on the
 // stack goes (about a fifth of the time per test on the OBB-test benchmark).
 [[gnu::always_inline]] inline SatAxis sat_separating_axis_in_a(const Mat3& R, const Vec3& T,
@@ -123,7 +112,7 @@ extern std::atomic<bool> sat_avx2_on;
   if (first_axis != kSatNoAxis && sat_axis_separates(R, R.cwiseAbs(), T, a, b, slack, first_axis)) {
     return first_axis;
   }
-  if (detail::sat_avx2_on.load(std::memory_order_relaxed)) {
+  if (detail::avx2_active()) {
     return sat_separating_axis_in_a_avx2(R.data(), T.data(), a.data(), b.data(), slack);
   }
   return sat_separating_axis_in_a_scalar(R, R.cwiseAbs(), T, a, b, slack);

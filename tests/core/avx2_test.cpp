@@ -1,11 +1,14 @@
-// The 15-axis box test's AVX2 kernel (src/graspcd/core/sat_avx2.h) against the scalar test of
-// sat.h, and its run-time choice (sat_use_avx2).
+// The tree query's AVX2 kernels (src/graspcd/core/avx2.h) against their scalar twins, the 15-axis
+// box test of sat.h and apply_pose of geometry.h, and their run-time choice (use_avx2).
 //
 // What is asserted:
 //  - on random frames (rotations and arbitrary matrices), on grid frames whose gaps tie their
 //    bounds exactly (small dyadic numbers: every product and sum exact), and on frames holding
-//    zeros of both signs, infinities and NaNs, the kernel returns the scalar test's axis;
-//  - sat_use_avx2 turns the kernel on exactly where the processor has AVX2, and a tree query
+//    zeros of both signs, infinities and NaNs, the box test's kernel returns the scalar test's
+//    axis;
+//  - the posing kernel gives apply_pose's doubles bit for bit (random poses and points at scales
+//    from 1e-6 to 1e6, and zeros of both signs, infinities and NaNs among them);
+//  - use_avx2 turns the kernels on exactly where the processor has AVX2, and a tree query
 //    (descent from the roots and along a front) visits the same node pairs, counts the same work,
 //    finds the same triangle pairs and keeps the same front, gaps included, either way.
 // On a processor without AVX2 the kernel tests are skipped and the dispatch test checks that the
@@ -13,12 +16,15 @@
 //
 // GRASPCD_TEST_SCALE (a positive double, default 1) multiplies the number of random frames (never
 // below 1000), so that the sanitizer build can run a subset.
+#include "graspcd/core/avx2.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <iterator>
 #include <limits>
 #include <vector>
@@ -36,8 +42,8 @@ using seeded::Rng;
 
 // Restores the process-wide choice at the end of a test.
 struct KeepChoice {
-  bool was = detail::sat_avx2_on.load();
-  ~KeepChoice() { sat_use_avx2(was); }
+  bool was = detail::avx2_active();
+  ~KeepChoice() { use_avx2(was); }
 };
 
 SatAxis scalar(const Mat3& R, const Vec3& T, const Vec3& a, const Vec3& b, double slack) {
@@ -66,8 +72,8 @@ struct Compare {
   }
 };
 
-TEST(SatAvx2, KernelMatchesScalarOnRandomFrames) {
-  if (!sat_avx2_supported()) GTEST_SKIP() << "no AVX2 on this processor";
+TEST(Avx2, BoxTestKernelMatchesScalarOnRandomFrames) {
+  if (!avx2_supported()) GTEST_SKIP() << "no AVX2 on this processor";
   const std::int64_t n = testing::scaled(200000, 1000);
   Rng rng(0xa5a2);
   Compare compare;
@@ -87,8 +93,8 @@ TEST(SatAvx2, KernelMatchesScalarOnRandomFrames) {
   }
 }
 
-TEST(SatAvx2, KernelMatchesScalarOnExactTiesAndSpecialValues) {
-  if (!sat_avx2_supported()) GTEST_SKIP() << "no AVX2 on this processor";
+TEST(Avx2, BoxTestKernelMatchesScalarOnExactTiesAndSpecialValues) {
+  if (!avx2_supported()) GTEST_SKIP() << "no AVX2 on this processor";
   Rng rng(0x71e5);
   const double inf = std::numeric_limits<double>::infinity();
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -138,12 +144,60 @@ TEST(SatAvx2, KernelMatchesScalarOnExactTiesAndSpecialValues) {
   EXPECT_GT(odd.by_axis[0], 0);
 }
 
-TEST(SatAvx2, DispatchEitherWayGivesTheSameQueries) {
+// The nine doubles of a triangle, compared as bits (a NaN equals itself, 0 and -0 differ).
+bool same_bits(const Triangle& x, const Triangle& y) { return std::memcmp(&x, &y, sizeof x) == 0; }
+
+TEST(Avx2, PosingKernelMatchesApplyPose) {
+  if (!avx2_supported()) GTEST_SKIP() << "no AVX2 on this processor";
+  const std::int64_t n = testing::scaled(100000, 1000);
+  Rng rng(0x905e);
+  const double special[] = {0.0,
+                            -0.0,
+                            std::numeric_limits<double>::infinity(),
+                            -std::numeric_limits<double>::infinity(),
+                            std::numeric_limits<double>::quiet_NaN(),
+                            1e-310};
+  std::int64_t mismatches = 0;
+  for (std::int64_t i = 0; i < n; ++i) {
+    Pose pose;
+    pose.R = i % 4 == 3 ? Mat3(Mat3::Random()) : seeded::random_rotation(rng);
+    const double scale = seeded::log_uniform(rng, 1e-6, 1e6);
+    pose.t = seeded::uniform_vec3(rng, -scale, scale);
+    Triangle t;
+    for (Vec3& v : t.v) v = seeded::uniform_vec3(rng, -scale, scale);
+    if (i % 16 == 0) {
+      // A special value in a random place of the pose or the triangle.
+      const double x = special[seeded::uniform_int(rng, 0, 5)];
+      const int where = seeded::uniform_int(rng, 0, 20);
+      if (where < 9) {
+        pose.R.data()[where] = x;
+      } else if (where < 12) {
+        pose.t[where - 9] = x;
+      } else {
+        t.v[(where - 12) / 3][(where - 12) % 3] = x;
+      }
+    }
+    Triangle batched;
+    apply_pose_avx2(pose.R.data(), pose.t.data(), t.v[0].data(), batched.v[0].data());
+    const Triangle scalar = apply_pose(pose, t);
+    if (!same_bits(batched, scalar) && ++mismatches <= 5) {
+      ADD_FAILURE() << "pose " << i << ": AVX2 " << batched.v[0].transpose() << " / "
+                    << batched.v[1].transpose() << " / " << batched.v[2].transpose() << ", scalar "
+                    << scalar.v[0].transpose() << " / " << scalar.v[1].transpose() << " / "
+                    << scalar.v[2].transpose();
+    }
+    // And through the tree query's entry, with the kernels on.
+    if (!same_bits(detail::posed_triangle(pose, t), scalar)) ++mismatches;
+  }
+  EXPECT_EQ(mismatches, 0);
+}
+
+TEST(Avx2, DispatchEitherWayGivesTheSameQueries) {
   KeepChoice keep;
-  EXPECT_FALSE(sat_use_avx2(false));
-  EXPECT_FALSE(detail::sat_avx2_on.load());
-  EXPECT_EQ(sat_use_avx2(true), sat_avx2_supported());
-  EXPECT_EQ(detail::sat_avx2_on.load(), sat_avx2_supported());
+  EXPECT_FALSE(use_avx2(false));
+  EXPECT_FALSE(detail::avx2_active());
+  EXPECT_EQ(use_avx2(true), avx2_supported());
+  EXPECT_EQ(detail::avx2_active(), avx2_supported());
 
   const ObbTree ta = ObbTree::build(testing::make_torus(0.04, 0.012, 30, 16));
   const ObbTree tb = ObbTree::build(testing::make_uv_sphere(0.015, 12, 16));
@@ -162,7 +216,7 @@ TEST(SatAvx2, DispatchEitherWayGivesTheSameQueries) {
     const double r = 0.066 + 0.004 * std::sin(0.05 * i), angle = 0.004 * i;
     pose.t = Vec3(r * std::cos(angle), r * std::sin(angle), 0.002);
     for (int k = 0; k < 2; ++k) {
-      sat_use_avx2(k == 1);
+      use_avx2(k == 1);
       Run& run = runs[k];
       SatSeparator sat;
       run.pairs_roots.clear();
@@ -191,7 +245,7 @@ TEST(SatAvx2, DispatchEitherWayGivesTheSameQueries) {
   EXPECT_GT(hits, 20u);
   EXPECT_LT(hits, 140u);
   std::printf("AVX2 %s; %llu box tests from the roots, %llu along the front\n",
-              sat_avx2_supported() ? "supported" : "not supported",
+              avx2_supported() ? "supported" : "not supported",
               static_cast<unsigned long long>(runs[0].roots.box_tests),
               static_cast<unsigned long long>(runs[0].coherent.box_tests));
 }

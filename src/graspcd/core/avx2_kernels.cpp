@@ -1,7 +1,7 @@
-// Compiled with -mavx2 (src/CMakeLists.txt); called only when the processor has AVX2 (sat.h).
-#include "graspcd/core/sat_avx2.h"
-
+// Compiled with -mavx2 (src/CMakeLists.txt); called only when the processor has AVX2 (avx2.h).
 #include <cstdlib>
+
+#include "graspcd/core/avx2.h"
 
 #if defined(__AVX2__)
 #include <immintrin.h>
@@ -85,13 +85,36 @@ int sat_separating_axis_in_a_avx2(const double* R, const double* T, const double
   return 0;
 }
 
+// geometry.h's apply_pose with the three coordinates of a point in the lanes of one register:
+// ((c0 x + c1 y) + c2 z) + t with c_j the columns of R, lane k evaluating coordinate k.
+void apply_pose_avx2(const double* R, const double* t, const double* in, double* out) {
+  const __m256d c0 = lanes3(R[0], R[1], R[2]), c1 = lanes3(R[3], R[4], R[5]),
+                c2 = lanes3(R[6], R[7], R[8]), tv = lanes3(t[0], t[1], t[2]);
+  __m256d p[3];
+  for (int v = 0; v < 3; ++v) {
+    const double* x = in + 3 * v;
+    p[v] = _mm256_add_pd(_mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(c0, _mm256_set1_pd(x[0])),
+                                                     _mm256_mul_pd(c1, _mm256_set1_pd(x[1]))),
+                                       _mm256_mul_pd(c2, _mm256_set1_pd(x[2]))),
+                         tv);
+  }
+  // The first two points four lanes wide (lane 3 overwritten by the next point), the last one as
+  // two lanes and one.
+  _mm256_storeu_pd(out, p[0]);
+  _mm256_storeu_pd(out + 3, p[1]);
+  _mm_storeu_pd(out + 6, _mm256_castpd256_pd128(p[2]));
+  _mm_store_sd(out + 8, _mm256_extractf128_pd(p[2], 1));
+}
+
 #else
 
-// Built without AVX2 (another processor family): never called, sat_avx2_supported() is false.
+// Built without AVX2 (another processor family): never called, avx2_supported() is false.
 int sat_separating_axis_in_a_avx2(const double*, const double*, const double*, const double*,
                                   double) {
   std::abort();
 }
+
+void apply_pose_avx2(const double*, const double*, const double*, double*) { std::abort(); }
 
 #endif
 
