@@ -1,7 +1,8 @@
 // The core's triangle tests (src/graspcd/core/tritri.h) against the exact twin (CGAL,
 // src/graspcd/exact): seeded random pairs at four scales, adversarial pairs of every degenerate
-// class, symmetry under swapping the triangles and permuting their vertices, and the documented
-// defects of the two reference variants.
+// class, symmetry under swapping the triangles and permuting their vertices, the variant with a
+// triangle's plane given (bitwise the same answer and gap), and the documented defects of the two
+// reference variants.
 //
 // GRASPCD_TEST_SCALE (a positive double, default 1) multiplies the number of random pairs (never
 // below 1000 per size), so that the sanitizer build can run a subset; the adversarial suite is
@@ -82,6 +83,22 @@ struct Checker {
       }
     }
     gaps += gap > 0;
+    // With t1's plane given (as the tree query gives a tree's), the same answer and the same gap
+    // bit for bit.
+    const TrianglePlane plane = triangle_plane(t1);
+    double plane_gap = -1;
+    const bool given = tri_tri_intersect(t1, plane, t2, plane_gap);
+    const bool given_no_gap = tri_tri_intersect(t1, plane, t2);
+    if (given != with_gap || given_no_gap != with_gap || plane_gap != gap) {
+      ok = false;
+      ++mismatches;
+      if (printed < 10) {
+        ++printed;
+        ADD_FAILURE() << what << ": with the plane given says " << given << "/" << given_no_gap
+                      << " gap " << plane_gap << ", computed says " << with_gap << " gap " << gap
+                      << "\n  " << format_pair(t1, t2);
+      }
+    }
     for (int i = 0; i < 5; ++i) {
       if (answers[i] == truth) continue;
       ok = false;
@@ -280,6 +297,13 @@ TEST(TriTriNonFinite, ATriangleWithANanOrInfIntersectsNothing) {
     EXPECT_FALSE(tri_tri_intersect(t2, t1)) << x;
     EXPECT_FALSE(tri_tri_intersect_predicates(t1, t2)) << x;
     EXPECT_FALSE(tri_tri_intersect_predicates(t2, t2)) << x;
+    // With a plane given (a tree's), the same: its triangle or the other one non-finite.
+    EXPECT_FALSE(triangle_plane(t2).finite) << x;
+    EXPECT_FALSE(tri_tri_intersect(t2, triangle_plane(t2), t1)) << x;
+    EXPECT_FALSE(tri_tri_intersect(t1, triangle_plane(t1), t2)) << x;
+    double gap = -1;
+    EXPECT_FALSE(tri_tri_intersect(t1, triangle_plane(t1), t2, gap)) << x;
+    EXPECT_EQ(gap, 0) << x;
   }
   EXPECT_EQ(predicates::filter_stats().orient3d_exact_calls, 0u);
   EXPECT_TRUE(

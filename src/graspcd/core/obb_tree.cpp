@@ -96,6 +96,8 @@ ObbTree ObbTree::build(std::vector<Triangle> triangles, const ObbTreeOptions& op
     stack.push_back({mid, pending.end, pending.depth + 1, index});
     stack.push_back({pending.begin, mid, pending.depth + 1, -1});
   }
+  tree.planes_.reserve(n);
+  for (const Triangle& t : tree.triangles_) tree.planes_.push_back(triangle_plane(t));
   tree.link_frames();
   return tree;
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "graspcd/core/obb.h"
+#include "graspcd/core/tritri.h"
 
 namespace graspcd {
 
@@ -51,6 +52,9 @@ class ObbTree {
   // Triangles in leaf order; face_ids()[i] is the index of triangles()[i] in the input.
   const std::vector<Triangle>& triangles() const { return triangles_; }
   const std::vector<std::int32_t>& face_ids() const { return face_ids_; }
+  // planes()[i] = triangle_plane(triangles()[i]) (tritri.h), computed once at the build: the tree
+  // query's triangle test takes A's planes from here instead of computing them per test.
+  const std::vector<TrianglePlane>& planes() const { return planes_; }
   int depth() const { return depth_; }
   // The largest distance from the root box's centre to a point of any node's box: every box of the
   // tree lies in the ball of this radius around the root's centre (a child's box may reach outside
@@ -73,6 +77,7 @@ class ObbTree {
   std::vector<NodeFrame> in_parent_;
   std::vector<Triangle> triangles_;
   std::vector<std::int32_t> face_ids_;
+  std::vector<TrianglePlane> planes_;
   int depth_ = 0;
   double reach_ = 0;
 };

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "graspcd/core/avx2.h"
 #include "graspcd/core/obb.h"
 
 namespace graspcd {
@@ -57,23 +58,11 @@ inline bool sat_axis_separates(const Mat3& R, const Mat3& absR, const Vec3& T, c
   return sat_axis_gap(R, absR, T, a, b, slack, axis) > 0;
 }
 
-// The 15-axis test on B given in A's frame, RAPID's form (Gottschalk, Lin, Manocha 1996;
-// Ericson 4.4.1): B's axes are the columns of R = A^T B, its centre is T = A^T (cB - cA), `a` and
-// `b` the half-extents. No product of frames is formed here, so a caller that carries (R, T) down
-// two trees (tree_query.h) pays 15 early-exit gap tests and |R| per node pair. The slack (metres,
-// tolerances.h) must cover the rounding of R and T as the caller computed them. `first_axis` (if
-// not kSatNoAxis) is tried first; the others follow in the order 1, 2, ..., 15, so the result is
-// the same axis sat_separating_axis reports. Always inlined (GCC declined on its own): in the tree
-// descent the constant hint of SatSeparator then folds away, and the call with its |R| on the
-// stack goes (about a fifth of the time per test on the OBB-test benchmark).
-[[gnu::always_inline]] inline SatAxis sat_separating_axis_in_a(const Mat3& R, const Vec3& T,
-                                                               const Vec3& a, const Vec3& b,
-                                                               double slack,
-                                                               SatAxis first_axis = kSatNoAxis) {
-  const Mat3 absR = R.cwiseAbs();
-  if (first_axis != kSatNoAxis && sat_axis_separates(R, absR, T, a, b, slack, first_axis)) {
-    return first_axis;
-  }
+// The 15-axis test of sat_separating_axis_in_a in scalar code, no hint, given |R|.
+[[gnu::always_inline]] inline SatAxis sat_separating_axis_in_a_scalar(const Mat3& R,
+                                                                      const Mat3& absR,
+                                                                      const Vec3& T, const Vec3& a,
+                                                                      const Vec3& b, double slack) {
   // The six face axes are all tested and their answers gathered in a bit mask, then the nine
   // edge axes likewise: two branches instead of up to fifteen hard-to-predict early exits. The
   // lowest set bit is the first separating axis in the order 1, ..., 15.
@@ -90,8 +79,7 @@ inline bool sat_axis_separates(const Mat3& R, const Mat3& absR, const Vec3& T, c
     mask |= static_cast<unsigned>(dist > ra + b[j] + slack) << (3 + j);
   }
   if (mask != 0) return 1 + __builtin_ctz(mask);
-  // Test axes L = A_i x B_j. (A hint that did not separate is tested again in its place, which
-  // cannot change the answer.)
+  // Test axes L = A_i x B_j.
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
@@ -104,6 +92,30 @@ inline bool sat_axis_separates(const Mat3& R, const Mat3& absR, const Vec3& T, c
   }
   if (mask != 0) return 7 + __builtin_ctz(mask);
   return kSatNoAxis;
+}
+
+// The 15-axis test on B given in A's frame, RAPID's form (Gottschalk, Lin, Manocha 1996;
+// Ericson 4.4.1): B's axes are the columns of R = A^T B, its centre is T = A^T (cB - cA), `a` and
+// `b` the half-extents. No product of frames is formed here, so a caller that carries (R, T) down
+// two trees (tree_query.h) pays 15 gap tests per node pair. The slack (metres, tolerances.h) must
+// cover the rounding of R and T as the caller computed them. `first_axis` (if not kSatNoAxis) is
+// tried first; the others follow in the order 1, 2, ..., 15, so the result is the same axis
+// sat_separating_axis reports. The others go to the AVX2 kernel when it is on (avx2.h, use_avx2),
+// to the scalar test otherwise: the same answer. (A hint that did not separate is tested again in
+// its place, which cannot change the answer.) Always inlined (GCC declined on its own): in the tree
+// descent the constant hint of SatSeparator then folds away, and the call with its |R| on the
+// stack goes (about a fifth of the time per test on the OBB-test benchmark).
+[[gnu::always_inline]] inline SatAxis sat_separating_axis_in_a(const Mat3& R, const Vec3& T,
+                                                               const Vec3& a, const Vec3& b,
+                                                               double slack,
+                                                               SatAxis first_axis = kSatNoAxis) {
+  if (first_axis != kSatNoAxis && sat_axis_separates(R, R.cwiseAbs(), T, a, b, slack, first_axis)) {
+    return first_axis;
+  }
+  if (detail::avx2_active()) {
+    return sat_separating_axis_in_a_avx2(R.data(), T.data(), a.data(), b.data(), slack);
+  }
+  return sat_separating_axis_in_a_scalar(R, R.cwiseAbs(), T, a, b, slack);
 }
 
 inline bool sat_disjoint(const Obb& a, const Obb& b) {

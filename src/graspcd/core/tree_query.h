@@ -101,10 +101,19 @@ struct SatSeparator {
 // with a proven error bound, decided exactly by tri_tri_intersect_predicates inside the bound).
 // With a gap (tritri.h), the tree query can keep a leaf pair whose triangles were far apart on a
 // front (collide_coherent).
+// Given A's triangle with its plane (ObbTree::planes()), it takes the plane instead of computing
+// it: the same answer and gap.
 struct FilteredTriTest {
   bool operator()(const Triangle& a, const Triangle& b) const { return tri_tri_intersect(a, b); }
   bool operator()(const Triangle& a, const Triangle& b, double& gap) const {
     return tri_tri_intersect(a, b, gap);
+  }
+  bool operator()(const Triangle& a, const TrianglePlane& pa, const Triangle& b) const {
+    return tri_tri_intersect(a, pa, b);
+  }
+  bool operator()(const Triangle& a, const TrianglePlane& pa, const Triangle& b,
+                  double& gap) const {
+    return tri_tri_intersect(a, pa, b, gap);
   }
 };
 
@@ -189,24 +198,51 @@ struct HasGapTest<T, std::void_t<decltype(std::declval<T&>()(
                          std::declval<const Triangle&>(), std::declval<const Triangle&>(),
                          std::declval<double&>()))>> : std::true_type {};
 
+// apply_pose on a triangle (geometry.h), by the AVX2 kernel where it is on (avx2.h): the same
+// doubles bit for bit.
+static_assert(sizeof(Triangle) == 9 * sizeof(double), "a triangle is nine contiguous doubles");
+inline Triangle posed_triangle(const Pose& pose, const Triangle& t) {
+  if (!avx2_active()) return apply_pose(pose, t);
+  Triangle out;
+  apply_pose_avx2(pose.R.data(), pose.t.data(), t.v[0].data(), out.v[0].data());
+  return out;
+}
+
+// Triangle tests that take A's triangle with its plane (FilteredTriTest).
+template <class T, class = void>
+struct HasPlaneTest : std::false_type {};
+template <class T>
+struct HasPlaneTest<T, std::void_t<decltype(std::declval<T&>()(
+                           std::declval<const Triangle&>(), std::declval<const TrianglePlane&>(),
+                           std::declval<const Triangle&>()))>> : std::true_type {};
+
 // The leaves of a node pair: every triangle pair, B's through apply_pose (the doubles the exact
-// ground truth sees too). True when the query is over (first contact found). `gap`, when given,
-// receives the least of the pairs' gaps (tritri.h) when the test gives gaps and no pair
-// intersects, else 0.
+// ground truth sees too; posed_triangle). True when the query is over (first contact found).
+// `gap`, when given, receives the least of the pairs' gaps (tritri.h) when the test gives gaps and
+// no pair intersects, else 0.
 template <class TriTest>
 bool test_leaves(const ObbTree& a, const ObbTree& b, const ObbNode& x, const ObbNode& y,
                  const Pose& b_in_a, QueryMode mode, QueryCounters& counters,
                  std::vector<TrianglePair>* pairs, TriTest& tri_test, QueryResult& result,
                  double* gap = nullptr) {
   constexpr bool kGaps = HasGapTest<TriTest>::value;
+  constexpr bool kPlanes = HasPlaneTest<TriTest>::value;
   double least = std::numeric_limits<double>::infinity();
   if (gap) *gap = 0;
   for (std::int32_t j = y.first; j < y.first + y.count; ++j) {
-    const Triangle tb = apply_pose(b_in_a, b.triangles()[j]);
+    const Triangle tb = posed_triangle(b_in_a, b.triangles()[j]);
     for (std::int32_t i = x.first; i < x.first + x.count; ++i) {
       ++counters.tri_tests;
       bool hit;
-      if constexpr (kGaps) {
+      if constexpr (kGaps && kPlanes) {
+        if (gap) {
+          double g = 0;
+          hit = tri_test(a.triangles()[i], a.planes()[i], tb, g);
+          least = std::min(least, g);
+        } else {
+          hit = tri_test(a.triangles()[i], a.planes()[i], tb);
+        }
+      } else if constexpr (kGaps) {
         if (gap) {
           double g = 0;
           hit = tri_test(a.triangles()[i], tb, g);
@@ -214,6 +250,8 @@ bool test_leaves(const ObbTree& a, const ObbTree& b, const ObbNode& x, const Obb
         } else {
           hit = tri_test(a.triangles()[i], tb);
         }
+      } else if constexpr (kPlanes) {
+        hit = tri_test(a.triangles()[i], a.planes()[i], tb);
       } else {
         hit = tri_test(a.triangles()[i], tb);
       }

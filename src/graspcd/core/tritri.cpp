@@ -177,27 +177,22 @@ bool coplanar_triangles(const Triangle& t1, const Triangle& t2) {
 // ================================================================================================
 
 // A triangle's plane N . (x - v0) = 0 with N = (v1 - v0) x (v2 - v0), and for each component of N
-// the permanent P_k = |a_i b_j| + |a_j b_i| that bounds its rounding error.
-struct Plane {
-  Vec3 n;
-  Vec3 perm;
-};
+// the permanent P_k = |a_i b_j| + |a_j b_i| that bounds its rounding error (TrianglePlane).
+using Plane = TrianglePlane;
 
-Plane plane_of(const Triangle& t) {
+[[gnu::always_inline]] inline void plane_of(const Triangle& t, Plane& p) {
   const Vec3 a = t.v[1] - t.v[0], b = t.v[2] - t.v[0];
-  Plane p;
   for (int k = 0; k < 3; ++k) {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
     const double x = a[i] * b[j], y = a[j] * b[i];
     p.n[k] = x - y;
     p.perm[k] = std::fabs(x) + std::fabs(y);
   }
-  return p;
 }
 
 // Is N exactly non-zero? Each computed component is within 4u P_k (+O(u^2)) of the exact one;
 // a component above 8u P_k proves it. Otherwise ask the exact predicates.
-bool non_degenerate(const Triangle& t, const Plane& p) {
+inline bool non_degenerate(const Triangle& t, const Plane& p) {
   for (int k = 0; k < 3; ++k) {
     if (std::fabs(p.n[k]) > 8 * kU * p.perm[k]) return true;
   }
@@ -214,7 +209,8 @@ struct Distance {
   int sign;
 };
 
-Distance plane_distance(const Triangle& t, const Plane& p, const Vec3& x) {
+[[gnu::always_inline]] inline Distance plane_distance(const Triangle& t, const Plane& p,
+                                                      const Vec3& x) {
   const Vec3 w = x - t.v[0];
   Distance r;
   r.d = p.n[0] * w[0] + p.n[1] * w[1] + p.n[2] * w[2];
@@ -242,7 +238,8 @@ struct Interval {
   double lo, hi, err;
 };
 
-bool crossing_interval(const Triangle& t, const Distance d[3], int k, Interval& out) {
+[[gnu::always_inline]] inline bool crossing_interval(const Triangle& t, const Distance d[3], int k,
+                                                     Interval& out) {
   out.lo = INFINITY;
   out.hi = -INFINITY;
   out.err = 0.0;
@@ -339,7 +336,7 @@ bool moller_float(const Triangle& t1, const Triangle& t2, double epsilon) {
 }
 
 // True when every coordinate is finite: x - x is 0 for a finite x and NaN for NaN or inf.
-bool finite(const Triangle& t) {
+[[gnu::always_inline]] inline bool finite(const Triangle& t) {
   const Vec3 zero = (t.v[0] - t.v[0]) + (t.v[1] - t.v[1]) + (t.v[2] - t.v[2]);
   return zero[0] + zero[1] + zero[2] == 0.0;
 }
@@ -383,12 +380,18 @@ double plane_gap(const Plane& p, const Distance d[3]) {
 }
 
 // Moller 1997, eq. (6)-(9), with every floating-point decision certified by an error bound. With
-// `gap`, a rejection by a plane also gives plane_gap (tritri.h).
+// `gap`, a rejection by a plane also gives plane_gap (tritri.h). `q1`, when given, is T1's plane
+// from triangle_plane(t1): the same numbers the test would compute (plane_of, non_degenerate,
+// finite), taken instead of computed, so the answer and the gap are the same bit for bit.
 template <bool kGap>
-bool moller_certified(const Triangle& t1, const Triangle& t2, double* gap) {
-  if (!finite(t1) || !finite(t2)) return false;  // no set of points (tritri.h)
+[[gnu::always_inline]] inline bool moller_certified(const Triangle& t1, const Triangle& t2,
+                                                    double* gap, const Plane* q1) {
+  // No set of points (tritri.h).
+  if (q1 ? !q1->finite : !finite(t1)) return false;
+  if (!finite(t2)) return false;
   // Eq. (6)-(7): T1's vertices against T2's plane; reject if all strictly on one side.
-  const Plane p2 = plane_of(t2);
+  Plane p2;
+  plane_of(t2, p2);
   if (!non_degenerate(t2, p2)) return tri_tri_intersect_predicates(t1, t2);
   Distance d1[3];
   for (int i = 0; i < 3; ++i) d1[i] = plane_distance(t2, p2, t1.v[i]);
@@ -397,8 +400,10 @@ bool moller_certified(const Triangle& t1, const Triangle& t2, double* gap) {
     return false;
   }
   // The same for T2's vertices against T1's plane; coplanar pairs are decided exactly in 2D.
-  const Plane p1 = plane_of(t1);
-  if (!non_degenerate(t1, p1)) return tri_tri_intersect_predicates(t1, t2);
+  Plane computed;
+  if (!q1) plane_of(t1, computed);
+  const Plane& p1 = q1 ? *q1 : computed;
+  if (q1 ? !q1->proper : !non_degenerate(t1, p1)) return tri_tri_intersect_predicates(t1, t2);
   if (d1[0].sign == 0 && d1[1].sign == 0 && d1[2].sign == 0) return coplanar_triangles(t1, t2);
   Distance d2[3];
   for (int i = 0; i < 3; ++i) d2[i] = plane_distance(t1, p1, t2.v[i]);
@@ -429,13 +434,32 @@ bool moller_certified(const Triangle& t1, const Triangle& t2, double* gap) {
 
 }  // namespace
 
+TrianglePlane triangle_plane(const Triangle& t) {
+  TrianglePlane p;
+  p.finite = finite(t);
+  if (!p.finite) return p;  // never used: the test answers false first
+  plane_of(t, p);
+  p.proper = non_degenerate(t, p);
+  return p;
+}
+
 bool tri_tri_intersect(const Triangle& t1, const Triangle& t2) {
-  return moller_certified<false>(t1, t2, nullptr);
+  return moller_certified<false>(t1, t2, nullptr, nullptr);
 }
 
 bool tri_tri_intersect(const Triangle& t1, const Triangle& t2, double& gap) {
   gap = 0;
-  return moller_certified<true>(t1, t2, &gap);
+  return moller_certified<true>(t1, t2, &gap, nullptr);
+}
+
+bool tri_tri_intersect(const Triangle& t1, const TrianglePlane& p1, const Triangle& t2) {
+  return moller_certified<false>(t1, t2, nullptr, &p1);
+}
+
+bool tri_tri_intersect(const Triangle& t1, const TrianglePlane& p1, const Triangle& t2,
+                       double& gap) {
+  gap = 0;
+  return moller_certified<true>(t1, t2, &gap, &p1);
 }
 
 bool tri_tri_moller_naive(const Triangle& t1, const Triangle& t2) {

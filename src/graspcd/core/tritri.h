@@ -23,6 +23,25 @@ bool tri_tri_intersect(const Triangle& t1, const Triangle& t2);
 // decided) 0. The tree query keeps it with a front's leaf pair (tree_query.h).
 bool tri_tri_intersect(const Triangle& t1, const Triangle& t2, double& gap);
 
+// A triangle's plane as the test above computes it (Moller 1997, eq. 6): N = (v1 - v0) x (v2 - v0)
+// in floating point, with perm_k = |a_i b_j| + |a_j b_i| (a = v1 - v0, b = v2 - v0) bounding each
+// component's rounding; `finite` says every coordinate is finite, `proper` (when finite) that N is
+// exactly non-zero (decided exactly near zero). For triangles that are tested many times (a tree's,
+// ObbTree::planes()), computed once.
+struct TrianglePlane {
+  Vec3 n = Vec3::Zero();
+  Vec3 perm = Vec3::Zero();
+  bool finite = false;
+  bool proper = false;
+};
+TrianglePlane triangle_plane(const Triangle& t);
+
+// tri_tri_intersect with t1's plane given (p1 = triangle_plane(t1)): the same answer and the same
+// gap, bit for bit, without computing t1's plane again.
+bool tri_tri_intersect(const Triangle& t1, const TrianglePlane& p1, const Triangle& t2);
+bool tri_tri_intersect(const Triangle& t1, const TrianglePlane& p1, const Triangle& t2,
+                       double& gap);
+
 // An exact test built from orientation predicates only (predicates.h): each triangle is classified
 // exactly as point, segment or triangle; non-coplanar triangles intersect iff an edge of one meets
 // the other; coplanar ones are decided in a projection that preserves incidence. Slower; the
