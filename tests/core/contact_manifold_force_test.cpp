@@ -16,6 +16,7 @@
 #include "graspcd/core/contact_manifold.h"
 #include "graspcd/core/geometry.h"
 #include "graspcd/core/mesh_features.h"
+#include "graspcd/core/reused_contacts.h"
 #include "graspcd/core/triangle_contact.h"
 
 namespace graspcd {
@@ -33,7 +34,7 @@ struct Patches {
     b.push_back({5000 + 3 * i, 5001 + 3 * i, 5002 + 3 * i});
   }
   ContactManifold build(int per_pair, ManifoldReduction reduction = ManifoldReduction::kForce,
-                        int reference = tol::kManifoldPairContacts) const {
+                        int reference = tol::kManifoldReferencePairContacts) const {
     ManifoldOptions options;
     options.max_per_pair = per_pair;
     options.reduction = reduction;
@@ -261,11 +262,45 @@ TEST(ForceReduction, RandomPairsKeepTheBoundAndAreDeterministic) {
   }
 }
 
+// Each reduced point's gain is its patch's |S| / m (1 where S is kept whole), and a reused
+// contact's depth follows it: geom2 pushed deeper by h along the normal deepens the m points by
+// |S| / m h each, the patch's sum by |S| h, as the reference's |S| points would deepen.
+TEST(ForceReduction, GainsKeepTheSummedDepthOfReusedContacts) {
+  Patches s;
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      s.add(0, Vec3(0.002 * i, 0.002 * j, 0), Vec3::UnitZ(), 0.0005 + 0.0001 * i);
+    }
+  }
+  for (int per_pair = 1; per_pair <= 4; ++per_pair) {
+    SCOPED_TRACE(per_pair);
+    const ContactManifold m = s.build(per_pair);
+    ASSERT_EQ(m.contact_gain.size(), m.contacts.size());
+    const std::size_t set = of_patch(s.build(8, ManifoldReduction::kSupport), 0).size();
+    for (double g : m.contact_gain) {
+      EXPECT_EQ(g, static_cast<double>(set) / static_cast<double>(m.contacts.size()));
+    }
+    ReusedContacts kept;
+    kept.store(Pose{}, m.contacts, m.contact_gain);
+    Pose deeper;
+    const double h = 1e-5;
+    deeper.t = Vec3(0, 0, -h);  // geom2 (above, pushing down along -z) moves further in
+    std::vector<TriContact> out;
+    ASSERT_TRUE(kept.refresh(deeper, 0.02, 0.02, 1e-4, out));
+    double before = 0, after = 0;
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      before += m.contacts[k].depth;
+      after += out[k].depth;
+    }
+    EXPECT_NEAR(after - before, static_cast<double>(set) * h, 1e-15);
+  }
+}
+
 // The option leaves the default alone: the default options are the support reduction, and the
 // force reduction at the reference budget gives its points bit for bit.
 TEST(ForceReduction, AtTheReferenceBudgetItIsTheSupportReduction) {
   EXPECT_EQ(ManifoldOptions{}.reduction, ManifoldReduction::kSupport);
-  EXPECT_EQ(ManifoldOptions{}.reference_per_pair, tol::kManifoldPairContacts);
+  EXPECT_EQ(ManifoldOptions{}.reference_per_pair, tol::kManifoldReferencePairContacts);
   Patches s;
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 4; ++j) {

@@ -577,6 +577,8 @@ void spend_force_budget(const std::vector<TriContact>& candidates,
   const auto emit = [&](std::size_t p, std::size_t k) {
     out.contacts.push_back(fitted[start[p] + k]);
     out.contact_patch.push_back(p);
+    out.contact_gain.push_back(static_cast<double>(reference_shares[p]) /
+                               static_cast<double>(shares[p]));
   };
   out.contacts.reserve(fitted.size());
   for (std::size_t p = 0; p < patches.size() && shares[p] > 0; ++p) emit(p, 0);
@@ -670,11 +672,13 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
                     [](const ContactPatch& a, const ContactPatch& b) { return a.depth > b.depth; });
   if (moment) {
     spend_moment_budget(candidates, out.patches, along, per_pair, out);
+    out.contact_gain.assign(out.contacts.size(), 1.0);
   } else if (options.reduction == ManifoldReduction::kForce) {
     const auto reference = static_cast<std::size_t>(std::max(options.reference_per_pair, 1));
     spend_force_budget(candidates, out.patches, along, per_pair, reference, out);
   } else {
     spend_pair_budget(candidates, out.patches, along, per_pair, out);
+    out.contact_gain.assign(out.contacts.size(), 1.0);
   }
   return out;
 }

@@ -44,7 +44,7 @@ struct ManifoldOptions {
   ManifoldReduction reduction = ManifoldReduction::kSupport;
   // The force reduction's reference: the points per pair the support reduction would keep, whose
   // summed depth and depth-weighted centre each patch's fewer points reproduce (>= 1).
-  int reference_per_pair = tol::kManifoldPairContacts;
+  int reference_per_pair = tol::kManifoldReferencePairContacts;
 };
 
 struct ContactPatch {
@@ -65,6 +65,10 @@ struct ContactManifold {
   std::vector<TriContact> contacts;
   // The patch (index into `patches`) each of `contacts` belongs to.
   std::vector<std::size_t> contact_patch;
+  // Each of `contacts`' gain: how much its reported depth changes per unit of penetration along
+  // its normal, so that a patch's summed depth follows the reference's (ReusedContacts refreshes
+  // depths by it): 1, and |S| / m for the m points of a patch the force reduction reduced.
+  std::vector<double> contact_gain;
 };
 
 // Builds the manifold of one geom pair from its candidates: candidate i is the contact of the
