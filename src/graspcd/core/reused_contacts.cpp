@@ -78,7 +78,8 @@ bool ReusedContacts::refresh(const Pose& pose, double radius_a, double radius_b,
     const TriContact& c = contacts_[i];
     const Vec3 on_a = c.pos + 0.5 * c.depth * c.normal;
     const Vec3 on_b = pose.R * on_b_[i] + pose.t;
-    const double depth = c.depth + gains_[i] * ((on_a - on_b).dot(c.normal) - c.depth);
+    const double raw = (on_a - on_b).dot(c.normal);
+    const double depth = gains_[i] == 1.0 ? raw : c.depth + gains_[i] * (raw - c.depth);
     if (depth < 0) return false;
     out[i].normal = c.normal;
     out[i].depth = depth;
