@@ -21,7 +21,9 @@ one table per measure (rows: scenes; columns: variants):
 and per non-default variant whether it meets the criteria against the default: same held verdict,
 judge 0 phantom / 0 missed, hold_drift and true penetration within +10% of the default's (or
 within 0.1 mm of it, below the measures' resolution), and rest within +10% (reported only).
-Exit code 0 even when a criterion fails (it is a measurement); 2 when a run fails.
+A run whose simulation went non-finite (graspcd's refusal) is shown as such and fails every
+criterion. Exit code 0 even when a criterion fails (it is a measurement); 2 when a run fails
+otherwise.
 """
 import concurrent.futures
 import json
@@ -50,6 +52,9 @@ def run(graspcd, mjcf, scene, variant):
     if variant != "default":
         cmd += ["--manifold", variant]
     r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0 and "went non-finite" in r.stderr:
+        # The simulation itself failed (graspcd's one-line refusal): a result, not a broken run.
+        return {"error": r.stderr.strip().splitlines()[-1]}
     if r.returncode != 0:
         fail(f"{' '.join(cmd)} exited with {r.returncode}: {r.stderr.strip()}")
     d = json.loads(r.stdout)
@@ -106,7 +111,9 @@ def main():
         print(f"\n{title}")
         print(f"{'scene':<{width}} | " + columns(variants))
         for s in SCENES:
-            print(f"{s:<{width}} | " + columns(cell(results[(s, v)]) for v in variants))
+            print(f"{s:<{width}} | " + columns(
+                "non-finite" if "error" in results[(s, v)] else cell(results[(s, v)])
+                for v in variants))
 
     table("verdict (held, judge phantom/missed)", lambda r: (
         f"{'held' if r['held'] else 'NOT held'} {r['phantom']}/{r['missed']}"))
@@ -123,6 +130,9 @@ def main():
         ok = {"verdict": 0, "judge": 0, "drift": 0, "true": 0, "rest": 0, "all": 0}
         for s in SCENES:
             d, r = results[(s, "default")], results[(s, v)]
+            if "error" in r or "error" in d:
+                print(f"  {s} {v if 'error' in r else 'default'}: {(r if 'error' in r else d)['error']}")
+                continue
             checks = {
                 "verdict": r["held"] == d["held"],
                 "judge": r["phantom"] == 0 and r["missed"] == 0,
@@ -136,7 +146,8 @@ def main():
         n = len(SCENES)
         print(f"{v}: verdict {ok['verdict']}/{n}, judge 0/0 {ok['judge']}/{n}, drift {ok['drift']}/{n}, "
               f"true {ok['true']}/{n}, rest (reported) {ok['rest']}/{n}; all but rest {ok['all']}/{n}")
-        mean = lambda key, var: sum(results[(s, var)][key] for s in SCENES) / n
+        finite = [s for s in SCENES if "error" not in results[(s, v)]]
+        mean = lambda key, var: sum(results[(s, var)][key] for s in finite) / len(finite)
         print(f"  mean contacts per step {mean('mean_contacts', v):.2f} "
               f"(default {mean('mean_contacts', 'default'):.2f}); ms per physics step "
               f"{mean('ms_per_physics_step', v):.3f} (default "
