@@ -602,7 +602,7 @@ Command add_grasp_command(CLI::App& parent) {
       ->check(positive_number())
       ->capture_default_str();
   app->add_option("--manifold", options->manifold,
-                  "The contacts per served pair: support (the support polygon, the default) or "
+                  "The contacts per served pair: support (the support polygon, the default), "
                   "moment (each patch's net normal direction and moment about its centre of "
                   "pressure kept: an anchor and support extremes) or force (the support points "
                   "of 8 per pair reduced to the budget with each patch's summed depth and "
