@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """Contact reductions of at most 4 per pair against the default manifold, on 13 scenes.
 
-usage: reduction_check.py GRASPCD [--jobs N] [--variants A,B,...] [--json OUT]
+usage: reduction_check.py GRASPCD [--jobs N] [--variants A,B,...] [--json OUT] [--grasp-args ARGS]
 
 Runs `graspcd grasp SCENE --json --judge [--manifold X]` from the checkout's mjcf/ folder on
 examples 1-3, hand_triangles, real_robotiq_cup, the two hold scenes (mjcf/hard/hold_*.xml) and
 the six concave_*.xml scenes, for each variant: "default" (the pair config as shipped: "support",
 8 per pair), "force4" (the force reduction, contact_manifold.h, 4 per pair) and "support4" (the
-support reduction at 4 per pair); other `--manifold` values may be named with --variants. Prints
+support reduction at 4 per pair); other `--manifold` values may be named with --variants, and
+--grasp-args adds options to every run (e.g. "--noslip 10": MuJoCo's noslip solver). Prints
 one table per measure (rows: scenes; columns: variants):
   verdict    held / not held (gripped), and the judge's phantom/missed contacts (CGAL)
   drift      hold_drift, mm: the object's largest move relative to the palm in the hold
@@ -47,8 +48,8 @@ def fail(message):
     sys.exit(2)
 
 
-def run(graspcd, mjcf, scene, variant):
-    cmd = [graspcd, "grasp", os.path.join(mjcf, scene + ".xml"), "--json", "--judge"]
+def run(graspcd, mjcf, scene, variant, extra):
+    cmd = [graspcd, "grasp", os.path.join(mjcf, scene + ".xml"), "--json", "--judge"] + extra
     if variant != "default":
         cmd += ["--manifold", variant]
     r = subprocess.run(cmd, capture_output=True, text=True)
@@ -81,7 +82,7 @@ def within(value, reference):
 
 def main():
     args = sys.argv[1:]
-    jobs, variants, out = 2, VARIANTS, None
+    jobs, variants, out, extra = 2, VARIANTS, None, []
     rest = []
     while args:
         a = args.pop(0)
@@ -91,14 +92,17 @@ def main():
             variants = ["default"] + [v for v in args.pop(0).split(",") if v != "default"]
         elif a == "--json" and args:
             out = args.pop(0)
+        elif a == "--grasp-args" and args:
+            extra = args.pop(0).split()
         else:
             rest.append(a)
     if len(rest) != 1:
-        fail("usage: reduction_check.py GRASPCD [--jobs N] [--variants A,B,...] [--json OUT]")
+        fail("usage: reduction_check.py GRASPCD [--jobs N] [--variants A,B,...] [--json OUT] "
+             "[--grasp-args ARGS]")
     graspcd = os.path.abspath(rest[0])
     mjcf = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "mjcf")
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        futures = {(s, v): pool.submit(run, graspcd, mjcf, s, v) for s in SCENES for v in variants}
+        futures = {(s, v): pool.submit(run, graspcd, mjcf, s, v, extra) for s in SCENES for v in variants}
         results = {key: f.result() for key, f in futures.items()}
     if out:
         with open(out, "w") as f:
