@@ -55,9 +55,9 @@ struct GraspCliOptions {
   bool quiet = false;  // --quiet: the text without the per-step lines
   bool require_held = false;
   int max_steps = 400;
-  double contact_reuse = 0;    // --contact-reuse M: the config's "contact_reuse" overridden
-  std::string manifold;        // --manifold support|moment[N]: the config's reduction overridden
-  std::string object;          // --object FILE: a user's mesh in a template scene
+  double contact_reuse = 0;  // --contact-reuse M: the config's "contact_reuse" overridden
+  std::string manifold;  // --manifold support|moment|force[N]: the config's reduction overridden
+  std::string object;    // --object FILE: a user's mesh in a template scene
   PlacementOptions placement;  // its placement (object_placement.h)
   std::string decomposed;      // --decomposed DIR: the object's collision by its convex pieces
   bool judge = false;          // --judge: every closing step's contacts against CGAL (the race)
@@ -429,8 +429,8 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
     const auto choice = grasp::parse_manifold_choice(options.manifold);
     if (!choice || options.native || !options.decomposed.empty()) {
       throw UsageError(
-          "grasp: --manifold takes support or moment, optionally with the contacts "
-          "per pair 1-50 (moment4), and goes with graspcd's contacts, not --native");
+          "grasp: --manifold takes support, moment or force, optionally with the "
+          "contacts per pair 1-50 (force4), and goes with graspcd's contacts, not --native");
     }
     grasp.reduction = choice->reduction;
     grasp.max_contacts = choice->max_contacts;
@@ -609,10 +609,12 @@ Command add_grasp_command(CLI::App& parent) {
       ->check(positive_number())
       ->capture_default_str();
   app->add_option("--manifold", options->manifold,
-                  "The contacts per served pair: support (the support polygon, the default) or "
+                  "The contacts per served pair: support (the support polygon, the default), "
                   "moment (each patch's net normal direction and moment about its centre of "
-                  "pressure kept: an anchor and support extremes), optionally followed by the "
-                  "contacts per pair (moment4: at most 4); overrides the config's \"reduction\" "
+                  "pressure kept: an anchor and support extremes) or force (the support points "
+                  "of 8 per pair reduced to the budget with each patch's summed depth and "
+                  "centre of pressure kept), optionally followed by the contacts per pair "
+                  "(force4: at most 4); overrides the config's \"reduction\" "
                   "and \"max_contacts\"");
   app->add_option("--contact-reuse", options->contact_reuse,
                   "Metres in [0, 0.001]: reuse a touching pair's contacts, their depths "

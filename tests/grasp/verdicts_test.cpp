@@ -265,8 +265,13 @@ TEST(ManifoldChoice, ParsesAReductionAndAnOptionalBudget) {
   EXPECT_EQ(support->reduction, ManifoldReduction::kSupport);
   EXPECT_FALSE(support->max_contacts);
   EXPECT_EQ(parse_manifold_choice("moment50")->max_contacts, 50);
+  const auto force4 = parse_manifold_choice("force4");
+  ASSERT_TRUE(force4);
+  EXPECT_EQ(force4->reduction, ManifoldReduction::kForce);
+  EXPECT_EQ(force4->max_contacts, 4);
+  EXPECT_EQ(parse_manifold_choice("force")->reduction, ManifoldReduction::kForce);
   for (const char* bad : {"", "moment0", "moment51", "moment04", "moment-4", "moment4x", "fewest",
-                          "support123", "Moment"}) {
+                          "support123", "Moment", "force0", "forces4", "Force4"}) {
     EXPECT_FALSE(parse_manifold_choice(bad)) << bad;
   }
 }

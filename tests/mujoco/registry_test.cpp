@@ -108,6 +108,10 @@ TEST(RegistryConfig, ParsesEveryField) {
   EXPECT_TRUE(d.front_list);
   EXPECT_EQ(d.contact_reuse, 0.0);  // exact contacts every step unless asked
   EXPECT_EQ(d.manifold.reduction, ManifoldReduction::kSupport);
+  EXPECT_EQ(
+      parse_registry_config(R"({"reduction": "force", "pairs": [{"a": "x", "b": "y"}]})", "f.json")
+          .manifold.reduction,
+      ManifoldReduction::kForce);
 }
 
 // Each bad config gives one line that starts with the config's name.

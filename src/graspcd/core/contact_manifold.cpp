@@ -1,5 +1,6 @@
 #include "graspcd/core/contact_manifold.h"
 
+#include <Eigen/QR>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -317,24 +318,50 @@ void choose_points(const std::vector<TriContact>& candidates, std::size_t per_pa
 // area. Each point has its patch's normal and its depth along it (`along`).
 void spend_pair_budget(const std::vector<TriContact>& candidates,
                        const std::vector<ContactPatch>& patches, const std::vector<double>& along,
-                       std::size_t per_pair, std::vector<TriContact>& contacts) {
-  const auto emit = [&](const ContactPatch& patch, std::size_t i) {
-    contacts.push_back(TriContact{candidates[i].pos, patch.normal, along[i]});
+                       std::size_t per_pair, ContactManifold& out) {
+  const auto emit = [&](std::size_t p, std::size_t i) {
+    out.contacts.push_back(TriContact{candidates[i].pos, patches[p].normal, along[i]});
+    out.contact_patch.push_back(p);
   };
-  contacts.reserve(std::min(per_pair, candidates.size()));
-  for (const ContactPatch& patch : patches) {
-    if (contacts.size() == per_pair) break;
-    emit(patch, patch.selected.front());
+  out.contacts.reserve(std::min(per_pair, candidates.size()));
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    if (out.contacts.size() == per_pair) break;
+    emit(p, patches[p].selected.front());
   }
-  thread_local std::vector<const ContactPatch*> by_area;
+  thread_local std::vector<std::size_t> by_area;
   by_area.clear();
-  for (const ContactPatch& patch : patches) by_area.push_back(&patch);
-  small_stable_sort(by_area.begin(), by_area.end(),
-                    [](const ContactPatch* a, const ContactPatch* b) { return a->area > b->area; });
-  for (const ContactPatch* patch : by_area) {
-    for (std::size_t k = 1; k < patch->selected.size() && contacts.size() < per_pair; ++k) {
-      emit(*patch, patch->selected[k]);
+  for (std::size_t p = 0; p < patches.size(); ++p) by_area.push_back(p);
+  small_stable_sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) {
+    return patches[a].area > patches[b].area;
+  });
+  for (std::size_t p : by_area) {
+    for (std::size_t k = 1; k < patches[p].selected.size() && out.contacts.size() < per_pair; ++k) {
+      emit(p, patches[p].selected[k]);
     }
+  }
+}
+
+// How many points step 3 gives each patch (`patches` deepest first) from a budget of `per_pair`:
+// one to each patch in order, then the further selected points by patch area.
+void patch_shares(const std::vector<ContactPatch>& patches, std::size_t per_pair,
+                  std::vector<std::size_t>& shares) {
+  shares.assign(patches.size(), 0);
+  std::size_t used = 0;
+  for (std::size_t p = 0; p < patches.size() && used < per_pair; ++p) {
+    shares[p] = 1;
+    ++used;
+  }
+  thread_local std::vector<std::size_t> by_area;
+  by_area.clear();
+  for (std::size_t p = 0; p < patches.size(); ++p) by_area.push_back(p);
+  small_stable_sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) {
+    return patches[a].area > patches[b].area;
+  });
+  for (std::size_t p : by_area) {
+    if (shares[p] == 0) continue;
+    const std::size_t more = std::min(patches[p].selected.size() - 1, per_pair - used);
+    shares[p] += more;
+    used += more;
   }
 }
 
@@ -434,7 +461,8 @@ void fit_patch_points(const std::vector<TriContact>& candidates, const ContactPa
 // `patches` sorted deepest first: every patch's anchor, then the patches' extremes by patch area.
 void spend_moment_budget(const std::vector<TriContact>& candidates,
                          const std::vector<ContactPatch>& patches, const std::vector<double>& along,
-                         std::size_t per_pair, std::vector<TriContact>& contacts) {
+                         std::size_t per_pair, ContactManifold& out) {
+  std::vector<TriContact>& contacts = out.contacts;
   const std::size_t anchors = std::min(per_pair, patches.size());
   thread_local std::vector<std::size_t> by_area, extremes;
   by_area.clear();
@@ -459,9 +487,109 @@ void spend_moment_budget(const std::vector<TriContact>& candidates,
     TriContact anchor;
     fit_patch_points(candidates, patches[p], wrench, extremes[p], anchor, further);
     contacts.push_back(anchor);
+    out.contact_patch.push_back(p);
   }
   for (std::size_t p : by_area) {
-    for (std::size_t k = 0; k < extremes[p]; ++k) contacts.push_back(further[start[p] + k]);
+    for (std::size_t k = 0; k < extremes[p]; ++k) {
+      contacts.push_back(further[start[p] + k]);
+      out.contact_patch.push_back(p);
+    }
+  }
+}
+
+// ---- Force reduction (build_contact_manifold, "Force reduction")
+
+// The first `kept` of a patch's `reference` points (positions and depths along `nrm`, in choice
+// order) with the reference's summed depth and depth-weighted centre across `nrm`, into `out`.
+void fit_force_points(const std::vector<TriContact>& reference, std::size_t kept, const Vec3& nrm,
+                      std::vector<TriContact>& out) {
+  const std::size_t first = out.size();
+  double total = 0;
+  Vec3 weighted = Vec3::Zero();
+  for (const TriContact& c : reference) {
+    total += c.depth;
+    weighted += c.depth * c.pos;
+  }
+  for (std::size_t k = 0; k < kept; ++k) out.push_back(reference[k]);
+  if (kept == reference.size() || !(total > 0)) return;  // S itself, or no force to keep
+  const Vec3 centre = weighted / total;
+  const PlaneAxes axes = plane_axes(nrm);
+  double kept_total = 0;
+  for (std::size_t k = 0; k < kept; ++k) kept_total += reference[k].depth;
+  // Scaled depths, then the least-norm change delta_k = l0 + l . o_k with sum delta = 0 and
+  // sum (e_k + delta_k) o_k = 0: [m, sum o^T; sum o, sum o o^T] [l0; l] = [0; -sum e o].
+  thread_local std::vector<Point2> offset;
+  offset.clear();
+  Eigen::Matrix3d gram = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < kept; ++k) {
+    TriContact& c = out[first + k];
+    c.depth = kept_total > 0 ? c.depth * (total / kept_total) : total / static_cast<double>(kept);
+    const Vec3 d = c.pos - centre;
+    const Point2 o{d.dot(axes.u), d.dot(axes.w)};
+    offset.push_back(o);
+    const Eigen::Vector3d row(1, o[0], o[1]);
+    gram += row * row.transpose();
+    rhs -= c.depth * Eigen::Vector3d(0, o[0], o[1]);
+  }
+  const Eigen::Vector3d l = gram.completeOrthogonalDecomposition().solve(rhs);
+  double sum = 0;
+  for (std::size_t k = 0; k < kept; ++k) {
+    TriContact& c = out[first + k];
+    c.depth = std::max(0.0, c.depth + l[0] + l[1] * offset[k][0] + l[2] * offset[k][1]);
+    sum += c.depth;
+  }
+  // Rescaled to the reference's sum; the centre's remaining offset taken by moving K across N.
+  Point2 left{0, 0};
+  for (std::size_t k = 0; k < kept; ++k) {
+    TriContact& c = out[first + k];
+    c.depth = sum > 0 ? c.depth * (total / sum) : total / static_cast<double>(kept);
+    left[0] += c.depth * offset[k][0];
+    left[1] += c.depth * offset[k][1];
+  }
+  const Vec3 shift = (left[0] * axes.u + left[1] * axes.w) / total;
+  for (std::size_t k = 0; k < kept; ++k) out[first + k].pos -= shift;
+}
+
+// The pair's budget of `per_pair` points under the force reduction into `out`, from `patches`
+// sorted deepest first: each patch's share of the reference budget `reference` (patch_shares) is
+// its set S, its share of `per_pair` its kept points, fitted by fit_force_points and written in
+// step 3's order.
+void spend_force_budget(const std::vector<TriContact>& candidates,
+                        const std::vector<ContactPatch>& patches, const std::vector<double>& along,
+                        std::size_t per_pair, std::size_t reference, ContactManifold& out) {
+  thread_local std::vector<std::size_t> reference_shares, shares, start;
+  thread_local std::vector<TriContact> set, fitted;
+  patch_shares(patches, std::max(reference, per_pair), reference_shares);
+  patch_shares(patches, per_pair, shares);
+  fitted.clear();
+  start.clear();
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    start.push_back(fitted.size());
+    if (shares[p] == 0) continue;
+    set.clear();
+    for (std::size_t k = 0; k < reference_shares[p]; ++k) {
+      const std::size_t i = patches[p].selected[k];
+      set.push_back(TriContact{candidates[i].pos, patches[p].normal, along[i]});
+    }
+    fit_force_points(set, shares[p], patches[p].normal, fitted);
+  }
+  const auto emit = [&](std::size_t p, std::size_t k) {
+    out.contacts.push_back(fitted[start[p] + k]);
+    out.contact_patch.push_back(p);
+    out.contact_gain.push_back(static_cast<double>(reference_shares[p]) /
+                               static_cast<double>(shares[p]));
+  };
+  out.contacts.reserve(fitted.size());
+  for (std::size_t p = 0; p < patches.size() && shares[p] > 0; ++p) emit(p, 0);
+  thread_local std::vector<std::size_t> by_area;
+  by_area.clear();
+  for (std::size_t p = 0; p < patches.size(); ++p) by_area.push_back(p);
+  small_stable_sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) {
+    return patches[a].area > patches[b].area;
+  });
+  for (std::size_t p : by_area) {
+    for (std::size_t k = 1; k < shares[p]; ++k) emit(p, k);
   }
 }
 
@@ -543,9 +671,14 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
   small_stable_sort(out.patches.begin(), out.patches.end(),
                     [](const ContactPatch& a, const ContactPatch& b) { return a.depth > b.depth; });
   if (moment) {
-    spend_moment_budget(candidates, out.patches, along, per_pair, out.contacts);
+    spend_moment_budget(candidates, out.patches, along, per_pair, out);
+    out.contact_gain.assign(out.contacts.size(), 1.0);
+  } else if (options.reduction == ManifoldReduction::kForce) {
+    const auto reference = static_cast<std::size_t>(std::max(options.reference_per_pair, 1));
+    spend_force_budget(candidates, out.patches, along, per_pair, reference, out);
   } else {
-    spend_pair_budget(candidates, out.patches, along, per_pair, out.contacts);
+    spend_pair_budget(candidates, out.patches, along, per_pair, out);
+    out.contact_gain.assign(out.contacts.size(), 1.0);
   }
   return out;
 }

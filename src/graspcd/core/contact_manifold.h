@@ -31,6 +31,10 @@ enum class ManifoldReduction {
   // reduction"): a centre-of-pressure anchor and support extremes, all with the net normal, their
   // depths fitted so that the points' depth-weighted centre is the proxy's central-axis point.
   kMoment,
+  // The support reduction's points at the reference budget, reduced to the pair's budget with the
+  // same summed depth and depth-weighted centre per patch (build_contact_manifold, "Force
+  // reduction").
+  kForce,
 };
 
 struct ManifoldOptions {
@@ -38,6 +42,9 @@ struct ManifoldOptions {
   int max_per_pair = tol::kManifoldPairContacts;    // points kept per geom pair (>= 1)
   double patch_cosine = tol::kPatchNormalCosine;    // see tolerances.h
   ManifoldReduction reduction = ManifoldReduction::kSupport;
+  // The force reduction's reference: the points per pair the support reduction would keep, whose
+  // summed depth and depth-weighted centre each patch's fewer points reproduce (>= 1).
+  int reference_per_pair = tol::kManifoldReferencePairContacts;
 };
 
 struct ContactPatch {
@@ -56,6 +63,12 @@ struct ContactManifold {
   // along it; the deepest point of every patch first (deepest patch first), then the patches'
   // further points, the patch of largest area first.
   std::vector<TriContact> contacts;
+  // The patch (index into `patches`) each of `contacts` belongs to.
+  std::vector<std::size_t> contact_patch;
+  // Each of `contacts`' gain: how much its reported depth changes per unit of penetration along
+  // its normal, so that a patch's summed depth follows the reference's (ReusedContacts refreshes
+  // depths by it): 1, and |S| / m for the m points of a patch the force reduction reduced.
+  std::vector<double> contact_gain;
 };
 
 // Builds the manifold of one geom pair from its candidates: candidate i is the contact of the
@@ -113,6 +126,33 @@ struct ContactManifold {
 // contact at the centre of pressure), with the largest-area support points of Jolt Physics
 // (PruneContactPoints) and the minimum-moment point of a force system (Poinsot's central axis,
 // as Drake's ContactResultantForceCalculator places a resultant).
+//
+// Force reduction (options.reduction == kForce; patches and their points as in steps 1 and 2).
+// The proxy is what the support reduction hands the solver at the reference budget
+// (max(options.reference_per_pair, max_per_pair) points per pair, max_per_patch per patch): a
+// patch's reference set S, points q_j with depths d_j along the patch normal N, each taken as a
+// spring pushing with force d_j along N (a soft contact's steady force grows with its reported
+// depth). Its force is D N, D = sum_S d_j, and its centre of pressure c = sum_S d_j q_j / D, about
+// which its moment is 0 (every force along N). The pair's budget (max_per_pair) is spent as step 3
+// spends it, giving each patch m <= |S| points K: the first m of S in step 2's choice order (the
+// deepest, the farthest, the hull extremes), and
+//   - when m == |S|, exactly S (positions and depths);
+//   - else depths scaled to sum D (e_k = d_k D / sum_K d_k; D / m each when sum_K d_k is 0), then
+//     the least-norm change of them that keeps the sum and puts their depth-weighted centre at c
+//     across N (e_k + l0 + l . o_k, o_k the offset of q_k from c across N), clamped at 0 and
+//     rescaled to sum D; what the clamp or a too-small K (one point, a segment) leaves is taken
+//     by moving all of K across N by the same offset t, the depth-weighted centre's from c.
+// The bound the tests check, per patch with D > 0 (rounding aside): every kept normal is N;
+// e_k >= 0; (1) sum_K e_k = D, the proxy's force; (2) sum_K e_k (x_k - c) x N = 0, its moment
+// about c (x_k the kept positions); (3) x_k = q_k - t with t across N and |t| <= the largest
+// distance between two points of S (c and the depth-weighted centre of K both lie in S's hull);
+// (4) e_k <= D <= |S| max_depth when the candidates' depths are capped at max_depth (the cap
+// bounds a patch's force, as under the support reduction at the reference budget, not each
+// point's reported depth). A patch with D = 0 keeps its m points at depth 0. Patches beyond
+// max_per_pair (the shallowest) are lost, as under step 3. This is the contact reduction of
+// Newton (newton-physics, contact_reduction: the aggregate normal force of the removed contacts
+// kept by the reduced set, plus a point at the centre of pressure) on the largest-area support
+// points of Jolt Physics (PruneContactPoints).
 ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates,
                                        const std::vector<Triangle>& faces_a,
                                        const std::vector<Triangle>& faces_b,

@@ -35,11 +35,17 @@ double contact_drift(const Pose& from, const Pose& to, double radius_a, double r
 
 // After Bullet's btPersistentManifold (refreshContactPoints): points kept on both bodies, the
 // depth refreshed as their penetration along the contact normal.
-void ReusedContacts::store(const Pose& pose, const std::vector<TriContact>& contacts) {
+void ReusedContacts::store(const Pose& pose, const std::vector<TriContact>& contacts,
+                           const std::vector<double>& gains) {
   valid_ = !contacts.empty();
   if (!valid_) return;
   pose_ = pose;
   contacts_ = contacts;
+  if (gains.size() == contacts.size()) {
+    gains_ = gains;
+  } else {
+    gains_.assign(contacts.size(), 1.0);
+  }
   on_b_.clear();
   reach_ = 0;
   const Mat3 Rt = pose.R.transpose();
@@ -72,7 +78,8 @@ bool ReusedContacts::refresh(const Pose& pose, double radius_a, double radius_b,
     const TriContact& c = contacts_[i];
     const Vec3 on_a = c.pos + 0.5 * c.depth * c.normal;
     const Vec3 on_b = pose.R * on_b_[i] + pose.t;
-    const double depth = (on_a - on_b).dot(c.normal);
+    const double raw = (on_a - on_b).dot(c.normal);
+    const double depth = gains_[i] == 1.0 ? raw : c.depth + gains_[i] * (raw - c.depth);
     if (depth < 0) return false;
     out[i].normal = c.normal;
     out[i].depth = depth;

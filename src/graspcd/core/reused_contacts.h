@@ -40,15 +40,21 @@ double contact_drift(const Pose& from, const Pose& to, double radius_a, double r
 class ReusedContacts {
  public:
   // Keeps `contacts` (geom1 frame, as the manifold gave them) computed at the relative pose
-  // `pose` (geom2 in geom1). No contacts: nothing is kept (a pair apart is always queried).
-  void store(const Pose& pose, const std::vector<TriContact>& contacts);
+  // `pose` (geom2 in geom1), with each contact's gain (ContactManifold::contact_gain: how much its
+  // reported depth changes per unit of penetration; empty: 1 each). No contacts: nothing is kept
+  // (a pair apart is always queried).
+  void store(const Pose& pose, const std::vector<TriContact>& contacts,
+             const std::vector<double>& gains = {});
+  // The kept contacts' gains (1 each unless store was given others), in the order of `out`.
+  const std::vector<double>& gains() const { return gains_; }
   void clear() { valid_ = false; }
   bool valid() const { return valid_; }
 
   // The kept contacts at `pose`, into `out`, when some are kept, every point of geom2 that can
   // touch geom1 moved at most `max_drift` (metres, > 0) since they were computed, the pair turned
   // by at most `max_drift` at the larger geom's rim, and none of them separated (refreshed depth
-  // < 0): then true. The motion is contact_drift with geom1's radius `radius_a` (widened to reach
+  // < 0; a contact's depth changes by its gain times the penetration change of its two points):
+  // then true. The motion is contact_drift with geom1's radius `radius_a` (widened to reach
   // the kept points on geom2) and geom2's radius `radius_b`, each about its geom's origin; the
   // turn is held too because the normal is not refreshed (without it, the PD-driven hand of
   // hard_scenes_test on example 3 keeps the object moving at 11-14 mm/s at 20-30 um, against
@@ -62,6 +68,7 @@ class ReusedContacts {
   double reach_ = 0;  // the farthest kept point on geom2 from geom1's origin, at the query's pose
   Pose pose_;
   std::vector<TriContact> contacts_;
+  std::vector<double> gains_;
   std::vector<Vec3> on_b_;  // each contact's point on geom2's surface, in geom2's frame
 };
 

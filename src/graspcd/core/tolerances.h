@@ -141,6 +141,13 @@ inline constexpr double kPatchNormalCosine = 0.8191520442889918;
 inline constexpr int kManifoldPatchContacts = 4;
 inline constexpr int kManifoldPairContacts = 8;
 
+// The force reduction's reference (contact_manifold.h, "Force reduction"; ManifoldOptions::
+// reference_per_pair): the points per pair of the support reduction whose summed depth and centre
+// of pressure per patch its fewer points keep. The support reduction's default budget, kept apart
+// from kManifoldPairContacts so that lowering that budget leaves the reference where it was
+// measured. Larger: a patch's force summed over more (deeper and shallower) support points.
+inline constexpr int kManifoldReferencePairContacts = 8;
+
 // When a patch's next point would enlarge the convex hull of the points chosen so far by less
 // than this fraction of the squared extent of the patch (dimensionless), the points are taken as
 // collinear and the next is the one farthest from the chosen instead. Smaller lets rounding noise

@@ -37,6 +37,9 @@ std::optional<ManifoldChoice> parse_manifold_choice(const std::string& text) {
   } else if (text.rfind("moment", 0) == 0) {
     out.reduction = ManifoldReduction::kMoment;
     count = text.substr(6);
+  } else if (text.rfind("force", 0) == 0) {
+    out.reduction = ManifoldReduction::kForce;
+    count = text.substr(5);
   } else {
     return std::nullopt;
   }

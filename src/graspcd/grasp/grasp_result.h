@@ -205,7 +205,8 @@ std::string push_note(const GraspResult& result);
 // two of them pushed from opposing sides then.
 void judge_grasp(bool ever_touched, int touching, bool opposing, GraspResult& result);
 
-// A manifold choice of `grasp --manifold`: "support" or "moment" (pair_config.h, "reduction"),
+// A manifold choice of `grasp --manifold`: "support", "moment" or "force" (pair_config.h,
+// "reduction"),
 // optionally followed by the contacts per pair, 1 .. mjMAXCONPAIR ("moment4"); the count is
 // absent when not given. std::nullopt for anything else.
 struct ManifoldChoice {

@@ -111,7 +111,10 @@ int collide_trees(Registry& registry, const ServedPair& served, Registry::DataPa
   ReusedContacts* kept = reuse > 0 ? &state.reused : nullptr;
   if (kept && kept->refresh(pose, t1->radius, t2->radius, reuse, candidates)) {
     const double max_depth = registry.config().max_depth;
-    for (TriContact& c : candidates) c.depth = std::min(c.depth, max_depth);
+    // The cap of the exact path, where it applies before the reduction: times each contact's gain.
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      candidates[i].depth = std::min(candidates[i].depth, max_depth * kept->gains()[i]);
+    }
     const int n = write_contacts(candidates, d, g1, con);
     state.contained = false;
     ++stats.reused;
@@ -151,7 +154,7 @@ int collide_trees(Registry& registry, const ServedPair& served, Registry::DataPa
   stats.candidates += candidates.size();
   stats.patches += manifold.patches.size();
   const int n = write_contacts(manifold.contacts, d, g1, con);
-  if (kept) kept->store(pose, manifold.contacts);
+  if (kept) kept->store(pose, manifold.contacts, manifold.contact_gain);
   stats.contacts += static_cast<std::uint64_t>(n);
   stats.contact_ns += elapsed_ns(queried, Clock::now());
   return n;

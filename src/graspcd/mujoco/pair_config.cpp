@@ -80,11 +80,12 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
     } else if (field == "max_patch_contacts") {
       c.manifold.max_per_patch = contact_budget(value, "max_patch_contacts", source);
     } else if (field == "reduction") {
-      if (!value.is_string() || (value != "support" && value != "moment")) {
-        refuse(source, "'reduction' must be \"support\" or \"moment\"");
+      if (!value.is_string() || (value != "support" && value != "moment" && value != "force")) {
+        refuse(source, "'reduction' must be \"support\", \"moment\" or \"force\"");
       }
-      c.manifold.reduction =
-          value == "moment" ? ManifoldReduction::kMoment : ManifoldReduction::kSupport;
+      c.manifold.reduction = value == "moment"  ? ManifoldReduction::kMoment
+                             : value == "force" ? ManifoldReduction::kForce
+                                                : ManifoldReduction::kSupport;
     } else if (field == "front_list") {
       if (!value.is_boolean()) refuse(source, "'front_list' must be true or false");
       c.front_list = value.get<bool>();

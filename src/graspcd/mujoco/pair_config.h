@@ -12,9 +12,11 @@
 //     "max_contacts": 8,       // contacts handed to MuJoCo per geom pair (1 .. mjMAXCONPAIR = 50)
 //     "max_patch_contacts": 4, // contacts per contact patch (1 .. 50), see contact.h, "manifold"
 //     "reduction": "support", // how a patch's points are chosen: "support" (the support polygon,
-//                             // the default) or "moment" (its net normal force and moment about
+//                             // the default), "moment" (its net normal force and moment about
 //                             // the centre of pressure kept: an anchor point and support
-//                             // extremes, contact.h, build_contact_manifold)
+//                             // extremes, contact.h, build_contact_manifold) or "force" (the
+//                             // support points of 8 per pair reduced to "max_contacts" with the
+//                             // same summed depth and centre of pressure per patch)
 //     "front_list": true,      // restart each tree query from the last step's front (speed only)
 //     "contact_reuse": 0,      // metres in [0, 0.001]: reuse a pair's contacts while it moves
 //                              // less (contact.h, ReusedContacts); 0: exact contacts every step
