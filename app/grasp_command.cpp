@@ -56,6 +56,7 @@ struct GraspCliOptions {
   bool require_held = false;
   int max_steps = 400;
   double contact_reuse = 0;  // --contact-reuse M: the config's "contact_reuse" overridden
+  bool exact = false;        // --exact: exact contacts every step (--contact-reuse 0)
   std::string manifold;  // --manifold support|moment|force[N]: the config's reduction overridden
   std::string object;    // --object FILE: a user's mesh in a template scene
   PlacementOptions placement;  // its placement (object_placement.h)
@@ -407,6 +408,12 @@ void check_usage(const GraspCliOptions& options, const CLI::App& app) {
   if (app.count("--contact-reuse") > 0 && (options.native || !options.decomposed.empty())) {
     throw UsageError("grasp: --contact-reuse goes with graspcd's contacts, not --native");
   }
+  if (options.exact && (options.native || !options.decomposed.empty())) {
+    throw UsageError("grasp: --exact goes with graspcd's contacts, not --native or --decomposed");
+  }
+  if (options.exact && app.count("--contact-reuse") > 0) {
+    throw UsageError("grasp: --exact is --contact-reuse 0: give one of them");
+  }
   if (options.force && options.placement.write_scene.empty()) {
     throw UsageError("grasp: --force goes with --write-scene");
   }
@@ -425,6 +432,7 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   grasp.native = options.native;
   grasp.max_steps = options.max_steps;
   if (app.count("--contact-reuse") > 0) grasp.contact_reuse = options.contact_reuse;
+  if (options.exact) grasp.contact_reuse = 0.0;
   if (app.count("--manifold") > 0) {
     const auto choice = grasp::parse_manifold_choice(options.manifold);
     if (!choice || options.native || !options.decomposed.empty()) {
@@ -620,9 +628,13 @@ Command add_grasp_command(CLI::App& parent) {
                   "Metres in [0, 0.001]: reuse a touching pair's contacts, their depths "
                   "refreshed, while it moved less than this since its last exact query (faster; "
                   "contacts that begin or end within it wait for the next query; the hard scenes "
-                  "pass at 2e-5, not at 5e-5); 0: exact contacts every step (default: the "
-                  "config's, else 0)")
+                  "pass at 2e-5, not at 5e-5); 0: exact contacts every step (--exact; "
+                  "default: the config's \"contact_reuse\", else 2e-5)")
       ->check(number_in_range(0.0, mujoco::RegistryConfig::kMaxContactReuse));
+  app->add_flag("--exact", options->exact,
+                "Exact contacts every step: each served pair queried at every physics step, "
+                "none reused (--contact-reuse 0; in a pair config \"contact_reuse\": 0). The "
+                "default reuses a pair's contacts while it moves less than 20 um");
   app->footer(wrap_help(
       "The fingers close in grasp steps of 0.003 rad (5 physics steps each, computed-torque "
       "control of every joint); a finger segment stops at its first contact with the object "

@@ -248,18 +248,17 @@ void BM_NoopDelegated(benchmark::State& state) {
 // in one step, and whether the object was held. Variants: "native" (MuJoCo's own collision),
 // "native-multiccd" (the same with MuJoCo's multi-point convex collision, mjENBL_MULTICCD: up to 5
 // contacts per convex pair instead of 1; grasp --multiccd),
-// "served" (graspcd, the config as shipped: each tree query restarted from its front, exact
-// contacts every step), "served-roots" (the same with "front_list" off: every query from the
-// roots) and "served-reuse" (the config with "contact_reuse" 20 um: a touching pair's contacts
-// refreshed, not queried, while it moves less; registry.h).
-constexpr double kWholeGraspReuse = 2e-5;  // metres
+// "served" (graspcd, the config as shipped: each tree query restarted from its front, a touching
+// pair's contacts refreshed, not queried, while it moves less than the default "contact_reuse",
+// 20 um; registry.h), "served-exact" (the same with "contact_reuse" 0: exact contacts every step,
+// grasp --exact) and "served-roots" (exact, with "front_list" off: every query from the roots).
 
 void whole_grasp(benchmark::State& state, const std::string& scene, const std::string& variant) {
   graspcd::grasp::GraspOptions options;
   options.native = variant == "native" || variant == "native-multiccd";
   if (variant == "native-multiccd") options.multiccd = true;
+  if (variant == "served-exact" || variant == "served-roots") options.contact_reuse = 0.0;
   if (variant == "served-roots") options.front_list = false;
-  if (variant == "served-reuse") options.contact_reuse = kWholeGraspReuse;
   long steps = 0;
   graspcd::grasp::GraspResult r;
   for (auto _ : state) {
@@ -289,7 +288,7 @@ void register_whole_grasps(int repetitions) {
     for (const char* scene : kGraspScenes) {
       const std::string name = std::string(scene).substr(0, std::string(scene).size() - 4);
       for (const char* variant :
-           {"native", "native-multiccd", "served", "served-roots", "served-reuse"}) {
+           {"native", "native-multiccd", "served", "served-exact", "served-roots"}) {
         benchmark::RegisterBenchmark(
             ("BM_WholeGrasp/" + name + "/" + variant + "/rep:" + std::to_string(k)).c_str(),
             [scene, variant](benchmark::State& st) { whole_grasp(st, scene, variant); })

@@ -55,7 +55,9 @@ per convex pair instead of 1); a configuration with it is named with " multiccd"
 ("native hull multiccd", "decomposed-16 multiccd"), and every row records "multiccd". graspcd's
 served pairs are not convex and are graspcd's own: its row runs without it ("graspcd", multiccd
 false); "graspcd multiccd" (the pairs graspcd does not serve, the object on its table, with it) is
-raced only when --configurations names it. --configurations LIST (comma-separated names or
+raced only when --configurations names it. "graspcd exact" is graspcd with exact contacts every
+step (`grasp --exact`; "graspcd" is the scene's config, whose default reuses a touching pair's
+contacts within 20 um). --configurations LIST (comma-separated names or
 fnmatch patterns, e.g. "native hull*,decomposed-*") races only the configurations it matches, and
 decomposes only for those: graspcd's rows can be raced apart from the baselines and the two files
 joined with --merge, which keeps, for a scene raced in both, the merged file's rows of the
@@ -385,7 +387,7 @@ def main():
             # selects, its rows added to the scene's; the first run's JSON kept for provenance.
             nonlocal first
             multis = [0, 1] if route == "graspcd" else multiccds
-            if route == "graspcd" and 1 not in multiccds:
+            if route == "graspcd" and 1 not in multiccds or route == "graspcd exact":
                 multis = [0]
             for name, multiccd in configuration_names(route, multis):
                 if not selected(name, patterns):
@@ -396,6 +398,7 @@ def main():
                 first = first or g
 
         race("graspcd", base)
+        race("graspcd exact", base + ["--exact"])
         race("native hull", base + ["--native"])
         vhacd_counts = counts if args.vhacd_pieces is None else \
             [int(p) for p in args.vhacd_pieces.split(",") if p]

@@ -114,22 +114,26 @@ TEST_F(CliTest, GraspMulticcdReachesMujocosNativeCollision) {
 }
 
 // --contact-reuse (registry.h, "contact_reuse"): touching pairs answered by their kept contacts,
-// counted in reused_calls; 0 is the exact default; out of range, not a number, or with --native,
-// one line and exit code 2.
+// counted in reused_calls; 20 um is the default, 0 (or --exact) exact contacts every step; out of
+// range, not a number, with --native, or --exact beside --contact-reuse, one line and exit code 2.
 TEST_F(CliTest, GraspContactReuseIsCountedAndCheckedOnTheCommandLine) {
   const std::string scene = shipped_scene("example1");
-  const Result r = run("grasp " + scene + " --max-steps 60 --json --contact-reuse 2e-5");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_GT(nlohmann::json::parse(r.out).at("reused_calls").get<long>(), 0);
-  const Result exact = run("grasp " + scene + " --max-steps 60 --json");
-  ASSERT_EQ(exact.exit_code, 0) << exact.err;
-  EXPECT_EQ(nlohmann::json::parse(exact.out).at("reused_calls"), 0);
-  for (const std::string bad : {"--contact-reuse -1e-5", "--contact-reuse 0.01",
-                                "--contact-reuse nan", "--contact-reuse 2e-5 --native"}) {
+  const auto reused = [&](const std::string& args) {
+    const Result r = run("grasp " + scene + " --max-steps 60 --json" + args);
+    EXPECT_EQ(r.exit_code, 0) << args << ": " << r.err;
+    return r.exit_code == 0 ? nlohmann::json::parse(r.out).at("reused_calls").get<long>() : -1L;
+  };
+  EXPECT_GT(reused(" --contact-reuse 2e-5"), 0);
+  EXPECT_GT(reused(""), 0);  // the default
+  EXPECT_EQ(reused(" --contact-reuse 0"), 0);
+  EXPECT_EQ(reused(" --exact"), 0);
+  for (const std::string bad :
+       {"--contact-reuse -1e-5", "--contact-reuse 0.01", "--contact-reuse nan",
+        "--contact-reuse 2e-5 --native", "--exact --native", "--exact --contact-reuse 0"}) {
     const Result e = run("grasp " + scene + " " + bad);
     EXPECT_EQ(e.exit_code, 2) << bad;
     EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << bad << ": " << e.err;
-    EXPECT_NE(e.err.find("--contact-reuse"), std::string::npos) << bad << ": " << e.err;
+    EXPECT_NE(e.err.find(bad.substr(0, bad.find(' '))), std::string::npos) << bad << ": " << e.err;
   }
 }
 

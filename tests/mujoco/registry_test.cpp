@@ -106,7 +106,9 @@ TEST(RegistryConfig, ParsesEveryField) {
   EXPECT_EQ(d.manifold.max_per_patch, 4);
   EXPECT_EQ(d.manifold.max_per_pair, 8);
   EXPECT_TRUE(d.front_list);
-  EXPECT_EQ(d.contact_reuse, 0.0);  // exact contacts every step unless asked
+  // Contacts reused within 20 um unless a config asks for exact ones ("contact_reuse": 0).
+  EXPECT_EQ(d.contact_reuse, RegistryConfig::kDefaultContactReuse);
+  EXPECT_EQ(d.contact_reuse, 2e-5);
   EXPECT_EQ(d.manifold.reduction, ManifoldReduction::kSupport);
   EXPECT_EQ(
       parse_registry_config(R"({"reduction": "force", "pairs": [{"a": "x", "b": "y"}]})", "f.json")

@@ -18,7 +18,7 @@
 //                             // support points of 8 per pair reduced to "max_contacts" with the
 //                             // same summed depth and centre of pressure per patch)
 //     "front_list": true,      // restart each tree query from the last step's front (speed only)
-//     "contact_reuse": 0,      // metres in [0, 0.001]: reuse a pair's contacts while it moves
+//     "contact_reuse": 2e-5,   // metres in [0, 0.001]: reuse a pair's contacts while it moves
 //                              // less (contact.h, ReusedContacts); 0: exact contacts every step
 //     "pairs": [ {"a": "finger*", "b": "body:object"} , ... ],
 //     "grasp": { ... }         // not the seam's: how the grasp experiment drives a hand; the
@@ -80,13 +80,17 @@ struct RegistryConfig {
   // the same mjData stopped last time, when the pair moved little (core/tree_query.h,
   // collide_coherent). The contacts are the same either way; false: every query from the roots.
   bool front_list = true;
-  // Contacts reused across steps (contact.h, ReusedContacts), opt-in: while no point of geom2
-  // that can touch geom1 moved more than this (metres) relative to geom1, and the larger geom's
-  // rim turned no more, since the pair's last exact query on the same mjData, its contacts are
-  // refreshed instead of queried (their depths along their normals; a region that begins or ends
-  // to touch within this drift is seen at the next exact query). 0 (the default): every step's
-  // contacts come from an exact query. At most kMaxContactReuse.
-  double contact_reuse = 0;
+  // Contacts reused across steps (contact.h, ReusedContacts): while no point of geom2 that can
+  // touch geom1 moved more than this (metres) relative to geom1, and the larger geom's rim turned
+  // no more, since the pair's last exact query on the same mjData, its contacts are refreshed
+  // instead of queried (their depths along their normals; a region that begins or ends to touch
+  // within this drift is seen at the next exact query). The default, kDefaultContactReuse (20 um),
+  // keeps every served-contact check (the judge's 0 phantom / 0 missed on the shipped and concave
+  // grasps, their verdicts, the hard scenes' bounds, validate) and halves a served step on the
+  // examples (docs/performance.md); 0: every step's contacts from an exact query (the default
+  // before 0.4). At most kMaxContactReuse.
+  static constexpr double kDefaultContactReuse = 2e-5;
+  double contact_reuse = kDefaultContactReuse;
   static constexpr double kMaxContactReuse = 0.001;
   std::vector<PairPattern> patterns;
   // Geom id pairs registered directly (programmatic use), in addition to the patterns.

@@ -51,6 +51,8 @@ Recording record_grasp(const std::string& name, const std::string& scene, bool n
   grasp::GraspOptions options;
   options.native = native;
   options.max_steps = max_steps;
+  // The study replays exact queries: its grasps are recorded with exact contacts every step.
+  options.contact_reuse = 0.0;
   options.on_grasp_step = [&r](const mjModel* m, const mjData* d, int) {
     r.ngeom = m->ngeom;
     r.xpos.emplace_back(d->geom_xpos, d->geom_xpos + 3 * m->ngeom);
