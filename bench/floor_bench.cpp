@@ -5,12 +5,13 @@
 //         + kept contacts x one contact written                             (c)
 // against the served step and the native one (docs/performance.md, "The floor of a served step").
 //
-// Per scene, the grasp (graspcd/grasp/grasp.h, the scene's config as shipped) runs once served
-// with a recording collision function in graspcd's entries of mjCOLLISIONFUNC: every served call,
-// in order, with its geoms' placements, the contacts it returned, and, for calls whose tree query
-// found intersecting triangle pairs, those pairs (found again by a fresh detector on the same pose,
-// whose count must equal the query's) as the posed triangles the contact routine takes. Then,
-// each one whole grasp or one pass over the recording, the time per physics step of:
+// Per scene, the grasp (graspcd/grasp/grasp.h, the scene's config with exact contacts every step,
+// "contact_reuse" 0: the floor is that of an exact query; BM_WholeGrasp times the default) runs
+// once served with a recording collision function in graspcd's entries of mjCOLLISIONFUNC: every
+// served call, in order, with its geoms' placements, the contacts it returned, and, for calls whose
+// tree query found intersecting triangle pairs, those pairs (found again by a fresh detector on the
+// same pose, whose count must equal the query's) as the posed triangles the contact routine takes.
+// Then, each one whole grasp or one pass over the recording, the time per physics step of:
 //   served    the grasp served (graspcd's entries as installed);
 //   native    the grasp under MuJoCo's own collision (skipped, with the grasp's message, on a
 //             concave scene whose start MuJoCo's convex hulls cannot represent);
@@ -58,6 +59,14 @@ using graspcd::Mat3;
 using graspcd::Triangle;
 using graspcd::TriContact;
 using graspcd::Vec3;
+
+// Every served call queried exactly ("contact_reuse" 0, grasp --exact): the floor is an exact
+// query's, and every call has its intersecting pairs to record.
+graspcd::grasp::GraspOptions exact_contacts() {
+  graspcd::grasp::GraspOptions options;
+  options.contact_reuse = 0.0;
+  return options;
+}
 using graspcd::mujoco::Registry;
 using Clock = std::chrono::steady_clock;
 
@@ -219,7 +228,7 @@ const Recording& recording(const std::string& scene) {
   g_recording = &rec;
   {
     EntriesReplaced replaced(&recording_collision);
-    rec.result = graspcd::grasp::run_grasp(kMjcf + "/" + scene);
+    rec.result = graspcd::grasp::run_grasp(kMjcf + "/" + scene, exact_contacts());
   }
   g_recording = nullptr;
   if (rec.tri_cases.size() != rec.query_tri_pairs) {
@@ -250,7 +259,7 @@ void set_counters(benchmark::State& state, const Recording& rec) {
 
 void grasp(benchmark::State& state, const std::string& scene, const std::string& variant) {
   const Recording& rec = recording(scene);
-  graspcd::grasp::GraspOptions options;
+  graspcd::grasp::GraspOptions options = exact_contacts();
   options.native = variant == "native";
   graspcd::grasp::GraspResult r;
   for (auto _ : state) {
