@@ -1,4 +1,4 @@
-// Contacts reused across physics steps (opt-in).
+// Contacts reused across physics steps.
 //
 // A pair's contacts from one exact query, kept and refreshed while the pair moves little, after
 // Bullet's persistent manifold (btPersistentManifold::refreshContactPoints, Coumans): each contact

@@ -40,7 +40,9 @@ class NonconvexContacts {
   // Reads the JSON pair config at `config_path` (format: pair_config.h) and serves its pairs in
   // `m`. `method`, when given, replaces the config's "method" (the box separator of the OBB-tree
   // query; core/separators.h, e.g. parse_method("sat")). Every detector answers exactly; the method
-  // changes the cost, never the contacts.
+  // changes the cost, never the contacts. Since 0.4.0 a touching pair's contacts are reused
+  // within 20 um unless the config sets "contact_reuse" (0: exact contacts every step;
+  // RegistryConfig::kDefaultContactReuse).
   // Errors: std::runtime_error with a one-line message starting with `config_path` for a missing
   // file, bad JSON, an unknown field or method, a pattern that matches no collidable geom, a
   // matched geom of a type graspcd does not serve (plane, height field); std::runtime_error when
