@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Instructions per physics step of a whole grasp, split by part, counted by valgrind's callgrind.
 
-Runs `graspcd grasp SCENE --json` (served; --native: MuJoCo's own collision; --decomposed DIR: the
-object as the convex pieces of `graspcd decompose`) under callgrind, collecting only inside
+Runs `graspcd grasp SCENE --json` (served, the scene's config: contacts reused within 20 um by
+default; --exact: exact contacts every step; --native: MuJoCo's own collision; --decomposed DIR:
+the object as the convex pieces of `graspcd decompose`) under callgrind, collecting only inside
 mj_step1, mj_step2 and mj_step (--toggle-collect: the grasp of our hands steps as mj_step1, control,
 mj_step2; a driven real hand as mj_step), so that loading, tree builds, the start check and the
 grasp's own measures between steps are not counted. callgrind_annotate --inclusive=yes then gives
@@ -26,7 +27,7 @@ routine, and its kept contacts through the write, under callgrind; each part's i
 pass, inclusive) per physics step, and floor = mujoco + tritri + contact + write, with graspcd's
 part (served) over its floor (tritri + contact + write).
 
-Usage: /usr/bin/python3 bench/callgrind_step.py GRASPCD SCENE [--native | --decomposed DIR]
+Usage: /usr/bin/python3 bench/callgrind_step.py GRASPCD SCENE [--native | --decomposed DIR | --exact]
            [--floor-bench PATH] [--keep DIR]
 Prints one JSON document. valgrind 3.19 (Debian 12) cannot run AVX-512 code: the build must not
 be compiled for it (the project's builds are not; glibc picks its routines by the CPU valgrind
@@ -89,6 +90,8 @@ def grasp_split(args, work):
         command.append("--native")
     if args.decomposed:
         command += ["--decomposed", args.decomposed]
+    if args.exact:
+        command.append("--exact")
     run = callgrind(["--collect-atstart=no", "--toggle-collect=mj_step1",
                      "--toggle-collect=mj_step2", "--toggle-collect=mj_step", *command], out_file)
     if run.returncode != 0:
@@ -166,6 +169,8 @@ def main():
     variant = parser.add_mutually_exclusive_group()
     variant.add_argument("--native", action="store_true")
     variant.add_argument("--decomposed", metavar="DIR")
+    variant.add_argument("--exact", action="store_true",
+                         help="served with exact contacts every step (grasp --exact)")
     parser.add_argument("--floor-bench", metavar="PATH")
     parser.add_argument("--keep", metavar="DIR", help="keep the callgrind files in DIR")
     args = parser.parse_args()
@@ -186,7 +191,8 @@ def main():
         result, steps, split = grasp_split(args, work)
         out = {"scene": args.scene,
                "variant": "native" if args.native else
-               ("decomposed" if args.decomposed else "served"),
+               ("decomposed" if args.decomposed else
+                ("served-exact" if args.exact else "served")),
                "physics_steps": steps, "held": result.get("held"),
                "unit": "instructions per physics step", "split": split}
         if args.floor_bench:
