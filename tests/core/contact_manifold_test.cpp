@@ -250,7 +250,8 @@ TEST(ContactManifold, ManyPatchesKeepTheDeepestPatchesFirst) {
 // The MuJoCo seam welds each geom's whole mesh once and hands the manifold the candidates' ids;
 // that gives the manifold of the candidates' own triangles, bit for bit, on a pinch (two patches)
 // and a corner. So do the same ids shifted beyond AdjacencyIndex::kDirectIds, which the index finds
-// in its hash table instead of its direct one.
+// in its hash table instead of its direct one, and build_contact_manifold_into with one manifold
+// reused for both cases twice over (its buffers, and patches, from the other case).
 TEST(ContactManifold, IdsWeldedPerMeshGiveTheSameManifoldAsTheTriangles) {
   const TriangleMesh u = testing::make_u_mesh(0.03, 0.04, 0.01, 0.01);
   const TriangleMesh wall = testing::make_box_mesh(0.0205, 0.01, 0.005);
@@ -265,7 +266,12 @@ TEST(ContactManifold, IdsWeldedPerMeshGiveTheSameManifoldAsTheTriangles) {
     for (std::size_t p = 0; p < x.patches.size(); ++p) {
       EXPECT_EQ(x.patches[p].members, y.patches[p].members);
       EXPECT_EQ(x.patches[p].selected, y.patches[p].selected);
+      EXPECT_EQ(x.patches[p].normal, y.patches[p].normal);
+      EXPECT_EQ(x.patches[p].depth, y.patches[p].depth);
+      EXPECT_EQ(x.patches[p].area, y.patches[p].area);
     }
+    EXPECT_EQ(x.contact_patch, y.contact_patch);
+    EXPECT_EQ(x.contact_gain, y.contact_gain);
     ASSERT_EQ(x.contacts.size(), y.contacts.size());
     for (std::size_t k = 0; k < x.contacts.size(); ++k) {
       EXPECT_EQ(x.contacts[k].pos, y.contacts[k].pos);
@@ -273,26 +279,34 @@ TEST(ContactManifold, IdsWeldedPerMeshGiveTheSameManifoldAsTheTriangles) {
       EXPECT_EQ(x.contacts[k].depth, y.contacts[k].depth);
     }
   };
-  for (const auto& [mb, t] : {std::pair{&wall, Vec3(0.0001, 0.025, 0.0002)},
-                              std::pair{&cube, Vec3(0.0155, 0.0145, 0.0001)}}) {
-    const Candidates c = candidates_of(u, *mb, at(t));
-    ASSERT_GT(c.contacts.size(), 4u);
-    const auto ids_a = weld_vertex_ids(faces(u)), ids_b = weld_vertex_ids(faces(*mb));
-    std::vector<FaceVertexIds> va, vb, va_far, vb_far;
-    for (std::size_t i = 0; i < c.contacts.size(); ++i) {
-      va.push_back(ids_a[c.index_a[i]]);
-      vb.push_back(ids_b[c.index_b[i]]);
-      va_far.push_back(va.back());
-      vb_far.push_back(vb.back());
-      for (std::uint32_t& id : va_far.back()) id += AdjacencyIndex::kDirectIds;
-      for (std::uint32_t& id : vb_far.back()) id += AdjacencyIndex::kDirectIds;
+  ContactManifold reused;
+  for (int round = 0; round < 2; ++round) {
+    for (const auto& [mb, t] : {std::pair{&wall, Vec3(0.0001, 0.025, 0.0002)},
+                                std::pair{&cube, Vec3(0.0155, 0.0145, 0.0001)}}) {
+      const Candidates c = candidates_of(u, *mb, at(t));
+      ASSERT_GT(c.contacts.size(), 4u);
+      const auto ids_a = weld_vertex_ids(faces(u)), ids_b = weld_vertex_ids(faces(*mb));
+      std::vector<FaceVertexIds> va, vb, va_far, vb_far;
+      for (std::size_t i = 0; i < c.contacts.size(); ++i) {
+        va.push_back(ids_a[c.index_a[i]]);
+        vb.push_back(ids_b[c.index_b[i]]);
+        va_far.push_back(va.back());
+        vb_far.push_back(vb.back());
+        for (std::uint32_t& id : va_far.back()) id += AdjacencyIndex::kDirectIds;
+        for (std::uint32_t& id : vb_far.back()) id += AdjacencyIndex::kDirectIds;
+      }
+      const ContactManifold by_faces = build_contact_manifold(c.contacts, c.faces_a, c.faces_b);
+      expect_same(build_contact_manifold_by_ids(c.contacts, va, vb), by_faces);
+      expect_same(build_contact_manifold_by_ids(c.contacts, va_far, vb_far), by_faces);
+      // One side far, the other near: the hash table too.
+      expect_same(build_contact_manifold_by_ids(c.contacts, va, vb_far), by_faces);
+      build_contact_manifold_into(c.contacts, va, vb, {}, reused);
+      expect_same(reused, by_faces);
     }
-    const ContactManifold by_faces = build_contact_manifold(c.contacts, c.faces_a, c.faces_b);
-    expect_same(build_contact_manifold_by_ids(c.contacts, va, vb), by_faces);
-    expect_same(build_contact_manifold_by_ids(c.contacts, va_far, vb_far), by_faces);
-    // One side far, the other near: the hash table too.
-    expect_same(build_contact_manifold_by_ids(c.contacts, va, vb_far), by_faces);
   }
+  build_contact_manifold_into({}, {}, {}, {}, reused);
+  EXPECT_TRUE(reused.patches.empty());
+  EXPECT_TRUE(reused.contacts.empty());
 }
 
 // The same input gives the same manifold, bit for bit, and the empty input an empty one.

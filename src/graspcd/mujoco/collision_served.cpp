@@ -98,6 +98,7 @@ int collide_trees(Registry& registry, const ServedPair& served, Registry::DataPa
   thread_local std::vector<TrianglePair> tri_pairs;
   thread_local std::vector<TriContact> candidates;
   thread_local std::vector<FaceVertexIds> vertices_a, vertices_b;
+  thread_local ContactManifold manifold;  // its buffers kept from call to call
   const MeshTree* t1 = registry.geom_tree(g1);
   const MeshTree* t2 = registry.geom_tree(g2);
   BridgeStats& stats = registry.stats();
@@ -146,8 +147,7 @@ int collide_trees(Registry& registry, const ServedPair& served, Registry::DataPa
   // The manifold: a few points per patch, the pair's budget in all; the triangles' shared
   // vertices by the ids welded once per tree (geom_trees.cpp), as build_contact_manifold would weld
   // geom1's faces and geom2's in its own frame.
-  const ContactManifold manifold =
-      build_contact_manifold_by_ids(candidates, vertices_a, vertices_b, served.manifold);
+  build_contact_manifold_into(candidates, vertices_a, vertices_b, served.manifold, manifold);
   if (candidates.size() > static_cast<std::size_t>(served.manifold.max_per_pair)) {
     ++stats.capped_pairs;
   }
