@@ -9,6 +9,7 @@
 
 #include "graspcd/core/clock.h"
 #include "graspcd/core/contact.h"
+#include "graspcd/core/tree_query.h"
 #include "graspcd/mujoco/collision_pose.h"
 
 namespace graspcd::mujoco {
@@ -79,7 +80,9 @@ void collect_candidates(std::vector<TrianglePair>& tri_pairs, const MeshTree& t1
   vertices_b.clear();
   for (const TrianglePair& tp : tri_pairs) {
     const Triangle& a = t1.face(tp.a);
-    const Triangle b = apply_pose(pose, t2.face(tp.b));
+    // Placed as the query placed it for its triangle test (posed_triangle: apply_pose's doubles,
+    // by the AVX2 kernel where it is on).
+    const Triangle b = detail::posed_triangle(pose, t2.face(tp.b));
     candidates.push_back(
         triangle_pair_contact(a, b, max_depth, fallback, t1.sharp(tp.a), t2.sharp(tp.b)));
     vertices_a.push_back(t1.vertices(tp.a));
