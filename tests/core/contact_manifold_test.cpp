@@ -70,38 +70,57 @@ TEST(SelectContacts, DuplicatePositionsAreNotChosenTwice) {
 
 // Candidates are adjacent through a vertex id on one geom: the same id on the other geom is
 // another vertex. Each vertex's list holds every candidate on it, the last added first, and a
-// second build forgets the first.
+// second build forgets the first. Ids below AdjacencyIndex::kDirectIds get one slot per distinct
+// vertex; the same ids shifted beyond it the same lists, in a hash table (a power of two, at least
+// 6 n slots).
 TEST(AdjacencyIndex, ListsTheCandidatesOnEachVertexPerGeom) {
-  const std::vector<FaceVertexIds> a = {{0, 1, 2}, {2, 3, 4}, {5, 6, 7}};
-  const std::vector<FaceVertexIds> b = {{0, 1, 2}, {3, 4, 5}, {6, 7, 2}};
-  AdjacencyIndex index;
-  index.build(a, b);
-  EXPECT_GE(index.slot_count(), 18u);
-  EXPECT_EQ(index.slot_count() & (index.slot_count() - 1), 0u) << "a power of two";
-  const auto on = [&index](std::uint32_t slot) {
-    std::vector<std::size_t> out;
-    index.for_each_candidate(slot, [&out](std::size_t i) { out.push_back(i); });
-    return out;
-  };
-  // Geom1's vertex 2: corner 2 of candidate 0, corner 0 of candidate 1.
-  EXPECT_EQ(index.slot(0, 2), index.slot(1, 0));
-  EXPECT_EQ(on(index.slot(0, 2)), (std::vector<std::size_t>{1, 0}));
-  // Geom2's vertex 2: corner 2 of candidates 0 and 2 (k = 3 + corner); not geom1's vertex 2.
-  EXPECT_EQ(index.slot(0, 5), index.slot(2, 5));
-  EXPECT_EQ(on(index.slot(0, 5)), (std::vector<std::size_t>{2, 0}));
-  EXPECT_NE(index.slot(0, 2), index.slot(0, 5));
-  // Geom1's vertex 5 is candidate 2's alone; geom2's vertex 5 is candidate 1's alone.
-  EXPECT_EQ(on(index.slot(2, 0)), (std::vector<std::size_t>{2}));
-  EXPECT_EQ(on(index.slot(1, 5)), (std::vector<std::size_t>{1}));
-  // 8 distinct vertices on each geom: 16 slots in use.
-  std::set<std::uint32_t> used;
-  for (std::size_t i = 0; i < 3; ++i) {
-    for (std::size_t k = 0; k < 6; ++k) used.insert(index.slot(i, k));
+  for (const std::uint32_t shift : {std::uint32_t{0}, AdjacencyIndex::kDirectIds}) {
+    SCOPED_TRACE(shift);
+    const auto shifted = [shift](std::vector<FaceVertexIds> ids) {
+      for (FaceVertexIds& f : ids) {
+        for (std::uint32_t& id : f) id += shift;
+      }
+      return ids;
+    };
+    const std::vector<FaceVertexIds> a = shifted({{0, 1, 2}, {2, 3, 4}, {5, 6, 7}});
+    const std::vector<FaceVertexIds> b = shifted({{0, 1, 2}, {3, 4, 5}, {6, 7, 2}});
+    AdjacencyIndex index;
+    index.build(a, b);
+    if (shift == 0) {
+      EXPECT_EQ(index.slot_count(), 16u) << "one slot per distinct vertex";
+    } else {
+      EXPECT_GE(index.slot_count(), 18u);
+      EXPECT_EQ(index.slot_count() & (index.slot_count() - 1), 0u) << "a power of two";
+    }
+    const auto on = [&index](std::uint32_t slot) {
+      std::vector<std::size_t> out;
+      index.for_each_candidate(slot, [&out](std::size_t i) { out.push_back(i); });
+      return out;
+    };
+    // Geom1's vertex 2: corner 2 of candidate 0, corner 0 of candidate 1.
+    EXPECT_EQ(index.slot(0, 2), index.slot(1, 0));
+    EXPECT_EQ(on(index.slot(0, 2)), (std::vector<std::size_t>{1, 0}));
+    // Geom2's vertex 2: corner 2 of candidates 0 and 2 (k = 3 + corner); not geom1's vertex 2.
+    EXPECT_EQ(index.slot(0, 5), index.slot(2, 5));
+    EXPECT_EQ(on(index.slot(0, 5)), (std::vector<std::size_t>{2, 0}));
+    EXPECT_NE(index.slot(0, 2), index.slot(0, 5));
+    // Geom1's vertex 5 is candidate 2's alone; geom2's vertex 5 is candidate 1's alone.
+    EXPECT_EQ(on(index.slot(2, 0)), (std::vector<std::size_t>{2}));
+    EXPECT_EQ(on(index.slot(1, 5)), (std::vector<std::size_t>{1}));
+    // 8 distinct vertices on each geom: 16 slots in use, each below the slot count.
+    std::set<std::uint32_t> used;
+    for (std::size_t i = 0; i < 3; ++i) {
+      for (std::size_t k = 0; k < 6; ++k) used.insert(index.slot(i, k));
+    }
+    EXPECT_EQ(used.size(), 16u);
+    EXPECT_LT(*used.rbegin(), index.slot_count());
+    index.build(shifted({{9, 9, 9}}), shifted({{0, 1, 2}}));
+    EXPECT_EQ(on(index.slot(0, 0)), (std::vector<std::size_t>{0, 0, 0}));
+    EXPECT_EQ(on(index.slot(0, 3)), (std::vector<std::size_t>{0}));
+    if (shift == 0) {
+      EXPECT_EQ(index.slot_count(), 4u) << "the first build's slots forgotten";
+    }
   }
-  EXPECT_EQ(used.size(), 16u);
-  index.build({{9, 9, 9}}, {{0, 1, 2}});
-  EXPECT_EQ(on(index.slot(0, 0)), (std::vector<std::size_t>{0, 0, 0}));
-  EXPECT_EQ(on(index.slot(0, 3)), (std::vector<std::size_t>{0}));
 }
 
 // The candidates of two meshes, B placed in A's frame by `pose`: every intersecting triangle pair
@@ -230,7 +249,9 @@ TEST(ContactManifold, ManyPatchesKeepTheDeepestPatchesFirst) {
 
 // The MuJoCo seam welds each geom's whole mesh once and hands the manifold the candidates' ids;
 // that gives the manifold of the candidates' own triangles, bit for bit, on a pinch (two patches)
-// and a corner.
+// and a corner. So do the same ids shifted beyond AdjacencyIndex::kDirectIds, which the index finds
+// in its hash table instead of its direct one, and build_contact_manifold_into with one manifold
+// reused for both cases twice over (its buffers, and patches, from the other case).
 TEST(ContactManifold, IdsWeldedPerMeshGiveTheSameManifoldAsTheTriangles) {
   const TriangleMesh u = testing::make_u_mesh(0.03, 0.04, 0.01, 0.01);
   const TriangleMesh wall = testing::make_box_mesh(0.0205, 0.01, 0.005);
@@ -240,30 +261,52 @@ TEST(ContactManifold, IdsWeldedPerMeshGiveTheSameManifoldAsTheTriangles) {
     for (std::size_t f = 0; f < m.faces.size(); ++f) out.push_back(m.triangle(f));
     return out;
   };
-  for (const auto& [mb, t] : {std::pair{&wall, Vec3(0.0001, 0.025, 0.0002)},
-                              std::pair{&cube, Vec3(0.0155, 0.0145, 0.0001)}}) {
-    const Candidates c = candidates_of(u, *mb, at(t));
-    ASSERT_GT(c.contacts.size(), 4u);
-    const auto ids_a = weld_vertex_ids(faces(u)), ids_b = weld_vertex_ids(faces(*mb));
-    std::vector<FaceVertexIds> va, vb;
-    for (std::size_t i = 0; i < c.contacts.size(); ++i) {
-      va.push_back(ids_a[c.index_a[i]]);
-      vb.push_back(ids_b[c.index_b[i]]);
+  const auto expect_same = [](const ContactManifold& x, const ContactManifold& y) {
+    ASSERT_EQ(x.patches.size(), y.patches.size());
+    for (std::size_t p = 0; p < x.patches.size(); ++p) {
+      EXPECT_EQ(x.patches[p].members, y.patches[p].members);
+      EXPECT_EQ(x.patches[p].selected, y.patches[p].selected);
+      EXPECT_EQ(x.patches[p].normal, y.patches[p].normal);
+      EXPECT_EQ(x.patches[p].depth, y.patches[p].depth);
+      EXPECT_EQ(x.patches[p].area, y.patches[p].area);
     }
-    const ContactManifold by_ids = build_contact_manifold_by_ids(c.contacts, va, vb);
-    const ContactManifold by_faces = build_contact_manifold(c.contacts, c.faces_a, c.faces_b);
-    ASSERT_EQ(by_ids.patches.size(), by_faces.patches.size());
-    for (std::size_t p = 0; p < by_ids.patches.size(); ++p) {
-      EXPECT_EQ(by_ids.patches[p].members, by_faces.patches[p].members);
-      EXPECT_EQ(by_ids.patches[p].selected, by_faces.patches[p].selected);
+    EXPECT_EQ(x.contact_patch, y.contact_patch);
+    EXPECT_EQ(x.contact_gain, y.contact_gain);
+    ASSERT_EQ(x.contacts.size(), y.contacts.size());
+    for (std::size_t k = 0; k < x.contacts.size(); ++k) {
+      EXPECT_EQ(x.contacts[k].pos, y.contacts[k].pos);
+      EXPECT_EQ(x.contacts[k].normal, y.contacts[k].normal);
+      EXPECT_EQ(x.contacts[k].depth, y.contacts[k].depth);
     }
-    ASSERT_EQ(by_ids.contacts.size(), by_faces.contacts.size());
-    for (std::size_t k = 0; k < by_ids.contacts.size(); ++k) {
-      EXPECT_EQ(by_ids.contacts[k].pos, by_faces.contacts[k].pos);
-      EXPECT_EQ(by_ids.contacts[k].normal, by_faces.contacts[k].normal);
-      EXPECT_EQ(by_ids.contacts[k].depth, by_faces.contacts[k].depth);
+  };
+  ContactManifold reused;
+  for (int round = 0; round < 2; ++round) {
+    for (const auto& [mb, t] : {std::pair{&wall, Vec3(0.0001, 0.025, 0.0002)},
+                                std::pair{&cube, Vec3(0.0155, 0.0145, 0.0001)}}) {
+      const Candidates c = candidates_of(u, *mb, at(t));
+      ASSERT_GT(c.contacts.size(), 4u);
+      const auto ids_a = weld_vertex_ids(faces(u)), ids_b = weld_vertex_ids(faces(*mb));
+      std::vector<FaceVertexIds> va, vb, va_far, vb_far;
+      for (std::size_t i = 0; i < c.contacts.size(); ++i) {
+        va.push_back(ids_a[c.index_a[i]]);
+        vb.push_back(ids_b[c.index_b[i]]);
+        va_far.push_back(va.back());
+        vb_far.push_back(vb.back());
+        for (std::uint32_t& id : va_far.back()) id += AdjacencyIndex::kDirectIds;
+        for (std::uint32_t& id : vb_far.back()) id += AdjacencyIndex::kDirectIds;
+      }
+      const ContactManifold by_faces = build_contact_manifold(c.contacts, c.faces_a, c.faces_b);
+      expect_same(build_contact_manifold_by_ids(c.contacts, va, vb), by_faces);
+      expect_same(build_contact_manifold_by_ids(c.contacts, va_far, vb_far), by_faces);
+      // One side far, the other near: the hash table too.
+      expect_same(build_contact_manifold_by_ids(c.contacts, va, vb_far), by_faces);
+      build_contact_manifold_into(c.contacts, va, vb, {}, reused);
+      expect_same(reused, by_faces);
     }
   }
+  build_contact_manifold_into({}, {}, {}, {}, reused);
+  EXPECT_TRUE(reused.patches.empty());
+  EXPECT_TRUE(reused.contacts.empty());
 }
 
 // The same input gives the same manifold, bit for bit, and the empty input an empty one.

@@ -13,11 +13,14 @@
 
 namespace graspcd {
 
-// Each vertex, side << 31 | id (side 0: geom1, side 1: geom2), has a slot of an open-addressing
-// hash table (linear probing), which heads the list of the candidates' vertex entries on it: entry
-// 6 * i + k is candidate i's corner k on geom1 (k < 3) or corner k - 3 on geom2. A list runs from
-// the last entry added to the first. The buffers are kept from one build to the next, so that a
-// warm index allocates nothing.
+// Each vertex, side << 31 | id (side 0: geom1, side 1: geom2), has a slot, which heads the list of
+// the candidates' vertex entries on it: entry 6 * i + k is candidate i's corner k on geom1 (k < 3)
+// or corner k - 3 on geom2. A list runs from the last entry added to the first. When every id is
+// below kDirectIds (welded ids count a mesh's vertices), a vertex finds its slot in a table
+// indexed by id, stamped with the build that last gave it one (no table is cleared between
+// builds), and slots are numbered in the order their vertices are first met; beyond, in an
+// open-addressing hash table (linear probing). The buffers are kept from one build to the next, so
+// that a warm index allocates nothing.
 class AdjacencyIndex {
  public:
   // Indexes the candidates' vertices, replacing what was indexed before. Preconditions:
@@ -26,8 +29,12 @@ class AdjacencyIndex {
   void build(const std::vector<FaceVertexIds>& vertices_a,
              const std::vector<FaceVertexIds>& vertices_b);
 
-  // The number of slots (a power of two, at least 16 and at least 6 n); slots are 0 .. count - 1.
-  std::size_t slot_count() const { return key_.size(); }
+  // Ids below this index their slots directly (the table grows to the largest id met).
+  static constexpr std::uint32_t kDirectIds = std::uint32_t{1} << 20;
+
+  // The number of slots (the distinct vertices, or the hash table's size: a power of two, at
+  // least 16 and at least 6 n); slots are 0 .. count - 1.
+  std::size_t slot_count() const { return slots_; }
 
   // The slot of candidate i's vertex k (k < 3: geom1's corner k, else geom2's corner k - 3).
   std::uint32_t slot(std::size_t i, std::size_t k) const { return slot_of_[6 * i + k]; }
@@ -44,11 +51,20 @@ class AdjacencyIndex {
 
   void add(std::uint32_t key, std::size_t entry);
 
-  int bits_ = 4;                        // log2 of the slot count
+  int bits_ = 4;                        // log2 of the hash table's slot count
   std::vector<std::uint32_t> key_;      // slot -> its vertex (meaningful where head_ is not kNone)
+  std::size_t slots_ = 0;               // slot_count()
   std::vector<std::uint32_t> head_;     // slot -> its vertex's last entry, kNone: empty slot
   std::vector<std::uint32_t> slot_of_;  // entry -> its vertex's slot
   std::vector<std::uint32_t> next_;     // entry -> the previous entry on its vertex, or kNone
+  // The direct tables, per side: id -> the stamp of the build that gave the vertex its slot, and
+  // that slot.
+  struct Seen {
+    std::uint32_t stamp = 0;
+    std::uint32_t slot = 0;
+  };
+  std::vector<Seen> seen_[2];
+  std::uint32_t stamp_ = 0;  // this build's (0: never given)
 };
 
 }  // namespace graspcd

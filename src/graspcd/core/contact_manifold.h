@@ -169,4 +169,13 @@ ContactManifold build_contact_manifold_by_ids(const std::vector<TriContact>& can
                                               const std::vector<FaceVertexIds>& vertices_b,
                                               const ManifoldOptions& options = {});
 
+// build_contact_manifold_by_ids into `out`, whose contents it replaces, keeping its buffers (and
+// its patches' member lists) for the next call: a caller that builds a manifold every physics step
+// allocates nothing once warm. The same manifold, bit for bit, and the same exceptions (named
+// build_contact_manifold_by_ids).
+void build_contact_manifold_into(const std::vector<TriContact>& candidates,
+                                 const std::vector<FaceVertexIds>& vertices_a,
+                                 const std::vector<FaceVertexIds>& vertices_b,
+                                 const ManifoldOptions& options, ContactManifold& out);
+
 }  // namespace graspcd

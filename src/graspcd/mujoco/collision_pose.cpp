@@ -9,14 +9,15 @@ Mat3 from_row_major(const mjtNum* x) {
   return r;
 }
 
+// mju_isBad's test (x != x || x > mjMAXVAL || x < -mjMAXVAL) inline: a call into MuJoCo per
+// number cost more than the test. A NaN fails both comparisons, so it is bad here too.
 bool bad_geom_placement(const mjData* d, int g) {
-  for (int k = 0; k < 3; ++k) {
-    if (mju_isBad(d->geom_xpos[3 * g + k])) return true;
-  }
-  for (int k = 0; k < 9; ++k) {
-    if (mju_isBad(d->geom_xmat[9 * g + k])) return true;
-  }
-  return false;
+  const mjtNum* pos = d->geom_xpos + 3 * g;
+  const mjtNum* mat = d->geom_xmat + 9 * g;
+  bool good = true;
+  for (int k = 0; k < 3; ++k) good &= pos[k] >= -mjMAXVAL && pos[k] <= mjMAXVAL;
+  for (int k = 0; k < 9; ++k) good &= mat[k] >= -mjMAXVAL && mat[k] <= mjMAXVAL;
+  return !good;
 }
 
 Pose relative_pose(const mjData* d, int g1, int g2) {

@@ -9,6 +9,7 @@
 
 #include "graspcd/core/clock.h"
 #include "graspcd/core/contact.h"
+#include "graspcd/core/tree_query.h"
 #include "graspcd/mujoco/collision_pose.h"
 
 namespace graspcd::mujoco {
@@ -79,7 +80,9 @@ void collect_candidates(std::vector<TrianglePair>& tri_pairs, const MeshTree& t1
   vertices_b.clear();
   for (const TrianglePair& tp : tri_pairs) {
     const Triangle& a = t1.face(tp.a);
-    const Triangle b = apply_pose(pose, t2.face(tp.b));
+    // Placed as the query placed it for its triangle test (posed_triangle: apply_pose's doubles,
+    // by the AVX2 kernel where it is on).
+    const Triangle b = detail::posed_triangle(pose, t2.face(tp.b));
     candidates.push_back(
         triangle_pair_contact(a, b, max_depth, fallback, t1.sharp(tp.a), t2.sharp(tp.b)));
     vertices_a.push_back(t1.vertices(tp.a));
@@ -98,6 +101,7 @@ int collide_trees(Registry& registry, const ServedPair& served, Registry::DataPa
   thread_local std::vector<TrianglePair> tri_pairs;
   thread_local std::vector<TriContact> candidates;
   thread_local std::vector<FaceVertexIds> vertices_a, vertices_b;
+  thread_local ContactManifold manifold;  // its buffers kept from call to call
   const MeshTree* t1 = registry.geom_tree(g1);
   const MeshTree* t2 = registry.geom_tree(g2);
   BridgeStats& stats = registry.stats();
@@ -146,8 +150,7 @@ int collide_trees(Registry& registry, const ServedPair& served, Registry::DataPa
   // The manifold: a few points per patch, the pair's budget in all; the triangles' shared
   // vertices by the ids welded once per tree (geom_trees.cpp), as build_contact_manifold would weld
   // geom1's faces and geom2's in its own frame.
-  const ContactManifold manifold =
-      build_contact_manifold_by_ids(candidates, vertices_a, vertices_b, served.manifold);
+  build_contact_manifold_into(candidates, vertices_a, vertices_b, served.manifold, manifold);
   if (candidates.size() > static_cast<std::size_t>(served.manifold.max_per_pair)) {
     ++stats.capped_pairs;
   }
