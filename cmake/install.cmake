@@ -10,7 +10,7 @@
 #   PREFIX/lib/cmake/graspcd/          graspcdConfig.cmake, its version file and the targets
 #   PREFIX/share/graspcd/mjcf/         the template scenes and their meshes, which bin/graspcd finds
 #                                      beside itself (src/graspcd/version/data_dirs.h)
-# so that `find_package(graspcd 0.3 REQUIRED)` gives the three targets. graspcd_exact (CGAL), the
+# so that `find_package(graspcd 0.4 REQUIRED)` gives the three targets. graspcd_exact (CGAL), the
 # grasp experiment and the study are not installed as libraries: CGAL stays out of the installed
 # libraries (the executable links it statically, header-only CGAL with GMP and MPFR).
 include(CMakePackageConfigHelpers)

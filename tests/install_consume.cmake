@@ -6,7 +6,7 @@
 #                 sanitizer build's libraries need the same compiler's runtimes)
 # Steps: `cmake --install BUILD_DIR --prefix WORK_DIR/prefix`; the prefix holds graspcd::core,
 # graspcd::io, graspcd::mujoco and bin/graspcd, and no CGAL library; the standalone project examples/nonconvex_contacts is
-# configured against the prefix alone (CMAKE_PREFIX_PATH) with find_package(graspcd 0.3), built,
+# configured against the prefix alone (CMAKE_PREFIX_PATH) with find_package(graspcd 0.4), built,
 # and run on mjcf/example1.xml: its fingers fall onto the cup, so graspcd must serve calls and
 # hand contacts to MuJoCo. A missing scene must be one line on stderr and exit code 2.
 cmake_minimum_required(VERSION 3.25)
