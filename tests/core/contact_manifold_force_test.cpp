@@ -18,32 +18,34 @@
 #include "graspcd/core/mesh_features.h"
 #include "graspcd/core/reused_contacts.h"
 #include "graspcd/core/triangle_contact.h"
+#include "helpers/manifold_patches.h"
 
 namespace graspcd {
 namespace {
 
-// Candidates with their vertex ids: the candidates of one group share vertex `group` on geom 1
-// (one patch when their normals agree), every other id is the candidate's own.
-struct Patches {
-  std::vector<TriContact> candidates;
-  std::vector<FaceVertexIds> a, b;
-  void add(int group, const Vec3& pos, const Vec3& normal, double depth) {
-    const auto i = static_cast<std::uint32_t>(candidates.size());
-    candidates.push_back(TriContact{pos, normal.normalized(), depth});
-    a.push_back({static_cast<std::uint32_t>(group), 1000 + 2 * i, 1001 + 2 * i});
-    b.push_back({5000 + 3 * i, 5001 + 3 * i, 5002 + 3 * i});
-  }
+struct Patches : testing::PatchCandidates {
   ContactManifold build(int per_pair, ManifoldReduction reduction = ManifoldReduction::kForce,
                         int reference = tol::kManifoldReferencePairContacts) const {
     ManifoldOptions options;
     options.max_per_pair = per_pair;
     options.reduction = reduction;
     options.reference_per_pair = reference;
-    return build_contact_manifold_by_ids(candidates, a, b, options);
+    return build_with(options);
   }
 };
 
 // The contacts of patch p, in order.
+// A flat 5 x 5 grid face on a face (2 mm apart), its depth rising along x from 0.5 mm.
+Patches tilted_grid() {
+  Patches s;
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      s.add(0, Vec3(0.002 * i, 0.002 * j, 0), Vec3::UnitZ(), 0.0005 + 0.0001 * i);
+    }
+  }
+  return s;
+}
+
 std::vector<TriContact> of_patch(const ContactManifold& m, std::size_t p) {
   std::vector<TriContact> out;
   EXPECT_EQ(m.contact_patch.size(), m.contacts.size());
@@ -132,27 +134,12 @@ void expect_pair_bound(const Patches& s, int per_pair, int reference = 8) {
   for (std::size_t i = 0; i < firsts; ++i) EXPECT_EQ(red.contact_patch[i], i);
 }
 
-bool same_bits(const std::vector<TriContact>& x, const std::vector<TriContact>& y) {
-  if (x.size() != y.size()) return false;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    if (std::memcmp(x[i].pos.data(), y[i].pos.data(), sizeof(double) * 3) != 0 ||
-        std::memcmp(x[i].normal.data(), y[i].normal.data(), sizeof(double) * 3) != 0 ||
-        std::memcmp(&x[i].depth, &y[i].depth, sizeof(double)) != 0) {
-      return false;
-    }
-  }
-  return true;
-}
+using testing::same_bits;
 
 // A flat 5 x 5 grid face on a face, tilted in depth along x: at 1, 2 and 3 points the summed depth
 // and the centre of pressure of the support reduction's 4 corners; at 4 the corners themselves.
 TEST(ForceReduction, AFlatFaceOnAFaceKeepsItsForceAndCentreOfPressure) {
-  Patches s;
-  for (int i = 0; i < 5; ++i) {
-    for (int j = 0; j < 5; ++j) {
-      s.add(0, Vec3(0.002 * i, 0.002 * j, 0), Vec3::UnitZ(), 0.0005 + 0.0001 * i);
-    }
-  }
+  const Patches s = tilted_grid();
   for (int per_pair = 1; per_pair <= 4; ++per_pair) {
     SCOPED_TRACE(per_pair);
     const ContactManifold m = s.build(per_pair);
@@ -266,12 +253,7 @@ TEST(ForceReduction, RandomPairsKeepTheBoundAndAreDeterministic) {
 // contact's depth follows it: geom2 pushed deeper by h along the normal deepens the m points by
 // |S| / m h each, the patch's sum by |S| h, as the reference's |S| points would deepen.
 TEST(ForceReduction, GainsKeepTheSummedDepthOfReusedContacts) {
-  Patches s;
-  for (int i = 0; i < 5; ++i) {
-    for (int j = 0; j < 5; ++j) {
-      s.add(0, Vec3(0.002 * i, 0.002 * j, 0), Vec3::UnitZ(), 0.0005 + 0.0001 * i);
-    }
-  }
+  const Patches s = tilted_grid();
   for (int per_pair = 1; per_pair <= 4; ++per_pair) {
     SCOPED_TRACE(per_pair);
     const ContactManifold m = s.build(per_pair);

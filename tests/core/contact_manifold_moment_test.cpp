@@ -17,28 +17,19 @@
 #include "graspcd/core/geometry.h"
 #include "graspcd/core/mesh_features.h"
 #include "graspcd/core/triangle_contact.h"
+#include "helpers/manifold_patches.h"
 
 namespace graspcd {
 namespace {
 
-// Candidates with their vertex ids: the candidates of one group share vertex `group` on geom 1
-// (one patch when their normals agree), every other id is the candidate's own.
-struct Patches {
-  std::vector<TriContact> candidates;
-  std::vector<FaceVertexIds> a, b;
-  void add(int group, const Vec3& pos, const Vec3& normal, double depth) {
-    const auto i = static_cast<std::uint32_t>(candidates.size());
-    candidates.push_back(TriContact{pos, normal.normalized(), depth});
-    a.push_back({static_cast<std::uint32_t>(group), 1000 + 2 * i, 1001 + 2 * i});
-    b.push_back({5000 + 3 * i, 5001 + 3 * i, 5002 + 3 * i});
-  }
+struct Patches : testing::PatchCandidates {
   ContactManifold build(int per_pair, int per_patch = tol::kManifoldPatchContacts,
                         ManifoldReduction reduction = ManifoldReduction::kMoment) const {
     ManifoldOptions options;
     options.max_per_pair = per_pair;
     options.max_per_patch = per_patch;
     options.reduction = reduction;
-    return build_contact_manifold_by_ids(candidates, a, b, options);
+    return build_with(options);
   }
 };
 
@@ -109,17 +100,7 @@ std::vector<TriContact> kept_of(const ContactManifold& m, const Proxy& p) {
   return out;
 }
 
-bool same_bits(const std::vector<TriContact>& x, const std::vector<TriContact>& y) {
-  if (x.size() != y.size()) return false;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    if (std::memcmp(x[i].pos.data(), y[i].pos.data(), sizeof(double) * 3) != 0 ||
-        std::memcmp(x[i].normal.data(), y[i].normal.data(), sizeof(double) * 3) != 0 ||
-        std::memcmp(&x[i].depth, &y[i].depth, sizeof(double)) != 0) {
-      return false;
-    }
-  }
-  return true;
-}
+using testing::same_bits;
 
 // A flat 5 x 5 grid face on a face, 1 mm deep everywhere: the anchor at the grid's centre with the
 // depth 1 mm, three extremes, the kept points' depth-weighted centre the centre of pressure.

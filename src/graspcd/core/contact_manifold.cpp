@@ -318,6 +318,17 @@ void choose_points(const std::vector<TriContact>& candidates, std::size_t per_pa
   patch.area = polygon_area(hull);
 }
 
+// The indices of the first `count` patches, the largest area first (ties in patch order): the
+// order in which the pair's budget hands out a patch's further points (step 3).
+void patches_by_area(const std::vector<ContactPatch>& patches, std::size_t count,
+                     std::vector<std::size_t>& by_area) {
+  by_area.clear();
+  for (std::size_t p = 0; p < count; ++p) by_area.push_back(p);
+  small_stable_sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) {
+    return patches[a].area > patches[b].area;
+  });
+}
+
 // Step 3: the pair's budget of `per_pair` points into `contacts` (ContactManifold::contacts), from
 // `patches` sorted deepest first: every patch's deepest point, then the further points by patch
 // area. Each point has its patch's normal and its depth along it (`along`).
@@ -334,11 +345,7 @@ void spend_pair_budget(const std::vector<TriContact>& candidates,
     emit(p, patches[p].selected.front());
   }
   thread_local std::vector<std::size_t> by_area;
-  by_area.clear();
-  for (std::size_t p = 0; p < patches.size(); ++p) by_area.push_back(p);
-  small_stable_sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) {
-    return patches[a].area > patches[b].area;
-  });
+  patches_by_area(patches, patches.size(), by_area);
   for (std::size_t p : by_area) {
     for (std::size_t k = 1; k < patches[p].selected.size() && out.contacts.size() < per_pair; ++k) {
       emit(p, patches[p].selected[k]);
@@ -357,11 +364,7 @@ void patch_shares(const std::vector<ContactPatch>& patches, std::size_t per_pair
     ++used;
   }
   thread_local std::vector<std::size_t> by_area;
-  by_area.clear();
-  for (std::size_t p = 0; p < patches.size(); ++p) by_area.push_back(p);
-  small_stable_sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) {
-    return patches[a].area > patches[b].area;
-  });
+  patches_by_area(patches, patches.size(), by_area);
   for (std::size_t p : by_area) {
     if (shares[p] == 0) continue;
     const std::size_t more = std::min(patches[p].selected.size() - 1, per_pair - used);
@@ -470,11 +473,7 @@ void spend_moment_budget(const std::vector<TriContact>& candidates,
   std::vector<TriContact>& contacts = out.contacts;
   const std::size_t anchors = std::min(per_pair, patches.size());
   thread_local std::vector<std::size_t> by_area, extremes;
-  by_area.clear();
-  for (std::size_t p = 0; p < anchors; ++p) by_area.push_back(p);
-  small_stable_sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) {
-    return patches[a].area > patches[b].area;
-  });
+  patches_by_area(patches, anchors, by_area);
   extremes.assign(anchors, 0);
   std::size_t used = anchors;
   for (std::size_t p : by_area) {
@@ -588,11 +587,7 @@ void spend_force_budget(const std::vector<TriContact>& candidates,
   out.contacts.reserve(fitted.size());
   for (std::size_t p = 0; p < patches.size() && shares[p] > 0; ++p) emit(p, 0);
   thread_local std::vector<std::size_t> by_area;
-  by_area.clear();
-  for (std::size_t p = 0; p < patches.size(); ++p) by_area.push_back(p);
-  small_stable_sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) {
-    return patches[a].area > patches[b].area;
-  });
+  patches_by_area(patches, patches.size(), by_area);
   for (std::size_t p : by_area) {
     for (std::size_t k = 1; k < shares[p]; ++k) emit(p, k);
   }
