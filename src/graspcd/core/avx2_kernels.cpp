@@ -41,7 +41,7 @@ int sat_separating_axis_in_a_avx2(const double* R, const double* T, const double
   const __m256d s = _mm256_set1_pd(slack);
   const __m256d av = lanes3(a[0], a[1], a[2]);
   const __m256d bv = lanes3(b[0], b[1], b[2]);
-  // Columns c_j = R(., j) and rows r_i = R(i, .), lane 3 zero.
+  // Columns c_j = R(., j) and rows r_i = R(i, .) (lane 3 unread).
   __m256d col[3], row[3];
   for (int j = 0; j < 3; ++j) col[j] = lanes3(R[3 * j], R[3 * j + 1], R[3 * j + 2]);
   for (int i = 0; i < 3; ++i) row[i] = lanes3(R[i], R[i + 3], R[i + 6]);

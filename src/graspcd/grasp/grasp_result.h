@@ -206,9 +206,8 @@ std::string push_note(const GraspResult& result);
 void judge_grasp(bool ever_touched, int touching, bool opposing, GraspResult& result);
 
 // A manifold choice of `grasp --manifold`: "support", "moment" or "force" (pair_config.h,
-// "reduction"),
-// optionally followed by the contacts per pair, 1 .. mjMAXCONPAIR ("moment4"); the count is
-// absent when not given. std::nullopt for anything else.
+// "reduction"), optionally followed by the contacts per pair, 1 .. mjMAXCONPAIR ("force4"); the
+// count is absent when not given. std::nullopt for anything else.
 struct ManifoldChoice {
   ManifoldReduction reduction = ManifoldReduction::kSupport;
   std::optional<int> max_contacts;
