@@ -4,10 +4,11 @@
 usage: contacts_solver.py GRASPCD OUT_DIR [--quick]
 
 Runs `graspcd grasp SCENE --json` on each scene four ways: natively (MuJoCo's convex hulls),
-served with the pair config as shipped (the contact manifold: at most 4 points per patch and 8 per
-geom pair), served with the budget raised to mjMAXCONPAIR (50 per pair and per patch: every
-intersecting triangle pair's contact, up to MuJoCo's cap, as before the manifold), and served as
-shipped with contacts reused across steps within REUSE metres (`--contact-reuse`, opt-in). Writes
+served with the pair config as shipped with exact contacts every step (`--exact`; the contact
+manifold: at most 4 points per patch and 8 per geom pair), served so with the budget raised to
+mjMAXCONPAIR (50 per pair and per patch: every intersecting triangle pair's contact, up to MuJoCo's
+cap, as before the manifold), and served as shipped with contacts reused across steps within REUSE
+metres (`--contact-reuse`, the default). Writes
 OUT_DIR/contacts.json: per scene and variant the finger-object contacts per physics step (mean,
 max), the most one geom pair had, the wall time per physics step, held and the rise, the hold's
 last second at rest (speed, penetration), and MuJoCo's buffer-full counters. The time ratios are
@@ -78,8 +79,8 @@ def main():
             print(f"contacts_solver.py: {name}", file=sys.stderr)
             out["scenes"][name] = {
                 "native": grasp(graspcd, scene, ["--native"]),
-                "manifold": grasp(graspcd, scene, []),
-                "before": grasp(graspcd, scene, ["--config", before]),
+                "manifold": grasp(graspcd, scene, ["--exact"]),
+                "before": grasp(graspcd, scene, ["--config", before, "--exact"]),
                 "reuse": grasp(graspcd, scene, ["--contact-reuse", repr(REUSE)]),
             }
     os.makedirs(out_dir, exist_ok=True)

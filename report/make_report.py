@@ -608,7 +608,8 @@ def contacts_section(contacts):
       " (`graspcd grasp SCENE --json`) natively (MuJoCo's convex hulls), served with the contact"
       " manifold as shipped (at most 4 points per patch and 8 per geom pair) and served with"
       f" {before} per pair and per patch (every intersecting triangle pair's contact up to"
-      " MuJoCo's cap, as before the manifold). Contacts are finger-object contacts per physics"
+      " MuJoCo's cap, as before the manifold), both with exact contacts every step (`grasp"
+      " --exact`). Contacts are finger-object contacts per physics"
       " step over the whole grasp; \"most per pair\" is the most one geom pair had in one step;"
       " rise is the object's final height above its start; at rest is the hold's last second"
       " (the object's largest speed and deepest contact); buffers full counts the steps that"
@@ -618,7 +619,8 @@ def contacts_section(contacts):
     if "reuse" in contacts:
         w("")
         w(f"\"reused\" is the manifold with contacts reused across steps within"
-          f" {contacts['reuse'] * 1e6:g} µm (`grasp --contact-reuse`, opt-in, not exact:"
+          f" {contacts['reuse'] * 1e6:g} µm (`grasp --contact-reuse`, the default since 0.4,"
+          " not exact:"
           " docs/design.md); the last column counts the served calls it answered without a"
           " query.")
     w("")
