@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Runs every real-hand scene (mjcf/real_*.xml) and writes report/data/real_models.json.
 
-Per scene: `graspcd grasp --json` REPEATS times (the grasp result, and the detection time per
+Per scene: `graspcd grasp --json --exact` REPEATS times (the grasp result with exact contacts
+every step, so that every closing step's detection is a query, and the detection time per
 closing grasp step of each run: detection_ns_close over the closing steps; the median and min-max
 over the runs), then `graspcd validate --json --all-methods` once (per method: checks, agreements
 with CGAL, CGAL hits, missed and false collisions, summed over the pairs); when that takes longer
@@ -95,7 +96,7 @@ def main():
     for path in sorted(glob.glob(os.path.join(ROOT, "mjcf", "real_*.xml"))):
         scene = os.path.relpath(path, ROOT)
         print(f"real_models.py: {scene}", file=sys.stderr)
-        runs = [run_json([exe, "grasp", "--json", scene]) for _ in range(args.repeats)]
+        runs = [run_json([exe, "grasp", "--json", "--exact", scene]) for _ in range(args.repeats)]
         per_step = [r["detection_ns_close"] / max(1, len(r["steps"])) for r in runs]
         g = runs[0]
         grasp = {
