@@ -15,6 +15,7 @@
 
 #include "graspcd/io/mesh_io.h"
 #include "helpers/mesh_export.h"
+#include "helpers/mesh_load_error.h"
 #include "helpers/mesh_text.h"
 #include "helpers/temp_dir.h"
 
@@ -70,15 +71,7 @@ class MeshImportTest : public testing::TempDirTest {
   }
 };
 
-// The message of the InputError load_mesh throws, or "" if it loads.
-std::string load_error(const std::string& path) {
-  try {
-    load_mesh(path);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::load_error;
 
 TEST_F(MeshImportTest, EveryFormatLoadsAsTheObjOfTheSameMesh) {
   const TriangleMesh m = box();

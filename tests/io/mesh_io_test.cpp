@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "helpers/mesh_load_error.h"
 #include "helpers/temp_dir.h"
 
 namespace graspcd::io {
@@ -44,15 +45,7 @@ class MeshIoTest : public testing::TempDirTest {
   }
 };
 
-// The message of the InputError load_mesh throws, or "" if it loads.
-std::string load_error(const std::string& path) {
-  try {
-    load_mesh(path);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::load_error;
 
 const char* const kTetrahedron =
     "# a tetrahedron\n"

@@ -10,26 +10,23 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
-#include <algorithm>
 #include <filesystem>
 #include <memory>
-#include <optional>
 #include <string>
 
-#include "graspcd/grasp/drive_config.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/mujoco/pair_config.h"
 #include "graspcd/study/contact_judge.h"
+#include "helpers/judged_grasp.h"
 
 namespace graspcd::grasp {
 namespace {
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
 
-constexpr double kRelative = 0.10;
-constexpr double kResolution = 1e-4;  // metres: below it a drift or depth differs by noise
-
-double bound(double exact) { return std::max(exact * (1 + kRelative), exact + kResolution); }
+using testing::expect_no_contact_error;
+using testing::judge_closing_steps;
+using testing::near_bound;
 
 // One scene's grasp exact and at the default, checked as the file's header says.
 void expect_default_as_exact(const std::string& name) {
@@ -43,30 +40,18 @@ void expect_default_as_exact(const std::string& name) {
   EXPECT_EQ(exact.reused_calls, 0u);
 
   options.contact_reuse.reset();  // the scene's config: the default
-  // The race's judge (grasp --judge): the object and the support the object stands on of the
-  // config's "grasp" section (the Robotiq's table, which is not the hand's), else the body
-  // "object" and the world.
-  const std::optional<DriveConfig> drive = load_drive_config(mujoco::pair_config_path(scene));
   std::unique_ptr<study::ContactJudge> judge;
-  options.on_grasp_step = [&judge, &drive](const mjModel* m, const mjData* d, int step) {
-    if (!judge) {
-      judge = drive ? std::make_unique<study::ContactJudge>(m, drive->object, drive->support)
-                    : std::make_unique<study::ContactJudge>(m);
-    }
-    judge->judge_step(m, d, step);
-  };
+  judge_closing_steps(scene, options, judge);
   const GraspResult ours = run_grasp(scene, options);
   ASSERT_TRUE(judge);
   EXPECT_GT(ours.reused_calls, 0u);
   EXPECT_EQ(ours.gripped, exact.gripped);
   EXPECT_TRUE(ours.held) << ours.reason;
-  EXPECT_GT(judge->summary().contacts, 0u);
-  EXPECT_EQ(judge->summary().phantom, 0u);
-  EXPECT_EQ(judge->summary().missed, 0u);
+  expect_no_contact_error(*judge);
   EXPECT_GT(ours.true_penetration.measures, 0);
-  EXPECT_LE(ours.true_penetration.max, bound(exact.true_penetration.max))
+  EXPECT_LE(ours.true_penetration.max, near_bound(exact.true_penetration.max))
       << "exact " << exact.true_penetration.max * 1e3 << " mm";
-  EXPECT_LE(ours.hold_drift, bound(exact.hold_drift))
+  EXPECT_LE(ours.hold_drift, near_bound(exact.hold_drift))
       << "exact " << exact.hold_drift * 1e3 << " mm";
 }
 

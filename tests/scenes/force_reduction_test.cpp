@@ -14,27 +14,23 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
-#include <algorithm>
 #include <memory>
 #include <string>
 
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/study/contact_judge.h"
+#include "helpers/judged_grasp.h"
 
 namespace graspcd::grasp {
 namespace {
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
 
-// The criteria of report/reduction_check.py: +10% of the default, or this many metres (below the
-// measures' resolution: a drift of a few micrometres differs by more than 10% from run to run).
-constexpr double kRelative = 0.10;
-constexpr double kResolution = 1e-4;
 constexpr int kPairBudget = 4;
 
-double bound(double reference) {
-  return std::max(reference * (1 + kRelative), reference + kResolution);
-}
+using testing::expect_no_contact_error;
+using testing::judge_closing_steps;
+using testing::near_bound;
 
 TEST(ForceReductionGrasps, FourPerPairHoldAsTheDefaultDoes) {
   for (const std::string name : {"example1", "example2", "example3", "hand_triangles"}) {
@@ -48,19 +44,14 @@ TEST(ForceReductionGrasps, FourPerPairHoldAsTheDefaultDoes) {
     options.reduction = ManifoldReduction::kForce;
     options.max_contacts = kPairBudget;
     std::unique_ptr<study::ContactJudge> judge;
-    options.on_grasp_step = [&judge](const mjModel* m, const mjData* d, int step) {
-      if (!judge) judge = std::make_unique<study::ContactJudge>(m);
-      judge->judge_step(m, d, step);
-    };
+    judge_closing_steps(scene, options, judge);
     const GraspResult ours = run_grasp(scene, options);
     ASSERT_TRUE(judge);
     EXPECT_TRUE(ours.held) << ours.reason;
     EXPECT_LE(ours.max_pair_contacts, kPairBudget);
-    EXPECT_GT(judge->summary().contacts, 0u);
-    EXPECT_EQ(judge->summary().phantom, 0u);
-    EXPECT_EQ(judge->summary().missed, 0u);
+    expect_no_contact_error(*judge);
     EXPECT_GT(ours.true_penetration.measures, 0);
-    EXPECT_LE(ours.true_penetration.max, bound(reference.true_penetration.max))
+    EXPECT_LE(ours.true_penetration.max, near_bound(reference.true_penetration.max))
         << "default " << reference.true_penetration.max * 1e3 << " mm";
   }
 }

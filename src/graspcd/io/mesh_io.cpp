@@ -350,6 +350,19 @@ double coordinate(const std::string& path, const std::string& which, const std::
   }
 }
 
+// A vertex from three coordinate tokens at its line, checked (check_vertex) with that line named.
+Vec3 text_vertex(const std::string& path, const std::string& which, const std::string& x,
+                 const std::string& y, const std::string& z, std::size_t line) {
+  const Vec3 p(coordinate(path, which, x, line), coordinate(path, which, y, line),
+               coordinate(path, which, z, line));
+  try {
+    check_vertex(path, which, p);
+  } catch (const InputError& e) {
+    fail(path, e.message(), line);
+  }
+  return p;
+}
+
 // ASCII STL, read here in double precision with line numbers (Assimp reads floats and names no
 // line): "solid [name]", then per facet "facet normal nx ny nz", "outer loop", three
 // "vertex x y z", "endloop", "endfacet"; "endsolid [name]". Several solids in one file are
@@ -412,15 +425,7 @@ TriangleMesh load_ascii_stl(const std::string& path) {
           }
           if (corners == 3) fail(path, facet + ": more than 3 vertices", line_number);
           const std::string which = facet + " vertex " + std::to_string(corners + 1);
-          const Vec3 p(coordinate(path, which, w[1], line_number),
-                       coordinate(path, which, w[2], line_number),
-                       coordinate(path, which, w[3], line_number));
-          try {
-            check_vertex(path, which, p);
-          } catch (const InputError& e) {
-            fail(path, e.message(), line_number);
-          }
-          mesh.vertices.push_back(p);
+          mesh.vertices.push_back(text_vertex(path, which, w[1], w[2], w[3], line_number));
           ++corners;
         } else if (key == "endloop") {
           if (corners != 3) {
@@ -495,15 +500,7 @@ TriangleMesh load_off(const std::string& path) {
     const std::string which = "vertex " + std::to_string(i);
     if (!next()) fail(path, "the file ends at " + which + " (" + std::to_string(nv) + " declared)");
     if (w.size() < 3) fail(path, which + ": expected x y z", line_number);
-    const Vec3 p(coordinate(path, which, w[0], line_number),
-                 coordinate(path, which, w[1], line_number),
-                 coordinate(path, which, w[2], line_number));
-    try {
-      check_vertex(path, which, p);
-    } catch (const InputError& e) {
-      fail(path, e.message(), line_number);
-    }
-    mesh.vertices.push_back(p);
+    mesh.vertices.push_back(text_vertex(path, which, w[0], w[1], w[2], line_number));
   }
   for (std::size_t f = 0; f < nf; ++f) {
     const std::string which = "face " + std::to_string(f);
