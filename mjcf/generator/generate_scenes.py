@@ -114,6 +114,16 @@ class Mesh:
         if a != b and b != c and a != c:
             self.faces.append((a, b, c))
 
+    def quad(self, a, b, c, d, outward):
+        """The quad a b c d as two triangles, counter-clockwise seen from outside when `outward`
+        (a b c d turns so), else the other way."""
+        if outward:
+            self.tri(a, b, c)
+            self.tri(a, c, d)
+        else:
+            self.tri(a, c, b)
+            self.tri(a, d, c)
+
     def point(self, i):
         return tuple(float(c) for c in self.verts[i])
 
@@ -188,12 +198,7 @@ def rounded_box(hx, hy, hz, radius, step):
             for i in range(len(stops[u]) - 1):
                 for j in range(len(stops[v]) - 1):
                     a, b, c, d = grid[i][j], grid[i + 1][j], grid[i + 1][j + 1], grid[i][j + 1]
-                    if sign > 0:  # u x v = +axis: counter-clockwise seen from outside
-                        m.tri(a, b, c)
-                        m.tri(a, c, d)
-                    else:
-                        m.tri(a, c, b)
-                        m.tri(a, d, c)
+                    m.quad(a, b, c, d, sign > 0)  # u x v = +axis: counter-clockwise outside
     return m
 
 
@@ -327,12 +332,7 @@ def voxel_mesh(cells, size, grid=None):
                     else:
                         quad.append(m.vert(tuple(grid[a][k] for a, k in enumerate(q))))
                 a, b, cc, d = quad
-                if sign > 0:
-                    m.tri(a, b, cc)
-                    m.tri(a, cc, d)
-                else:
-                    m.tri(a, cc, b)
-                    m.tri(a, d, cc)
+                m.quad(a, b, cc, d, sign > 0)
     return m
 
 
