@@ -7,7 +7,7 @@ OUT_DIR/sweep.json (the run-time/error sweep, possibly merged from shards) and, 
 OUT_DIR/stress.json (`graspcd stress --json`, the numerical stress suite) and
 OUT_DIR/perf.json (`./run perf`, graspcd against FCL and MuJoCo),
 OUT_DIR/contacts.json (report/contacts_solver.py, what MuJoCo's solver gets) and
-OUT_DIR/race.json, else the cached report/data/race.json (report/race/run_race.py, graspcd
+OUT_DIR/race.json, else the cached report/data/race.json (study/run_race.py, graspcd
 against the hull and convex decompositions), writes
 OUT_DIR/REPORT.md and OUT_DIR/figures/*.png. Every number in the report comes from those files; the text around a
 number is chosen by comparing numbers, never written in advance.
@@ -28,8 +28,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import draw_figures  # noqa: E402  (report/draw_figures.py, beside this script)
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                                "report", "race"))
-import race_score  # noqa: E402  (report/race/race_score.py: the race's outcome and score)
+                                "study"))
+import race_score  # noqa: E402  (study/race_score.py: the race's outcome and score)
 
 # bridge::finger_segment_names(): the order of every per-segment array in study.json.
 SEGMENTS = [f"finger{f}_{s}" for f in range(1, 5) for s in "ABC"]
@@ -655,13 +655,13 @@ def contacts_section(contacts):
 
 
 def race_section(race, fig_dir, fig_rel):
-    """The "The race" section from race.json (report/race/run_race.py)."""
+    """The "The race" section from race.json (study/run_race.py)."""
     lines = []
     w = lines.append
     m = race["machine"]
     w("## The race: the hull, convex decompositions and graspcd")
     w("")
-    w("From `race.json` (`report/race/run_race.py build/graspcd`, not part of `./run test`; the"
+    w("From `race.json` (`study/run_race.py build/graspcd`, not part of `./run test`; the"
       " decompositions are cached in its `--work` folder, by default `report/out/race`). Each scene's grasp runs as graspcd"
       " serves it (the contact manifold), natively on MuJoCo's convex hull, and natively on"
       " HACD decompositions of the object into at most N convex pieces (`graspcd decompose`,"
@@ -916,7 +916,7 @@ def race_protocol_text(race):
         " in the scene), then by the true penetration into the hand (the support's, like the"
         " judge's, is not the grasp's: its contact with the object is MuJoCo's native one in"
         " every configuration but the decomposed, and an object thrown through it is ejected),"
-        " then by the contact error (`report/race/race_score.py`).")
+        " then by the contact error (`study/race_score.py`).")
     return lines
 
 
