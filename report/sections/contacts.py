@@ -55,6 +55,6 @@ def contacts_section(contacts):
     if worse:
         w("")
         w("At rest the manifold leaves the object faster than both native and the full contact"
-          f" set on {', '.join(worse)} (docs/design.md, \"The seam with MuJoCo\", says what the"
+          f" set on {', '.join(worse)} (docs/design.md, \"The MuJoCo layer\", says what the"
           " budget costs).")
     return lines

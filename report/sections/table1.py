@@ -50,9 +50,9 @@ def table1_section(study, fig_dir, fig_rel):
     sat = next(x for x in t["methods"] if x["name"] == "sat")
     w("## Table 1: total detection time over all grasp steps (triangle hand)")
     w("")
-    w(f"Mode: {t['mode']}, the exact triangle test at the leaves, the bridge's trees. Ours in ms,"
-      " median [min-max]; ratio to SAT in the same run; the paper's MATLAB seconds (its Table 1)"
-      " with, in brackets, their ratio to its SAT.")
+    w(f"Mode: {t['mode']}, the exact triangle test at the leaves, the trees of the MuJoCo layer"
+      " (`graspcd::mujoco`). Ours in ms, median [min-max]; ratio to SAT in the same run; the"
+      " paper's MATLAB seconds (its Table 1) with, in brackets, their ratio to its SAT.")
     w("")
     head = "| method | " + " | ".join(f"{e} ms | {e} / SAT | paper s [/ SAT]"
                                      for e in t["examples"])
