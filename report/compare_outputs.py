@@ -10,8 +10,20 @@ build and the provenance envelope.
 (OUT/study/), `stress --quick --json` (OUT/stress.json), `validate --json` of example1,
 example3, hand_boxes and hand_triangles (OUT/validate_SCENE.json) and `grasp --json` of
 example1-3, hand_triangles and real_robotiq_cup (OUT/grasp_SCENE.json; the Robotiq scene includes
-the hand of ../shared/models). Run it with the executable before and after a change, then compare
-the two folders.
+the hand of ../shared/models). Then the object workflow on meshes of its own, written into
+OUT/objects/ (the README's block, 60 x 30 x 30 mm, and a 30 mm cube whose faces point inward,
+which a warning names), each command run from OUT/objects/ with relative paths, so that its
+messages name the files alike in every run:
+  - `grasp --object block.obj --scale 0.001 --up x --json` in the project's hand and with
+    `--hand robotiq` (OUT/grasp_object_project.json, OUT/grasp_object_robotiq.json; both hold it);
+  - `validate --objects set --scale 0.001 --up x --json` on the folder of both meshes
+    (OUT/validate_objects.json);
+  - two refusals: a missing mesh file, and the block at three times its size, which penetrates a
+    finger of the project's hand at the start (exit code 2, one line on stderr);
+each with its command, exit code and stderr in OUT/NAME.run.json (the JSON of stdout only when the
+command succeeded). Run it with the executable before and after a change, then compare the two
+folders. --run's exit code is 2 when a command of the first group fails, 1 when a case of the
+object workflow exits otherwise than expected (its files are written all the same), else 0.
 
 BEFORE and AFTER are folders (every *.json below BEFORE is compared with the file of the same
 relative path below AFTER; a file missing from AFTER is a difference) or two JSON files. Removed
@@ -22,8 +34,10 @@ before comparing, at any depth:
   - where and when it ran: "created", "machine", "build", "jobs";
   - provenance: the envelope's "graspcd" object and its "warnings" array when empty (docs/design.md,
     "The command line");
-  - absolute paths: a string with "/mjcf/" or "/data/" keeps only what follows the last such folder
-    (two checkouts in different places write the same scene).
+  - the checkout's place: in any string, the path up to a folder "mjcf/" or "data/" is left out
+    ("/home/a/graspcd/mjcf/example1.xml" becomes "mjcf/example1.xml"; two checkouts in different
+    places write the same scene). Nothing else in a message is rewritten: a temporary folder
+    named in one would be a difference.
 Numbers are compared exactly. Prints one line per difference (file, JSON path, both values) and
 a closing "N files compared, M differ" line; exit code 0 when every file matches, 1 otherwise, 2
 for bad arguments.
@@ -39,7 +53,7 @@ from pathlib import Path
 TIMING_KEY = re.compile(
     r"(_ms|_ns|_us|seconds|_wall_ms|^repeats_ms|^step_ns_median|_ns_.*|^ms_per_.*)$")
 DROPPED_KEYS = {"created", "machine", "build", "jobs", "graspcd"}
-PATH_MARKERS = ("/mjcf/", "/data/")
+CHECKOUT_PATH = re.compile(r"[^\s'\"]*/(mjcf|data)/")
 
 
 def normalise(value, top=False):
@@ -55,10 +69,7 @@ def normalise(value, top=False):
     if isinstance(value, list):
         return [normalise(v) for v in value]
     if isinstance(value, str):
-        for marker in PATH_MARKERS:
-            i = value.rfind(marker)
-            if i >= 0:
-                return marker.strip("/") + "/" + value[i + len(marker):]
+        return CHECKOUT_PATH.sub(r"\1/", value)
     return value
 
 
@@ -89,10 +100,60 @@ VALIDATED_SCENES = ("example1", "example3", "hand_boxes", "hand_triangles")
 GRASPED_SCENES = ("example1", "example2", "example3", "hand_triangles", "real_robotiq_cup")
 
 
+def box_obj(x, y, z, inward=False):
+    """An OBJ box of half-sizes x, y, z centred on the origin, its faces outward (or inward)."""
+    corners = "".join(f"v {sx * x:g} {sy * y:g} {sz * z:g}\n"
+                      for sz in (-1, 1) for sy in (-1, 1) for sx in (-1, 1))
+    faces = ((1, 3, 2), (2, 3, 4), (5, 6, 7), (6, 8, 7), (1, 2, 5), (2, 6, 5), (3, 7, 4), (4, 7, 8),
+             (1, 5, 3), (3, 5, 7), (2, 4, 6), (4, 8, 6))
+    return corners + "".join(f"f {a} {c} {b}\n" if inward else f"f {a} {b} {c}\n"
+                             for a, b, c in faces)
+
+
+# The object workflow's cases, run in OUT/objects/: (name, arguments, whether stdout is JSON, the
+# exit code expected).
+PLACED = ["--scale", "0.001", "--up", "x"]
+OBJECT_CASES = [
+    ("grasp_object_project", ["grasp", "--object", "block.obj", *PLACED, "--json"], True, 0),
+    ("grasp_object_robotiq",
+     ["grasp", "--object", "block.obj", *PLACED, "--hand", "robotiq", "--json"], True, 0),
+    ("validate_objects", ["validate", "--objects", "set", *PLACED, "--json"], True, 0),
+    ("refused_missing_mesh", ["grasp", "--object", "nowhere.obj", *PLACED], False, 2),
+    ("refused_penetrating_start", ["grasp", "--object", "block.obj", "--scale", "0.003"], False,
+     2),
+]
+# The README's block (millimetres, long side along x), and a cube with its faces inward.
+OBJECT_FILES = {"block.obj": box_obj(30, 15, 15), "set/block.obj": box_obj(30, 15, 15),
+                "set/inside_out_cube.obj": box_obj(15, 15, 15, inward=True)}
+
+
+def run_object_cases(graspcd, out):
+    """The object workflow's cases (OBJECT_CASES); returns an exit code."""
+    folder = out / "objects"
+    for name, text in OBJECT_FILES.items():
+        (folder / name).parent.mkdir(parents=True, exist_ok=True)
+        (folder / name).write_text(text, encoding="utf-8")
+    unexpected = 0
+    for name, args, json_out, expected in OBJECT_CASES:
+        print(f"running {' '.join(args[:3])} ({name})", file=sys.stderr)
+        r = subprocess.run([graspcd, *args], cwd=folder, capture_output=True, text=True,
+                           check=False)
+        if r.returncode != expected:
+            unexpected += 1
+            print(f"{' '.join(args)}: exit code {r.returncode}, expected {expected}\n{r.stderr}",
+                  file=sys.stderr)
+        if json_out and r.returncode == 0:
+            (out / f"{name}.json").write_text(r.stdout, encoding="utf-8")
+        run = {"command": args, "exit_code": r.returncode, "stderr": r.stderr.splitlines()}
+        (out / f"{name}.run.json").write_text(json.dumps(run, indent=1) + "\n", encoding="utf-8")
+    return 1 if unexpected else 0
+
+
 def run_outputs(graspcd, out):
     """Runs the commands whose answers a refactoring must keep; returns an exit code."""
+    graspcd = os.path.abspath(graspcd)
     mjcf = Path(__file__).resolve().parent.parent / "mjcf"
-    out = Path(out)
+    out = Path(out).resolve()
     out.mkdir(parents=True, exist_ok=True)
     runs = [([graspcd, "study", "--quick", "--out", str(out / "study")], None),
             ([graspcd, "stress", "--quick", "--json"], out / "stress.json")]
@@ -110,7 +171,7 @@ def run_outputs(graspcd, out):
         if rc != 0:
             print(f"{' '.join(command)}: exit code {rc}", file=sys.stderr)
             return 2
-    return 0
+    return run_object_cases(graspcd, out)
 
 
 def main(argv):

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """report/compare_outputs.py: what it removes (timings, the machine, the provenance envelope, empty
-warnings, checkout paths) and what it must still see (any answer, a missing file, a warning).
+warnings, checkout paths, also inside a message) and what it must still see (any answer, a missing
+file, a warning, a message naming another file or worded otherwise).
 Run by ctest as compare_outputs_test; exit 0 when every check holds."""
 
 import copy
@@ -38,7 +39,11 @@ def compare(before, after):
 def main():
     failures = []
 
+    checks = 0
+
     def check(what, got, want):
+        nonlocal checks
+        checks += 1
         if got != want:
             failures.append(f"{what}: exit {got}, expected {want}")
 
@@ -67,9 +72,26 @@ def main():
     r = subprocess.run([sys.executable, str(SCRIPT)], capture_output=True, check=False)
     check("no arguments", r.returncode, 2)
 
+    # A command's stderr (--run's NAME.run.json): the checkout's place is left out of a message,
+    # the message itself is not.
+    run = {"command": ["validate"], "exit_code": 2,
+           "stderr": ["/home/a/graspcd/mjcf/example1.xml:1: template scene: no body"]}
+    moved = copy.deepcopy(run)
+    moved["stderr"] = ["/tmp/clone/mjcf/example1.xml:1: template scene: no body"]
+    check("a message from another checkout",
+          compare({"x.run.json": run}, {"x.run.json": moved})[0], 0)
+    renamed = copy.deepcopy(run)
+    renamed["stderr"] = ["/tmp/graspcd-object-Ab12Cd/scene.xml:1: template scene: no body"]
+    check("a message naming another file is a difference",
+          compare({"x.run.json": run}, {"x.run.json": renamed})[0], 1)
+    worded = copy.deepcopy(run)
+    worded["stderr"] = ["/home/a/graspcd/mjcf/example1.xml:1: template scene: no <body>"]
+    check("a message worded otherwise is a difference",
+          compare({"x.run.json": run}, {"x.run.json": worded})[0], 1)
+
     for f in failures:
         print("FAIL " + f)
-    print(f"{5 - len(failures)} of 5 checks hold")
+    print(f"{checks - len(failures)} of {checks} checks hold")
     return 1 if failures else 0
 
 

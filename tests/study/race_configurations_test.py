@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""report/race/run_race.py: the configurations a race runs (--multiccd, --configurations) and
+"""study/run_race.py: the configurations a race runs (--multiccd, --configurations) and
 --merge of a scene raced in two files, on made-up rows. A configuration with MuJoCo's multiccd is
 named after its route with " multiccd"; the default races every configuration but "graspcd
 multiccd"; patterns select by name; --merge keeps the merged file's rows of configurations and
@@ -9,7 +9,7 @@ race_configurations_test; exit 0 when every check holds."""
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "report" / "race"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "study"))
 import run_race  # noqa: E402
 
 failures = []

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""report/race/race_score.py: the race's outcome and score on made-up rows and grasp documents. An
+"""study/race_score.py: the race's outcome and score on made-up rows and grasp documents. An
 ejected or unstarted run scores worse than any run that kept the object, whatever its penetration
 and contact error; within an outcome the true penetration into the hand decides, then the contact
 error. Run by ctest as race_score_test; exit 0 when every check holds."""
@@ -8,7 +8,7 @@ import math
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "report" / "race"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "study"))
 import race_score  # noqa: E402
 
 failures = []

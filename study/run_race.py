@@ -37,7 +37,7 @@ stands on, the pair config's "support": the Robotiq scenes' table).
 own file, joined afterwards); the file lists each merged file's command, wall time and load
 ("merged").
 
-The protocol (report/race/race_score.py): every configuration runs once per --noslip value
+The protocol (study/race_score.py): every configuration runs once per --noslip value
 (MuJoCo's noslip iterations, `grasp --noslip N`; default 0 and 10), and each run is one row with
 its outcome (held, held tilted, dropped, ejected, cannot start), the verdict's reason, the tilt,
 the object's top speed and largest kinetic energy, the deepest penetration of the true meshes over
@@ -79,9 +79,9 @@ import sys
 import time
 import xml.etree.ElementTree as ET
 
-import race_score  # report/race/race_score.py, beside this script
+import race_score  # study/race_score.py, beside this script
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def fail(message):

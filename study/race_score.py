@@ -1,4 +1,4 @@
-"""The race's outcome and score of one grasp run (report/race/run_race.py, report/make_report.py).
+"""The race's outcome and score of one grasp run (study/run_race.py, report/make_report.py).
 
 The outcome of a run, best first (OUTCOMES):
   held          held (`graspcd grasp`'s verdict), its final tilt under 2 degrees;
