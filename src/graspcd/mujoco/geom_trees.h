@@ -23,7 +23,6 @@
 #include "graspcd/core/contact.h"
 #include "graspcd/core/containment.h"
 #include "graspcd/core/obb_tree.h"
-#include "graspcd/mujoco/bridge_namespace.h"
 
 namespace graspcd::mujoco {
 

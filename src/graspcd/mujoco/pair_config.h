@@ -45,7 +45,6 @@
 
 #include "graspcd/core/contact.h"
 #include "graspcd/core/separators.h"
-#include "graspcd/mujoco/bridge_namespace.h"
 
 namespace graspcd::mujoco {
 

@@ -46,7 +46,6 @@
 #include <mujoco/mujoco.h>
 
 #include "graspcd/core/geometry.h"
-#include "graspcd/mujoco/bridge_namespace.h"
 
 namespace graspcd::mujoco {
 

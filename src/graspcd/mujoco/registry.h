@@ -38,7 +38,6 @@
 
 #include "graspcd/core/contact.h"
 #include "graspcd/core/separators.h"
-#include "graspcd/mujoco/bridge_namespace.h"
 #include "graspcd/mujoco/geom_trees.h"
 #include "graspcd/mujoco/pair_config.h"
 
