@@ -1,5 +1,5 @@
 // The pair config of a scene: which geom pairs graspcd serves and the detector options
-// (docs/design.md, "The seam with MuJoCo"). Parsed here; resolved against a model by the registry
+// (docs/design.md, "The MuJoCo layer"). Parsed here; resolved against a model by the registry
 // (registry.h), whose geom selection and trees are geom_trees.h.
 //
 // Config (JSON, nlohmann-json), every field optional except "pairs":
