@@ -6,13 +6,13 @@
 //       InstalledOtherModel   the same with a registry of another model (hand_boxes) attached, so
 //                             each call scans the attached models before delegating;
 //   (c) Served             the scene's pairs.json attached: finger-object pairs by graspcd.
-// (b)/(a) is the overhead of the seam on pairs graspcd does not serve. NoopDirect and
+// (b)/(a) is graspcd's overhead on the pairs it does not serve. NoopDirect and
 // NoopDelegated measure that overhead per call without MuJoCo's work; start-up prints the calls
 // per step, so (b) - (a) can be predicted from them.
 //
 // Every iteration restores the same state (qpos, qvel, act, ctrl, warm start, time) and runs one
 // mj_step, so all variants step the same configuration. The closing angle is the first multiple
-// of 0.01 rad at which the served pairs report finger-cup contact (mj_forward, the bridge on),
+// of 0.01 rad at which the served pairs report finger-cup contact (mj_forward, graspcd on),
 // plus 0.01 rad; it is found once, before the benchmarks.
 //
 // Run: build/bench/graspcd_mujoco_bench --benchmark_repetitions=5
@@ -66,7 +66,7 @@ struct Bench {
   std::string config_path = kMjcf + "/hand_triangles.pairs.json";
   std::vector<mjtNum> qpos;
   double angle = 0;
-  int finger_contacts = 0;  // finger-object contacts with the bridge at `angle`
+  int finger_contacts = 0;  // finger-object contacts served by graspcd at `angle`
   int native_finger_contacts = 0;
 
   static Bench& get() {
@@ -207,7 +207,7 @@ void BM_StepServed(benchmark::State& state) {
   step_loop(state, &registry);
 }
 
-// The seam's cost per delegated call, without MuJoCo's work: the mesh-mesh original replaced by
+// graspcd's cost per delegated call, without MuJoCo's work: the mesh-mesh original replaced by
 // a function that does nothing, called directly (NoopDirect) and through graspcd's function
 // with no registry for the model (NoopDelegated). Their difference times the delegated calls
 // per step (printed at start-up) is the expected (b) - (a).

@@ -6,7 +6,7 @@
 #   PREFIX/include/graspcd/mujoco/*.h  included as <graspcd/mujoco/...>
 #   PREFIX/lib/libgraspcd_core.a       graspcd::core    pure geometry: Eigen, qhull; no MuJoCo
 #   PREFIX/lib/libgraspcd_io.a         graspcd::io      the mesh reader and text grammar
-#   PREFIX/lib/libgraspcd_mujoco.a     graspcd::mujoco  the MuJoCo seam: graspcd::core + MuJoCo
+#   PREFIX/lib/libgraspcd_mujoco.a     graspcd::mujoco  the MuJoCo layer: graspcd::core + MuJoCo
 #   PREFIX/lib/cmake/graspcd/          graspcdConfig.cmake, its version file and the targets
 #   PREFIX/share/graspcd/mjcf/         the template scenes and their meshes, which bin/graspcd finds
 #                                      beside itself (src/graspcd/version/data_dirs.h)

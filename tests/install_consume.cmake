@@ -5,10 +5,11 @@
 #   CXX_COMPILER  BUILD_TYPE  the build's compiler and build type, which the consumer reuses (a
 #                 sanitizer build's libraries need the same compiler's runtimes)
 # Steps: `cmake --install BUILD_DIR --prefix WORK_DIR/prefix`; the prefix holds graspcd::core,
-# graspcd::io, graspcd::mujoco and bin/graspcd, and no CGAL library; the standalone project examples/nonconvex_contacts is
-# configured against the prefix alone (CMAKE_PREFIX_PATH) with find_package(graspcd 0.4), built,
-# and run on mjcf/example1.xml: its fingers fall onto the cup, so graspcd must serve calls and
-# hand contacts to MuJoCo. A missing scene must be one line on stderr and exit code 2.
+# graspcd::io, graspcd::mujoco and bin/graspcd, and no CGAL library; the standalone project
+# examples/nonconvex_contacts is configured against the prefix alone (CMAKE_PREFIX_PATH) with
+# find_package(graspcd 0.4), which accepts this build's later 0.x (SameMajorVersion), built, and
+# run on mjcf/example1.xml: its fingers fall onto the cup, so graspcd must serve calls and hand
+# contacts to MuJoCo. A missing scene must be one line on stderr and exit code 2.
 cmake_minimum_required(VERSION 3.25)
 foreach(var BUILD_DIR SOURCE_DIR WORK_DIR CXX_COMPILER BUILD_TYPE)
   if(NOT DEFINED ${var})
@@ -32,8 +33,9 @@ file(REMOVE_RECURSE "${WORK_DIR}")
 run_checked("cmake --install" ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}")
 
 # 2. What was installed: the three libraries, the executable, the headers, the package; no CGAL,
-# no study, no grasp experiment, no 0.1 include path (include/graspcd/bridge, removed in 0.3). (The library folder
-# is GNUInstallDirs' CMAKE_INSTALL_LIBDIR: lib, or lib/<multiarch> for a /usr prefix.)
+# no study, no grasp experiment, nothing named "bridge" (the 0.1 include path include/graspcd/bridge,
+# removed in 0.3, and the 0.2 namespace's alias header, removed in 0.5). (The library folder is
+# GNUInstallDirs' CMAKE_INSTALL_LIBDIR: lib, or lib/<multiarch> for a /usr prefix.)
 file(GLOB_RECURSE config_file "${prefix}/graspcdConfig.cmake")
 if(NOT config_file)
   message(FATAL_ERROR "no graspcdConfig.cmake under ${prefix}")
@@ -45,15 +47,14 @@ foreach(f ${libdir}/libgraspcd_core.a ${libdir}/libgraspcd_io.a ${libdir}/libgra
           ${prefix}/bin/graspcd
           ${prefix}/include/graspcd/core/obb_tree.h ${prefix}/include/graspcd/io/mesh_io.h
           ${prefix}/include/graspcd/mujoco/registry.h
-          ${prefix}/include/graspcd/mujoco/nonconvex_contacts.h
-          ${prefix}/include/graspcd/mujoco/bridge_namespace.h)
+          ${prefix}/include/graspcd/mujoco/nonconvex_contacts.h)
   if(NOT EXISTS "${f}")
     message(FATAL_ERROR "not installed: ${f}")
   endif()
 endforeach()
 file(GLOB_RECURSE installed RELATIVE "${prefix}" "${prefix}/*")
 foreach(f ${installed})
-  if(f MATCHES "exact|study|grasp/|graspcd_grasp|fcl|include/graspcd/bridge/")
+  if(f MATCHES "exact|study|grasp/|graspcd_grasp|fcl|bridge")
     message(FATAL_ERROR "installed but must not be: ${f}")
   endif()
 endforeach()
@@ -75,15 +76,13 @@ if(NOT graspcd_dir STREQUAL "graspcd_DIR:PATH=${package_dir}")
   message(FATAL_ERROR "the example found graspcd elsewhere: ${graspcd_dir}")
 endif()
 run_checked("building the example" ${CMAKE_COMMAND} --build "${example}")
-# The example's second program names the seam by its 0.2 namespace graspcd::bridge (an alias in
-# the 0.3 versions) with the 0.3 include paths, and uses graspcd::io.
-if(NOT EXISTS "${example}/bridge_alias")
-  message(FATAL_ERROR "the example's bridge_alias program was not built")
+# The example's second program reads a mesh with graspcd::io and builds its tree (graspcd::core).
+if(NOT EXISTS "${example}/mesh_tree")
+  message(FATAL_ERROR "the example's mesh_tree program was not built")
 endif()
-run_checked("the bridge-alias program" "${example}/bridge_alias"
-            "${SOURCE_DIR}/mjcf/meshes/cup.obj")
-if(NOT run_out MATCHES "faces [1-9][0-9]*")
-  message(FATAL_ERROR "bridge_alias printed no face count:\n${run_out}")
+run_checked("the mesh_tree program" "${example}/mesh_tree" "${SOURCE_DIR}/mjcf/meshes/cup.obj")
+if(NOT run_out MATCHES "faces [1-9][0-9]* boxes [1-9][0-9]*")
+  message(FATAL_ERROR "mesh_tree printed no face and box count:\n${run_out}")
 endif()
 # The installed executable runs from the prefix.
 run_checked("the installed graspcd" "${prefix}/bin/graspcd" --version)

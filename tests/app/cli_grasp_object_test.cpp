@@ -169,7 +169,7 @@ TEST_F(CliTest, GraspRefusesAnObjectThatStartsInsideTheHandOrTheFloor) {
       << r.err;
   EXPECT_NE(r.err.find("penetrates"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("(at most 0.5 mm allowed)"), std::string::npos) << r.err;
-  // A scene of its own with the object 3.6 cm inside the floor (the mug): the refused
+  // A scene of its own with the object 3.6 cm inside the floor: the refused
   // run has written it (the scene is written before the grasp); at the box's true size, centred
   // under the hand (file x 100..150 mm), its lowest point (file z 10 mm) at z = -0.036.
   const fs::path out = dir_ / "scene";

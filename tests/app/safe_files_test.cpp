@@ -108,7 +108,7 @@ class SafeFilesTest : public graspcd::testing::CommandTest {
   }
 };
 
-// The case: --write-scene into the template's folder, the object named as the template.
+// --write-scene into the template's folder, the object named as the template (the file it reads).
 // The template and its pair config are left as they were, with or without --force.
 TEST_F(SafeFilesTest, WriteSceneNeverReplacesTheTemplateItReads) {
   const fs::path hand = dir_ / "hand";

@@ -212,9 +212,9 @@ TEST(ForceReduction, APatchOfZeroDepthStaysAtZero) {
 }
 
 // Random pairs of 1 to 4 patches (random axes, normals within 12 degrees of each, depths capped at
-// a max_depth of 2 mm as the seam caps them, a few zero), 1 to 8 points per pair, references of
-// 4 to 12: the bound on every kept patch, each depth at most the patch's reference count times
-// the cap, and the same bits from a second build.
+// a max_depth of 2 mm as the MuJoCo layer caps them, a few zero), 1 to 8 points per pair,
+// references of 4 to 12: the bound on every kept patch, each depth at most the patch's reference
+// count times the cap, and the same bits from a second build.
 TEST(ForceReduction, RandomPairsKeepTheBoundAndAreDeterministic) {
   std::mt19937 rng(20261126);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);

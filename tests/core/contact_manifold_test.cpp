@@ -247,7 +247,7 @@ TEST(ContactManifold, ManyPatchesKeepTheDeepestPatchesFirst) {
   EXPECT_EQ(build_contact_manifold(cs, fa, fb, two).contacts.size(), 2u);
 }
 
-// The MuJoCo seam welds each geom's whole mesh once and hands the manifold the candidates' ids;
+// The MuJoCo layer welds each geom's whole mesh once and hands the manifold the candidates' ids;
 // that gives the manifold of the candidates' own triangles, bit for bit, on a pinch (two patches)
 // and a corner. So do the same ids shifted beyond AdjacencyIndex::kDirectIds, which the index finds
 // in its hash table instead of its direct one, and build_contact_manifold_into with one manifold

@@ -281,7 +281,7 @@ TEST_F(ControllersTest, FuzzyStepStaysBoundedAndConverges) {
       "fuzzy, 0.3 rad step: max |e| %.3f rad, below 1e-3 rad from t = %.3f s, "
       "|e| at 4 s = %.2e rad, clamps %llu\n",
       worst, last_outside, final_error, static_cast<unsigned long long>(f.total_clamps()));
-  // Bounded (the criterion, and in fact no overshoot past the initial error here),
+  // Bounded (at most twice the step, and in fact no overshoot past the initial error here),
   // settled well within 1 s (0.84 s measured), and converged to rounding: a sign error anywhere
   // in e, de, the rules or the output would diverge instead.
   EXPECT_LE(worst, 2 * step);

@@ -67,7 +67,7 @@ TEST_F(StartCheckTest, AnObjectRestingOnTheFloorClearOfTheFingerPasses) {
 }
 
 TEST_F(StartCheckTest, AnObjectSunkIntoTheFloorIsRefusedWithItsDepth) {
-  // Its centre 1 cm below the floor's plane: the lowest point 2 cm deep (the mug: 3.6 cm).
+  // Its centre 1 cm below the floor's plane: the lowest point 2 cm deep.
   const std::string problem = check(0.01, "0 0 -0.01", "0.1 0 0.05");
   EXPECT_EQ(problem,
             "geom 'cube' of the object lies 20.0 mm below the plane geom 'floor' (at most 0.5 mm "

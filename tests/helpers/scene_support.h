@@ -1,5 +1,5 @@
-// Scenes for the bridge tests: closed, outward-oriented meshes generated here, written as OBJ
-// files beside an MJCF string in a fresh temporary folder, and loaded with mj_loadXML.
+// Scenes for the MuJoCo layer's tests: closed, outward-oriented meshes generated here, written as
+// OBJ files beside an MJCF string in a fresh temporary folder, and loaded with mj_loadXML.
 #pragma once
 
 #include <gtest/gtest.h>

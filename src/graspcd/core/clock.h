@@ -1,5 +1,4 @@
 // The one clock of graspcd's timings: std::chrono::steady_clock, durations in whole nanoseconds.
-// Used by the MuJoCo seam's statistics, the grasp driver, the study's replays and the commands.
 #pragma once
 
 #include <chrono>

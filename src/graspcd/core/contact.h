@@ -1,7 +1,7 @@
 // Contacts MuJoCo's solver can use, made from the intersecting triangle pairs of the tree query:
-// the whole contact geometry in one include. Pure geometry (no MuJoCo; the MuJoCo seam writes the
-// contacts into mjContact, graspcd/mujoco): everything is in geom1's frame, geom2's triangles
-// already posed. One header per job:
+// the whole contact geometry in one include. Pure geometry (no MuJoCo; the MuJoCo layer writes the
+// contacts into mjContact): everything is in geom1's frame, geom2's triangles already posed. One
+// header per job:
 //   triangle_contact.h  the contact of one intersecting triangle pair (TriContact,
 //                       triangle_pair_contact)
 //   mesh_features.h     a mesh's welded vertices and sharp edges (weld_vertex_ids,

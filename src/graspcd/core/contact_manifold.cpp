@@ -669,7 +669,7 @@ void build_contact_manifold_into(const std::vector<TriContact>& candidates,
   check_vertex_ids(vertices_a, vertices_b);
   const auto per_patch = static_cast<std::size_t>(std::max(options.max_per_patch, 1));
   const auto per_pair = static_cast<std::size_t>(std::max(options.max_per_pair, 1));
-  // Scratch is thread_local: the seam calls this for every touching pair of every physics step,
+  // Scratch is thread_local: the MuJoCo layer calls this for every touching pair of every step,
   // and allocating it each time cost a tenth.
   thread_local std::vector<KeyIndex> order;
   thread_local AdjacencyIndex adjacency;

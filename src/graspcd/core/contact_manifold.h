@@ -159,7 +159,7 @@ ContactManifold build_contact_manifold(const std::vector<TriContact>& candidates
                                        const ManifoldOptions& options = {});
 
 // The same manifold from the candidates' triangles given as welded vertex ids (ids of one geom
-// from one weld_vertex_ids call, e.g. kept with the geom's tree): what the MuJoCo seam calls, with
+// from one weld_vertex_ids call, e.g. kept with the geom's tree): what the MuJoCo layer calls, with
 // no coordinates to compare per candidate. Throws std::invalid_argument, naming the lengths,
 // unless vertices_a and vertices_b each hold one entry per candidate, and std::length_error for an
 // id of 2^31 or more. (A name of its own: an overload would make build_contact_manifold(c, {}, {})

@@ -56,9 +56,8 @@ class ReusedContacts {
   // < 0; a contact's depth changes by its gain times the penetration change of its two points):
   // then true. The motion is contact_drift with geom1's radius `radius_a` (widened to reach
   // the kept points on geom2) and geom2's radius `radius_b`, each about its geom's origin; the
-  // turn is held too because the normal is not refreshed (without it, the PD-driven hand of
-  // hard_scenes_test on example 3 keeps the object moving at 11-14 mm/s at 20-30 um, against
-  // 0.7-1.3 mm/s with it). At the very pose they were computed at, exactly the stored contacts.
+  // turn is held too because the normal is not refreshed (docs/performance.md, "Contact reuse:
+  // where it fails"). At the very pose they were computed at, exactly the stored contacts.
   // Otherwise false and `out` unspecified: the caller queries exactly (and stores again).
   bool refresh(const Pose& pose, double radius_a, double radius_b, double max_drift,
                std::vector<TriContact>& out) const;

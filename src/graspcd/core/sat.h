@@ -102,9 +102,8 @@ inline bool sat_axis_separates(const Mat3& R, const Mat3& absR, const Vec3& T, c
 // tried first; the others follow in the order 1, 2, ..., 15, so the result is the same axis
 // sat_separating_axis reports. The others go to the AVX2 kernel when it is on (avx2.h, use_avx2),
 // to the scalar test otherwise: the same answer. (A hint that did not separate is tested again in
-// its place, which cannot change the answer.) Always inlined (GCC declined on its own): in the tree
-// descent the constant hint of SatSeparator then folds away, and the call with its |R| on the
-// stack goes (about a fifth of the time per test on the OBB-test benchmark).
+// its place, which cannot change the answer.) Always inlined, so that in the tree descent the
+// constant hint of SatSeparator folds away.
 [[gnu::always_inline]] inline SatAxis sat_separating_axis_in_a(const Mat3& R, const Vec3& T,
                                                                const Vec3& a, const Vec3& b,
                                                                double slack,

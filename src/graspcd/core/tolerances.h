@@ -59,8 +59,8 @@ inline constexpr double kFrontMaxRotation = 0.1;
 inline constexpr double kFrontMaxShift = 0.1;
 // Every kFrontPullUpPeriod-th restarted query pulls its front up where node pairs moved apart
 // (tree_query.h, pull_up_front): each attempt costs a box test whether or not it succeeds, so a
-// front is not pulled up at every step. Speed only: 32 was measured against 4, 16, 64 and never
-// over whole grasps (docs/performance.md, "Fronts across steps").
+// front is not pulled up at every step. Speed only: every 32nd restart, chosen by the instructions
+// of whole grasps against 4, 16, 64 and never (docs/performance.md, "Fronts across steps").
 inline constexpr unsigned kFrontPullUpPeriod = 32;
 // front_motion (tree_query.h) bounds how far B's boxes moved between two poses; the bound is
 // computed in doubles from a few products and sums (rounding well below 1e-15 relative), so it is
@@ -111,10 +111,10 @@ inline constexpr double kContactParallelEdgeSine = 1e-9;
 
 // An edge axis (unit) whose dot product with n_a - n_b is at most this in magnitude lies nearly in
 // both faces (dimensionless): the face normals do not decide its sign and the smaller of the two
-// sides does. Smaller lets a tilt of no meaning pick a sign: at 1e-6 a 0.23 degree tilt between
-// the Robotiq pad's edge and a voxel cup's edge decided it, measured 10 mm instead of 0.09 mm,
-// and the 1.9 mm of a side face won, kicking the held cup to 238 mm/s; larger leaves more axes
-// to the two-sided rule, which holds while the penetration is under half the triangles' overlap.
+// sides does. Smaller lets a tilt of no meaning pick a sign (at 1e-6 a pad's edge 0.23 degrees off
+// a voxel cup's measured 10 mm instead of 0.09 mm and kicked the held cup: docs/performance.md,
+// "Holds"); larger leaves more axes to the two-sided rule, which holds while the penetration is
+// under half the triangles' overlap.
 inline constexpr double kContactSignCosine = 0.1;
 
 // Penetration depths handed to the solver are clipped to this by default (metres; a pair config's

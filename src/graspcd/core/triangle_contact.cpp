@@ -85,7 +85,7 @@ bool same_bits(const Triangle& x, const Triangle& y) {
 }
 
 // A triangle's unit normal and the inward normals n x (edge) of its edge planes, kept for the
-// calls that follow with the same triangle (the seam passes candidates sorted by triangle pair,
+// calls that follow with the same triangle (the MuJoCo layer passes candidates sorted by pair,
 // so geom1's triangle repeats): set(t) computes them unless t has the bits of the last triangle.
 struct Face {
   Triangle t{{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}};  // with what set() gives for it

@@ -1,6 +1,6 @@
 // The contact of one intersecting triangle pair, in the form MuJoCo's solver can use. Pure
-// geometry (no MuJoCo; the MuJoCo seam writes contacts into mjContact, graspcd/mujoco): everything
-// is in geom1's frame, geom2's triangles already posed.
+// geometry (no MuJoCo; the MuJoCo layer writes contacts into mjContact): everything is in geom1's
+// frame, geom2's triangles already posed.
 //
 // Orientation: mesh faces are assumed counter-clockwise seen from outside (outward normals), as
 // in a closed, consistently oriented mesh; the normal's sign comes from that orientation.

@@ -1,14 +1,14 @@
 // graspcd's entries in MuJoCo's collision table and the model -> registry table (collision.h says
-// how the seam works as a whole).
+// what a call does).
 //
 // install() puts collide_geoms() into mjCOLLISIONFUNC[t1][t2] for every t1 <= t2 among the served
-// types, saving each original; uninstall() puts each saved one back. ScopedInstall owns the
-// install (counted: the first installs, the last restores); install() and uninstall() are the
-// operations it runs. MuJoCo's function gets no user pointer, so registries are attached per model
-// in a process-wide table and looked up from the `const mjModel*` of each call; attach() returns
-// the Attachment that detaches. Attaching and detaching take a mutex; a call's lookup does not
-// (a fixed table of atomic slots, scanned). Not thread-safe for concurrent install/uninstall while
-// models step; attach/detach may run while other models step.
+// types (21 entries), saving each original; uninstall() puts each saved one back. An entry that is
+// NULL at install time stays NULL (MuJoCo never collides that type pair; in MuJoCo 2.2.2 all 21 are
+// set); plane and height-field rows are never touched. ScopedInstall owns the install. MuJoCo's
+// function gets no user pointer, so registries are attached per model in a process-wide table and
+// looked up from the `const mjModel*` of each call. Attaching and detaching take a mutex; a call's
+// lookup does not (a fixed table of atomic slots, scanned). Not thread-safe for concurrent
+// install/uninstall while models step; attach/detach may run while other models step.
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -17,7 +17,7 @@
 
 namespace graspcd::mujoco {
 
-// The most registries attached at once (one per live model using the bridge).
+// The most registries attached at once (one per live model that graspcd serves).
 inline constexpr int kMaxAttachedModels = 64;
 
 // True for the types whose entries install() replaces: sphere, capsule, ellipsoid, cylinder, box,

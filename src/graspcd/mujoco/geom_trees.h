@@ -1,5 +1,5 @@
-// The geoms of a model that a pair config selects, and their OBB trees (docs/design.md, "The seam
-// with MuJoCo"): the glob matching of patterns (pair_config.h) against geom and body names, the
+// The geoms of a model that a pair config selects, and their OBB trees (docs/design.md, "The MuJoCo
+// layer"): the glob matching of patterns (pair_config.h) against geom and body names, the
 // served geom types, the faces of MuJoCo's meshes (zero-area faces left out, core/
 // mesh_hygiene.h), and one tree per mesh and per primitive shape, in the geom frame, built once
 // and shared by every geom of that mesh or shape. Immutable once built: the registry (registry.h)
@@ -23,7 +23,6 @@
 #include "graspcd/core/contact.h"
 #include "graspcd/core/containment.h"
 #include "graspcd/core/obb_tree.h"
-#include "graspcd/mujoco/bridge_namespace.h"
 
 namespace graspcd::mujoco {
 

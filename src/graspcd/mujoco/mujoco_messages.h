@@ -23,7 +23,6 @@
 #include <stdexcept>
 
 #include "graspcd/core/warnings.h"
-#include "graspcd/mujoco/bridge_namespace.h"
 
 namespace graspcd::mujoco {
 

@@ -5,8 +5,6 @@
 
 #include <memory>
 
-#include "graspcd/mujoco/bridge_namespace.h"
-
 namespace graspcd::mujoco {
 
 struct ModelDeleter {

@@ -1,6 +1,6 @@
 // graspcd's public entry point for an existing MuJoCo 2.2 program: non-convex contacts for the geom
-// pairs a config names, every other pair left to MuJoCo unchanged (docs/design.md, "The seam with
-// MuJoCo"). A thin RAII owner of the pieces in registry.h and collision.h:
+// pairs a config names, every other pair left to MuJoCo unchanged (docs/design.md, "The MuJoCo
+// layer"). A thin RAII owner of the pieces in registry.h and collision.h:
 //
 //   mjModel* m = mj_loadXML("scene.xml", nullptr, error, sizeof error);
 //   mjData* d = mj_makeData(m);

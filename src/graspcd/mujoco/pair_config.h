@@ -1,5 +1,5 @@
 // The pair config of a scene: which geom pairs graspcd serves and the detector options
-// (docs/design.md, "The seam with MuJoCo"). Parsed here; resolved against a model by the registry
+// (docs/design.md, "The MuJoCo layer"). Parsed here; resolved against a model by the registry
 // (registry.h), whose geom selection and trees are geom_trees.h.
 //
 // Config (JSON, nlohmann-json), every field optional except "pairs":
@@ -45,7 +45,6 @@
 
 #include "graspcd/core/contact.h"
 #include "graspcd/core/separators.h"
-#include "graspcd/mujoco/bridge_namespace.h"
 
 namespace graspcd::mujoco {
 

@@ -1,6 +1,6 @@
-// Triangle meshes of MuJoCo's primitive geoms, for the bridge's triangle path (docs/design.md, "The
-// seam with MuJoCo": primitives are served "through a tessellated mesh with its tolerance
-// documented"). Every mesh is closed, outward-oriented (counter-clockwise seen from outside),
+// Triangle meshes of MuJoCo's primitive geoms, for the tree path of served pairs (docs/design.md,
+// "The MuJoCo layer"; the tolerances are in docs/library.md). Every mesh is closed,
+// outward-oriented (counter-clockwise seen from outside),
 // convex, and in the geom frame (centre at the origin; capsule and cylinder axes along z), as
 // MuJoCo places the primitive: geom_size holds the box half-extents, the sphere radius, the
 // capsule's and cylinder's radius and half-length, the ellipsoid's three radii.
@@ -46,7 +46,6 @@
 #include <mujoco/mujoco.h>
 
 #include "graspcd/core/geometry.h"
-#include "graspcd/mujoco/bridge_namespace.h"
 
 namespace graspcd::mujoco {
 

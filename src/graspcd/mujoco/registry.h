@@ -1,4 +1,4 @@
-// The pair registry of one mjModel at run time (docs/design.md, "The seam with MuJoCo"): the
+// The pair registry of one mjModel at run time (docs/design.md, "The MuJoCo layer"): the
 // served geom pairs of a pair config (pair_config.h) resolved against the model, how each is
 // served, the geoms' trees (geom_trees.h), the state each pair carries from step to step on each
 // mjData, the statistics and the construction's warnings. Attaching a registry to its model is
@@ -38,7 +38,6 @@
 
 #include "graspcd/core/contact.h"
 #include "graspcd/core/separators.h"
-#include "graspcd/mujoco/bridge_namespace.h"
 #include "graspcd/mujoco/geom_trees.h"
 #include "graspcd/mujoco/pair_config.h"
 
@@ -127,7 +126,7 @@ class Registry {
 
   // Non-fatal findings of the construction, one line each, starting with the config's name: a
   // served geom with a non-zero margin (served pairs report intersecting surfaces only,
-  // docs/design.md "The seam with MuJoCo"); a mesh of a pair served by trees that is not closed
+  // docs/design.md "The MuJoCo layer"); a mesh of a pair served by trees that is not closed
   // (core/containment.h: "mesh N 'name' is not closed: ...; containment inside it is not checked
   // (surface contacts only)"), since the containment check needs a closed solid: its pairs get
   // their surface contacts, and containment is decided only inside the pair's other geom, if

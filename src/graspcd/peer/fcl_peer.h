@@ -97,13 +97,10 @@ class FclMesh {
 // intersecting pair. enable_contact stays false in both modes: FCL then records each intersecting
 // pair exactly once with its primitive ids, whereas with enable_contact it records 0 to 2 contact
 // points per pair (0 when its contact-point clipping finds none, so pairs would go missing).
-// `pairs`, if given, receives the pairs as face indices (a's, b's), in FCL's order.
-// Both queries run FCL's own oriented traversal node (detail::MeshCollisionTraversalNodeOBB or
-// ...RSS: initialize + detail::collide, what fcl::collide does for OBB, with statistics on for
-// bv_tests). The RSS query cannot go through fcl::collide, which in 0.7 copies both RSS models
-// and rebuilds B's tree on every call
-// (https://github.com/flexible-collision-library/fcl/issues/38). `front`, if given, is FCL's
-// front list of the previous query of the same pair, and is updated.
+// `pairs`, if given, receives the pairs as face indices (a's, b's), in FCL's order. Both bounding
+// volumes run FCL's own oriented traversal node (what fcl::collide does for OBB, with statistics
+// on for bv_tests). `front`, if given, is FCL's front list of the previous query of the same
+// pair, and is updated.
 // Throws std::invalid_argument when a and b use different bounding volumes.
 FclQueryResult fcl_collide(const FclMesh& a, const FclMesh& b, const Pose& b_in_a,
                            bool first_contact, std::vector<TrianglePair>* pairs = nullptr,

@@ -15,7 +15,7 @@ namespace graspcd::study {
 
 namespace {
 
-// A geom's triangles in its geom frame: a mesh's from MuJoCo's float vertices (as the bridge's
+// A geom's triangles in its geom frame: a mesh's from MuJoCo's float vertices (as the registry's
 // trees), a primitive's tessellation (graspcd/mujoco/primitives.h: a box exactly, curved ones
 // circumscribed within tessellation_tolerance).
 TriangleMesh geom_mesh(const mjModel* m, int g) {

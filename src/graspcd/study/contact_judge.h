@@ -40,13 +40,10 @@ constexpr double kPhantomDistance = 1e-3;
 //    outside the object's subtree, the world body and the body named `support_body` ("": none);
 //    a primitive's true surface is mujoco::tessellate_primitive's (a box exactly, curved ones
 //    circumscribed within mujoco::tessellation_tolerance, far below the 1 mm of a phantom).
-//  - The support: the body the object stands on (the drive config's "support", drive_config.h;
-//    the table of mjcf/real_robotiq_*.xml, a driven body whose box MuJoCo collides with the
-//    object natively in every configuration). The race is on the grasp's contacts, hand against
-//    object, so the support's own geoms are neither judged nor counted as missed. Its own geoms
-//    only, not its subtree: a scene may carry the hand on the body the object stands on (a
-//    gripper on a driven base), and the hand must never leave the judge; in the shipped scenes
-//    the support has no child body, so its geoms are its subtree's.
+//  - The support: the body the object stands on (the drive config's "support", drive_config.h),
+//    whose contact with the object MuJoCo makes natively in every configuration. Its own geoms
+//    are neither judged nor counted as missed; its subtree's are (a hand carried by the body the
+//    object stands on stays judged).
 //  - At each step: every contact between an object geom and a hand geom is judged by the
 //    distance of its point (MuJoCo's contact pos) to the hand geom's true surface and to the
 //    nearest true object surface (exact::SurfaceDistance, CGAL's AABB tree, in each geom's frame

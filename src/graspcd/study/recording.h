@@ -4,8 +4,8 @@
 // A Recording is one run of the grasp of paper section 9 (grasp/grasp.h) with the poses of every
 // geom after each closing grasp step (docs/design.md "Semantics": detection is measured per grasp
 // step). A MeshScene resolves a triangle scene's served pairs (its SCENE.pairs.json, through the
-// bridge's registry) and builds the trees the replay uses; a BoxScene lists the box pairs of the
-// parallelepiped hand (Figures 13-15): segments B and C against every object box.
+// MuJoCo layer's registry) and builds the trees the replay uses; a BoxScene lists the box pairs of
+// the parallelepiped hand (Figures 13-15): segments B and C against every object box.
 #pragma once
 
 #include <array>
@@ -52,7 +52,7 @@ struct Recording {
 // The contacts of `d` (d->contact[0 .. ncon)).
 std::vector<RecordedContact> recorded_contacts(const mjData* d);
 
-// Runs the grasp on `scene` (with the bridge and the scene's pair config, or MuJoCo's native
+// Runs the grasp on `scene` (served by graspcd with the scene's pair config, or MuJoCo's native
 // collision) and records the poses of every closing grasp step.
 Recording record_grasp(const std::string& name, const std::string& scene, bool native,
                        int max_steps);

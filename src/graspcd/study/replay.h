@@ -30,7 +30,7 @@ class Querier {
                             QueryCounters& counters) = 0;
 };
 
-// A Detector (core/separators.h) per pair, as the bridge has.
+// A Detector (core/separators.h) per pair, as a served pair has.
 std::unique_ptr<Querier> make_detector_querier(Method method, const DetectorOptions& options,
                                                QueryMode mode);
 

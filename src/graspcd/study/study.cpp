@@ -71,7 +71,7 @@ void write_trajectories(const std::filesystem::path& dir, const std::vector<Exam
   log("wrote " + std::to_string(ex.size() + 1) + " trajectories into " + dir.string());
 }
 
-// The examples' grasps, recorded once with the bridge (SAT), each with its scene and CGAL's
+// The examples' grasps, recorded once served by graspcd (SAT), each with its scene and CGAL's
 // answers at every recorded grasp step.
 struct Grasps {
   std::vector<Recording> recs;

@@ -1,19 +1,11 @@
 // `graspcd study`: the reproduction study of paper sections 9-11 and its data.
 //
-// 1. Records the grasps once: the three triangle-hand examples (mjcf/example{1,2,3}.xml) with the
-//    bridge (SAT), and the parallelepiped hand (mjcf/hand_boxes.xml) with the bridge's exact
-//    box-box path (SAT decides, MuJoCo's box-box routine makes the contacts).
-// 2. Table 1: every method replays every example's grasp steps `repeats` times (all-contacts mode,
-//    exact triangle test, the trees the bridge builds); total detection time per method (median,
-//    min, max), work counters, and the hash of its answers beside CGAL's.
-// 3. Figures 13-15: SAT, the perceptron (cap 10,000, the paper's box hand) and Neuro-SAT (switch
-//    300) replay the box hand's segments B and C against the object's boxes: time and perceptron
-//    passes per grasp step, the cumulative time saved against SAT, and Novikoff's bound on the
-//    perceptron's updates from the exact gap of each box pair.
-// 4. The sweep: knobs against error (CGAL ground truth): missed and false contacts, first-contact
-//    step error, contact position error; split into shards (--shard i/n) that merge() joins.
-// Writes JSON (the data) and CSV (the tables) into `out_dir`; report/make_report.py turns them
-// into report/out/REPORT.md and its figures.
+// 1. Records the grasps once (recording.h): the three triangle-hand examples
+//    (mjcf/example{1,2,3}.xml) served by graspcd with SAT, and the parallelepiped hand
+//    (mjcf/hand_boxes.xml) through graspcd's exact box-box path.
+// 2. Table 1 (table1.h), 3. Figures 13-15 (box_hand.h), 4. the error sweep and its shards
+//    (sweep.h), each replaying the recordings against CGAL's answers.
+// Writes JSON (the data) and CSV (the tables) into `out_dir`, from which the report is drawn.
 #pragma once
 
 #include <functional>

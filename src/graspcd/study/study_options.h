@@ -33,8 +33,8 @@ struct StudyOptions {
   bool quick = false;    // example 1, fewer methods and sweep points: the smoke test
   int repeats = 5;       // timed replays per method (medians of these)
   // Timed replays of Table 1's perceptron methods that run to the cap of 1,500 passes
-  // (perceptron, perceptron-warm, perceptron-scaled), at most `repeats`: each takes 100-1,000
-  // times SAT's time, a minute per replay of example 3, and they are most of a study's time.
+  // (perceptron, perceptron-warm, perceptron-scaled), at most `repeats`: they are most of a
+  // study's time.
   int perceptron_repeats = 2;
   int max_steps = 400;  // closing grasp steps at most
   // Replays run this many at a time, one thread each (0: one per core). Each replay's clock

@@ -1,5 +1,5 @@
 // Table 1 of the paper (section 10): every method replays every example's grasp steps `repeats`
-// times (all-contacts mode, exact triangle test, the trees the bridge builds); total detection
+// times (all-contacts mode, exact triangle test, the trees graspcd serves with); total detection
 // time per method (median, min, max), work counters, and the hash of its answers beside CGAL's.
 #pragma once
 

@@ -173,7 +173,7 @@ void write_trajectory(const std::string& path, const Recording& r, const MeshSce
   }
 
   // Per step: poses, our contacts, and MuJoCo's native ones at the same joint positions (the
-  // bridge is not installed here: record_grasp's grasp has torn it down).
+  // collision function is not installed here: record_grasp's grasp has uninstalled it).
   const mujoco::DataPtr data(mj_makeData(m));
   mjData* d = data.get();
   json steps = json::array();

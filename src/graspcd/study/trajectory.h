@@ -5,7 +5,7 @@
 //   geoms     every geom but planes: name, type (mesh, box, capsule, cylinder, sphere), mesh id,
 //             MuJoCo's size, role (segment, object or hand) and its finger segment letter
 //   steps     per closing grasp step: every listed geom's position (3) and rotation (9, row-major,
-//             MuJoCo's geom_xmat), our contacts (the recording's, with the bridge) and MuJoCo's
+//             MuJoCo's geom_xmat), graspcd's contacts (the recording's) and MuJoCo's
 //             native convex-hull contacts at the same joint positions (mj_forward without graspcd)
 //   times_ns  per method, the detection time of each grasp step (median over the timed repeats
 //             of the study's replay), when the study timed the scene
@@ -46,7 +46,7 @@ struct TrajectoryOptions {
   int max_steps = 400;
 };
 
-// `graspcd trajectory`: records the grasp of `scene` with the bridge (SAT), replays it with each
+// `graspcd trajectory`: records the grasp of `scene` served by graspcd (SAT), replays it with each
 // method for its per-step detection times (all contacts, as Table 1) and writes the trajectory to
 // `path`. A scene whose finger segments are not meshes (the box hand) gets neither times nor OBB
 // trees. Throws grasp::GraspInputError for a bad scene, std::runtime_error otherwise.

@@ -4,18 +4,18 @@
 // triangles in the same pose (exact::mesh_mesh_pairs; for box-box pairs exact::box_box_overlap).
 //
 // What is checked, precisely:
-// - The grasp runs once through the bridge (grasp/grasp.h) with the pair config's method (the
+// - The grasp runs once served by graspcd (grasp/grasp.h) with the pair config's method (the
 //   trajectory the user times). After each closing grasp step (the state after its last physics
-//   step, as the study records it), every pair of the registry the bridge attached is posed from
+//   step, as the study records it), every pair of the attached registry is posed from
 //   d->geom_xpos / d->geom_xmat (mujoco::relative_pose, geom2 in geom1's frame, geom1 the geom
 //   MuJoCo passes first: the lower type, then the lower id).
-// - Tree pairs (meshes and tessellated primitives): each method's tester queries the bridge's own
+// - Tree pairs (meshes and tessellated primitives): each method's tester queries the registry's
 //   trees, built from MuJoCo's float vertices in the geom frames, in all-contacts mode. The truth
 //   is CGAL on the same triangles (the trees' faces in face order, geom2's moved by the same pose
 //   in doubles).
 // - Box-box pairs: each tester's box test on the two geom boxes, against CGAL's exact overlap.
 // - Each tester keeps its state across the steps of the run (warm planes, caches), one per pair,
-//   as the bridge's detectors do.
+//   as the served pairs' detectors do.
 // A method that answered the same as the truth at every pair and step lets the grasp take the same
 // path whichever method drives it, so checking every method on one trajectory is the same as
 // running the grasp with each up to its first disagreement.
@@ -57,7 +57,7 @@ struct TesterSpec {
   std::function<std::unique_ptr<PairTester>(std::size_t pairs)> make;
 };
 
-// The bridge's Detector of `method` with `options`, one per pair.
+// A served pair's Detector of `method` with `options`, one per pair.
 TesterSpec detector_tester(Method method, const DetectorOptions& options);
 
 struct ValidateOptions {

@@ -1,5 +1,5 @@
 // Where graspcd finds the files it ships and the ones it uses by path, with no reference to the
-// source tree (docs/library.md, "The template scenes"):
+// source tree (docs/library.md, "Using graspcd in your MuJoCo program"):
 //  - the template scenes (mjcf/ and its meshes: `grasp --object --hand`, `validate --objects`, the
 //    study): installed as PREFIX/share/graspcd/mjcf and found from the executable's own path;
 //  - the real models of the Robotiq and Shadow templates (MuJoCo Menagerie's hands), never copied

@@ -1,6 +1,6 @@
 // The JSON envelope every graspcd document carries (docs/design.md, "The command line"):
 //
-//   "graspcd":  {"version": "0.2.0", "commit": "<git describe --always --dirty>", "dirty": false}
+//   "graspcd":  {"version": "X.Y.Z", "commit": "<git describe --always --dirty>", "dirty": false}
 //   "warnings": [{"source": "mujoco", "code": "...", "message": "...", "count": 1}, ...]
 //
 // beside the document's own keys, which it never changes. The commit is taken at build time
