@@ -15,11 +15,9 @@
 //   triangle-pair list is what validate and the study check). Trees: geom_trees.h.
 // Planes and height fields are not served (MuJoCo keeps them).
 //
-// State: everything a served pair carries from call to call (its detector's warm state, its query
-// front, its reused contacts, whether its geoms were last found one inside the other) lives in one
-// DataPairState per (mjData, pair), in one map (pair_state). What is kept per pair (ServedPair:
-// geoms, path, contact budget) and per model (the trees, the config) is immutable after
-// construction; the statistics are per registry.
+// What a served pair carries from call to call lives in one DataPairState per (mjData, pair);
+// what is kept per pair (ServedPair) and per model (the trees, the config) is immutable after
+// construction.
 //
 // Errors of the construction, each a std::runtime_error with a one-line message that starts with
 // the config's name: a pattern that matches no collidable geom, a matched collidable geom of a
@@ -40,6 +38,7 @@
 #include "graspcd/core/separators.h"
 #include "graspcd/mujoco/geom_trees.h"
 #include "graspcd/mujoco/pair_config.h"
+#include "graspcd/mujoco/scene_names.h"
 
 namespace graspcd::mujoco {
 
@@ -96,10 +95,12 @@ struct ServedPair {
 class Registry {
  public:
   // Resolves patterns and geom pairs against `m`, builds the trees. `source` names the config in
-  // error messages (e.g. its file name, or "<program>"). Throws std::runtime_error for the errors
-  // listed at the top of this file (a pattern that matches nothing, an unserved geom type, ...),
-  // std::invalid_argument for detector options out of range (core/separators.h).
-  Registry(const mjModel* m, const RegistryConfig& config, const std::string& source = "<program>");
+  // messages (e.g. its file name, or "<program>"), as `names` has it for a scene graspcd wrote
+  // (scene_names.h: the template's config, the hand's meshes). Throws std::runtime_error for the
+  // errors listed at the top of this file (a pattern that matches nothing, an unserved geom type,
+  // ...), std::invalid_argument for detector options out of range (core/separators.h).
+  Registry(const mjModel* m, const RegistryConfig& config, const std::string& source = "<program>",
+           const SceneNames& names = {});
   Registry(const Registry&) = delete;
   Registry& operator=(const Registry&) = delete;
 
@@ -133,7 +134,7 @@ class Registry {
   // closed (closedness welds MuJoCo's per-face vertices by position); a mesh with zero-area
   // faces, which its tree leaves out ("mesh N 'name': dropped K zero-area faces (MuJoCo faces
   // ...)"; MeshTree::source_face maps the rest).
-  // Each is also added to the process's sink (graspcd/core/warnings.h), which the command line
+  // Each is also added to the process's sink (graspcd/io/warnings.h), which the command line
   // prints and the JSON envelope carries.
   const std::vector<std::string>& warnings() const { return warnings_; }
 
@@ -196,8 +197,8 @@ class Registry {
   void add_pattern_pairs(const std::string& source);
   void add_geom_pairs(const std::string& source);
   void warn_served_margins(const std::string& source);
-  void choose_paths_and_build_trees(const std::string& source);
-  void warn_open_meshes(const std::string& source);
+  void choose_paths_and_build_trees(const std::string& source, const SceneNames& names);
+  void warn_open_meshes(const std::string& source, const SceneNames& names);
   void add_pair(int g1, int g2, const ManifoldOptions& manifold);
   Detector make_detector() const { return Detector(config_.method, config_.detector); }
   // Adds a warning to warnings_ and to the process's sink under `code`.
