@@ -84,7 +84,7 @@ struct RegistryConfig {
   // no more, since the pair's last exact query on the same mjData, its contacts are refreshed
   // instead of queried (their depths along their normals; a region that begins or ends to touch
   // within this drift is seen at the next exact query). Why 20 um by default: docs/design.md, "The
-  // seam with MuJoCo"; 0: every step's contacts from an exact query. At most kMaxContactReuse.
+  // MuJoCo layer"; 0: every step's contacts from an exact query. At most kMaxContactReuse.
   static constexpr double kDefaultContactReuse = 2e-5;
   double contact_reuse = kDefaultContactReuse;
   static constexpr double kMaxContactReuse = 0.001;
