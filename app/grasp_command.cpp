@@ -136,7 +136,7 @@ grasp::ObjectRunOptions object_run_options(const GraspCliOptions& options) {
 }
 
 // Its scene, written before the grasp; a bad --up is a usage error.
-void write_object_scene(const GraspCliOptions& options, grasp::ObjectRun& run) {
+void write_object(const GraspCliOptions& options, grasp::ObjectRun& run) {
   try {
     run.write(object_placement(options.placement, options.object));
   } catch (const std::invalid_argument& e) {
@@ -149,8 +149,7 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   check_usage(options, app);
   grasp::GraspOptions grasp = grasp_options(options, app);
   std::optional<grasp::ObjectRun> object;
-  if (!options.object.empty())
-    write_object_scene(options, object.emplace(object_run_options(options)));
+  if (!options.object.empty()) write_object(options, object.emplace(object_run_options(options)));
   // --judge: built on the first closing step's model, with the object and support bodies of the
   // drive config the grasp reads (--config, else SCENE.pairs.json: for --decomposed the original
   // scene's, for --object the written template's); the grasp has already checked that config.

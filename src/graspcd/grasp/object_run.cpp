@@ -125,7 +125,7 @@ GraspResult ObjectRun::grasp(GraspOptions options) {
   try {
     result = run_grasp(scene(), options);
   } catch (const io::InputError&) {
-    keep();
+    keep();  // a refused scene is kept too, so that it can be edited
     throw;
   }
   keep();
