@@ -67,7 +67,8 @@ DecompositionFiles write_decomposition_files(const std::vector<ConvexPiece>& pie
   }
   const std::string fragment = (folder / files.fragment).string();
   if (doc.SaveFile(fragment.c_str()) != tinyxml2::XML_SUCCESS) {
-    throw std::runtime_error((shown / files.fragment).string() + ": cannot write the MJCF fragment");
+    throw std::runtime_error((shown / files.fragment).string() +
+                             ": cannot write the MJCF fragment");
   }
   return files;
 }
