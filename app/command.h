@@ -37,6 +37,9 @@ Command add_validate_command(CLI::App& parent);
 Command add_trajectory_command(CLI::App& parent);
 Command add_decompose_command(CLI::App& parent);
 
+// The text of `graspcd grasp --help` after the options (grasp_help.cpp).
+extern const char* const kGraspHelp;
+
 // CLI11 validators of a numeric option: a finite number > 0 (positive_number) or >= 0
 // (non_negative_number). CLI11's PositiveNumber passes nan and says "Value 0 not in range 0.000000
 // to 1797693134862...": these say "Value 0 is not > 0", "Value nan is not a finite number".

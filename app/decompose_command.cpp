@@ -8,20 +8,15 @@
 // collapse), each original face joins the cluster of its nearest decimated face, and the pieces
 // are the hulls of the original vertices.
 #include <chrono>
-#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <memory>
-#include <optional>
 #include <sstream>
 #include <string>
 
 #include "command.h"
-#include "graspcd/core/warnings.h"
 #include "graspcd/decompose/mesh_decomposition.h"
 #include "graspcd/decompose/vhacd.h"
-#include "graspcd/io/output_files.h"
-#include "graspcd/io/text_input.h"
 #include "object_placement.h"
 #include "progress.h"
 
@@ -29,84 +24,11 @@ namespace graspcd::cli {
 
 namespace {
 
-namespace fs = std::filesystem;
-
 struct DecomposeOptions {
   decompose::DecomposeOptions run;
   std::string engine = "hacd";
   bool json = false;
 };
-
-// The text output (the command's help, "Text output").
-void print_text(const decompose::Manifest& m, const decompose::DecomposeOptions& o) {
-  std::ostringstream out;
-  out << std::setprecision(4);
-  out << "engine " << m.engine << "\n";
-  out << "pieces " << m.piece_count << " (at most " << o.pieces << ")\n";
-  if (m.simplify) {
-    out << "simplify_faces " << m.simplify->faces_before;
-    if (m.simplify->decimated) {
-      out << " -> " << m.simplify->faces_after << " (at most " << o.simplify << ") in "
-          << m.simplify->seconds << " s\n";
-    } else {
-      out << " (at most " << o.simplify << ": not decimated)\n";
-    }
-  }
-  out << "seconds " << m.seconds << "\n";
-  out << "hausdorff_m " << m.hausdorff.distance << " +- " << m.hausdorff.error_bound << "\n";
-  if (m.volume) {
-    out << "volume_added_m3 " << m.volume->added << " (" << 100 * m.volume->added_fraction
-        << "% of " << m.volume->original << ")\n";
-  } else {
-    out << "volume_added_m3 - (open mesh)\n";
-  }
-  out << "fragment " << (std::filesystem::path(o.out) / m.fragment).string() << "\n";
-  std::cout << out.str();
-}
-
-// --out DIR: written whole or not at all. The pieces go to a private folder beside DIR
-// (.NAME.graspcd-XXXXXX, removed on errors and on INT, TERM and HUP), renamed to DIR at the end;
-// a DIR that holds an earlier decomposition (decomposition.json) or nothing is replaced whole, so
-// no stale piece stays; a DIR that holds anything else is refused before the work.
-struct OutputFolder {
-  fs::path target;
-  std::optional<io::RemoveIfEmpty> created_parent;
-  io::CleanupGuard work;
-};
-
-void prepare_out(const std::string& out, OutputFolder& f) {
-  f.target = fs::absolute(out).lexically_normal();
-  if (f.target.filename().empty()) f.target = f.target.parent_path();
-  std::error_code ec;
-  if (fs::exists(f.target, ec)) {
-    if (!fs::is_directory(f.target, ec)) throw io::InputError(out, 0, "not a folder");
-    if (!fs::is_empty(f.target, ec) && !fs::exists(f.target / "decomposition.json", ec)) {
-      throw io::InputError(out, 0,
-                           "holds files graspcd decompose did not write (no decomposition.json): "
-                           "give a new or empty folder");
-    }
-  }
-  const fs::path parent = f.target.parent_path();
-  if (io::prepare_output_folder(parent.string())) f.created_parent.emplace(parent);
-  f.work = io::make_private_folder(parent, "." + f.target.filename().string() + ".graspcd", out);
-}
-
-// The written folder renamed to DIR (an earlier one moved aside and removed).
-void commit_out(OutputFolder& f, const std::string& out) {
-  std::error_code ec;
-  if (fs::exists(f.target, ec)) {
-    const io::CleanupGuard old = io::make_private_folder(
-        f.target.parent_path(), "." + f.target.filename().string() + ".graspcd-old", out);
-    fs::rename(f.target, old.path(), ec);
-    if (ec) throw io::InputError(out, 0, "cannot replace the folder: " + ec.message());
-    fs::rename(f.work.path(), f.target, ec);
-    if (ec) throw io::InputError(out, 0, "cannot write the folder: " + ec.message());
-  } else {
-    fs::rename(f.work.path(), f.target, ec);
-    if (ec) throw io::InputError(out, 0, "cannot write the folder: " + ec.message());
-  }
-  f.work.release();
-}
 
 void run_decompose(DecomposeOptions& o, const CLI::App& app) {
   const bool vhacd = o.engine == "vhacd";
@@ -120,32 +42,21 @@ void run_decompose(DecomposeOptions& o, const CLI::App& app) {
     }
   }
   const auto started = std::chrono::steady_clock::now();
-  OutputFolder folder;
-  prepare_out(o.run.out, folder);
-  decompose::DecomposeOptions run_options = o.run;
-  run_options.out = folder.work.path().string();
-  const std::string work = run_options.out;
   Progress progress("decompose");
   progress.update(o.run.mesh + ": at most " + std::to_string(o.run.pieces) + " convex pieces (" +
                   (o.run.engine == decompose::Engine::kVhacd ? "V-HACD" : "HACD") +
                   "), then the Hausdorff distance (CGAL) ...");
   const decompose::DecomposeRun run = [&] {
     try {
-      return decompose::decompose_mesh(run_options);
+      return decompose::decompose_mesh(o.run);
     } catch (const decompose::BoundError& e) {
       throw UsageError(std::string("--hausdorff-bound: ") + e.what());
     } catch (const decompose::VhacdUnavailable& e) {
       throw UsageError(std::string("decompose: the V-HACD engine needs node and the vhacd-js "
                                    "package (") +
                        e.what() + "): run ./run build");
-    } catch (const io::InputError& e) {
-      // A message names the user's folder, never the private one.
-      throw io::InputError(io::replace_all(e.file(), work, o.run.out), e.line(),
-                           io::replace_all(e.message(), work, o.run.out));
     }
   }();
-  commit_out(folder, o.run.out);
-  warnings().edit([&](Warning& w) { w.message = io::replace_all(w.message, work, o.run.out); });
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::ostringstream done;
@@ -156,7 +67,7 @@ void run_decompose(DecomposeOptions& o, const CLI::App& app) {
     std::cout << run.document << '\n';
     return;
   }
-  print_text(run.manifest, o.run);
+  std::cout << decompose::decomposition_text(run.manifest, o.run);
 }
 
 }  // namespace

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "command.h"
-#include "graspcd/core/warnings.h"
 #include "graspcd/io/output_files.h"
 #include "graspcd/io/text_input.h"
+#include "graspcd/io/warnings.h"
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/version.h"
 #include "graspcd/version/provenance.h"
@@ -39,7 +39,7 @@ std::string version_text() {
          "\nflags: " + trimmed(GRASPCD_BUILD_FLAGS) + "\ncommit: " + graspcd::provenance().commit;
 }
 
-// The run's warnings (graspcd/core/warnings.h), one line each on stderr after the answers. The
+// The run's warnings (graspcd/io/warnings.h), one line each on stderr after the answers. The
 // JSON outputs carry the same list in their envelope.
 void print_warnings() {
   std::cout.flush();
@@ -51,11 +51,7 @@ void print_warnings() {
 // Prints one line on stderr, after whatever answers are already on stdout.
 int report_error(const std::string& message) {
   std::cout.flush();
-  std::string line = message;
-  for (char& c : line) {
-    if (c == '\n' || c == '\r') c = ' ';
-  }
-  std::cerr << line << '\n';
+  std::cerr << graspcd::io::one_line(message) << '\n';
   std::cerr.flush();
   return kExitError;
 }
@@ -115,6 +111,47 @@ int check_stdout(const StdoutBuffer& out, int exit_code) {
   return kExitError;
 }
 
+// A parse error: --help and --version print (exit 0); every usage error is one line (exit 2).
+int parse_error(CLI::App& app, const CLI::ParseError& e, int argc, char** argv,
+                const StdoutBuffer& out) {
+  if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
+    return check_stdout(out, app.exit(e));
+  }
+  // A first word that is no option and no subcommand: a misspelled subcommand.
+  if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    return report_error(std::string("graspcd: unknown subcommand '") + argv[1] +
+                        "' (expected one of: " + names + ")");
+  }
+  return report_error(std::string("graspcd: ") + e.what() + " (run with --help for usage)");
+}
+
+// Runs the subcommand given, then prints the warnings; every error is one line, exit code 2.
+int run(const std::vector<graspcd::cli::Command>& commands, const StdoutBuffer& out) {
+  try {
+    int exit_code = 0;
+    for (const graspcd::cli::Command& command : commands) {
+      if (!command.app->parsed()) continue;
+      command.run();
+      if (command.exit_code) exit_code = *command.exit_code;
+    }
+    print_warnings();
+    return check_stdout(out, exit_code);
+  } catch (const graspcd::io::InputError& e) {
+    return report_error(e.what());
+  } catch (const graspcd::cli::UsageError& e) {
+    return report_error(std::string("graspcd: ") + e.what());
+  } catch (const std::bad_alloc&) {
+    // The text inputs name their file (text_input.h); elsewhere no file is to blame.
+    return report_error("graspcd: error: out of memory");
+  } catch (const std::exception& e) {
+    return report_error(std::string("graspcd: error: ") + e.what());
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -143,7 +180,6 @@ int main(int argc, char** argv) {
       graspcd::cli::add_validate_command(app),  graspcd::cli::add_trajectory_command(app),
       graspcd::cli::add_decompose_command(app),
   };
-
   // --version prints and exits inside CLI11's parse, before the words after it are seen: a word
   // after it is refused here rather than ignored.
   if (argc > 2 && std::string(argv[1]) == "--version") {
@@ -153,39 +189,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // --help and --version: CLI11 prints them, exit 0. Every usage error: one line, exit 2.
-    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
-      return check_stdout(stdout_buffer, app.exit(e));
-    }
-    // A first word that is no option and no subcommand: a misspelled subcommand.
-    if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
-      std::string names;
-      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-        names += (names.empty() ? "" : ", ") + sub->get_name();
-      }
-      return report_error(std::string("graspcd: unknown subcommand '") + argv[1] +
-                          "' (expected one of: " + names + ")");
-    }
-    return report_error(std::string("graspcd: ") + e.what() + " (run with --help for usage)");
+    return parse_error(app, e, argc, argv, stdout_buffer);
   }
-
-  try {
-    int exit_code = 0;
-    for (const graspcd::cli::Command& command : commands) {
-      if (!command.app->parsed()) continue;
-      command.run();
-      if (command.exit_code) exit_code = *command.exit_code;
-    }
-    print_warnings();
-    return check_stdout(stdout_buffer, exit_code);
-  } catch (const graspcd::io::InputError& e) {
-    return report_error(e.what());
-  } catch (const graspcd::cli::UsageError& e) {
-    return report_error(std::string("graspcd: ") + e.what());
-  } catch (const std::bad_alloc&) {
-    // The text inputs name their file (text_input.h); elsewhere no file is to blame.
-    return report_error("graspcd: error: out of memory");
-  } catch (const std::exception& e) {
-    return report_error(std::string("graspcd: error: ") + e.what());
-  }
+  return run(commands, stdout_buffer);
 }

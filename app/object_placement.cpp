@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 
 #include "command.h"
-#include "hand_template.h"
 
 namespace graspcd::cli {
 
@@ -97,7 +97,6 @@ grasp::ObjectPlacement object_placement(const PlacementOptions& options, const s
   placement.file = file;
   placement.scale = options.scale;
   placement.fit = options.fit;
-  placement.fit_fraction = fit_fraction(options.hand);
   placement.up = options.up;
   placement.yaw_degrees = options.yaw;
   if (!options.pose.empty()) {
@@ -119,6 +118,16 @@ grasp::ObjectPlacement object_placement(const PlacementOptions& options, const s
     placement.pose = q;
   }
   return placement;
+}
+
+grasp::HandTemplate hand_template(const std::string& hand, const std::string& command) {
+  try {
+    return grasp::hand_template(hand);
+  } catch (const grasp::HandModelsNotFound& e) {
+    throw UsageError(e.what());
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(command + ": " + e.what());
+  }
 }
 
 }  // namespace graspcd::cli

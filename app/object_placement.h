@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "graspcd/grasp/hand_templates.h"
 #include "graspcd/grasp/object_scene.h"
 
 namespace graspcd::cli {
@@ -50,5 +51,9 @@ void check_placement_options(const CLI::App& app, const std::string& command,
 // The placement of `file` (empty for an object set, whose files are found later); --pose
 // normalised. Throws UsageError "--pose: not a finite unit quaternion ..." when it is all zeros.
 grasp::ObjectPlacement object_placement(const PlacementOptions& options, const std::string& file);
+
+// The template of --hand (grasp/hand_templates.h). Throws UsageError "COMMAND: --hand must be
+// ..." for a name that is no template, and the library's words when a real hand is not found.
+grasp::HandTemplate hand_template(const std::string& hand, const std::string& command);
 
 }  // namespace graspcd::cli

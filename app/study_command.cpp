@@ -6,8 +6,6 @@
 #include <vector>
 
 #include "command.h"
-#include "graspcd/grasp/grasp.h"
-#include "graspcd/io/text_input.h"
 #include "graspcd/peer/fcl_querier.h"
 #include "graspcd/study/study.h"
 #include "progress.h"
@@ -48,11 +46,7 @@ void run_study_command(StudyCliOptions& o, const CLI::App& app) {
   if (!o.study.table && !o.study.sweep) throw UsageError("--no-table and --no-sweep leave nothing");
   // FCL's OBB and RSS trees are Table 1's peer rows.
   o.study.peers = peer::fcl_table_methods();
-  try {
-    study::run_study(o.study, log);
-  } catch (const grasp::GraspInputError& e) {
-    throw io::InputError(e.file(), e.line(), e.message());
-  }
+  study::run_study(o.study, log);
   progress.done("wrote " + o.study.out_dir);
 }
 

@@ -5,15 +5,11 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "command.h"
-#include "graspcd/grasp/grasp.h"
 #include "graspcd/io/output_files.h"
-#include "graspcd/io/text_input.h"
-#include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/study/trajectory.h"
 #include "progress.h"
 
@@ -42,16 +38,8 @@ void run_trajectory_command(TrajectoryCliOptions& o) {
   Progress progress("trajectory");
   progress.update(o.scene + ": recording the grasp, then replaying it with " +
                   std::to_string(o.options.methods.size()) + " method(s) ...");
-  try {
-    study::export_grasp(o.scene, out.write_path(), o.options);
-  } catch (const grasp::GraspInputError& e) {
-    throw io::InputError(e.file(), e.line(), e.message());
-  } catch (const mujoco::MujocoError& e) {
-    throw io::InputError(o.scene, 0, e.what());
-  } catch (const std::runtime_error& e) {
-    if (std::string(e.what()).rfind(out.write_path() + ":", 0) != 0) throw;
-    throw io::InputError(o.out, 0, "cannot write");
-  }
+  o.options.out_name = o.out;
+  study::export_grasp(o.scene, out.write_path(), o.options);
   out.commit();
   std::ostringstream done;
   done << "wrote " << o.out << " in " << std::setprecision(3)

@@ -8,32 +8,24 @@
 // object was refused, else 0 (object_set_exit_code()).
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "command.h"
-#include "graspcd/core/warnings.h"
-#include "graspcd/exact/exact.h"
-#include "graspcd/grasp/grasp.h"
 #include "graspcd/io/output_files.h"
 #include "graspcd/io/text_input.h"
-#include "graspcd/mujoco/input_error.h"
+#include "graspcd/io/warnings.h"
 #include "graspcd/mujoco/model_loading.h"
-#include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/registry.h"
 #include "graspcd/study/object_set.h"
 #include "graspcd/study/study.h"
 #include "graspcd/study/validate.h"
+#include "graspcd/study/validate_output.h"
 #include "graspcd/version/envelope.h"
-#include "hand_template.h"
 #include "method.h"
 #include "object_placement.h"
 #include "progress.h"
@@ -67,11 +59,7 @@ constexpr int kExitBadInput = 2;
 // The scene is named before its config: a config that cannot be read is reported only when the
 // scene itself loads (a file that is no scene is refused as such, whatever its config).
 [[noreturn]] void config_refused(const std::string& scene, const io::InputError& error) {
-  try {
-    mujoco::load_model(scene);
-  } catch (const mujoco::InputError& e) {
-    throw io::InputError(e.file(), e.line(), e.message());
-  }
+  mujoco::load_model(scene);
   throw error;
 }
 
@@ -90,9 +78,8 @@ std::vector<study::TesterSpec> testers_of(ValidateCliOptions& o, const CLI::App&
   mujoco::RegistryConfig config;
   try {
     config = mujoco::load_registry_config(config_path);
-  } catch (const std::runtime_error& e) {
-    const grasp::GraspInputError error = grasp::config_error(config_path, e);
-    config_refused(scene, io::InputError(error.file(), error.line(), error.message()));
+  } catch (const io::InputError& e) {
+    config_refused(scene, e);
   }
   DetectorOptions detector = config.detector;
   if (app.count("--cap") > 0) detector.cap = o.method.cap;
@@ -115,208 +102,6 @@ std::vector<study::TesterSpec> testers_of(ValidateCliOptions& o, const CLI::App&
   return specs;
 }
 
-std::string first_text(const study::PairRow& r) {
-  return r.disagreed ? std::to_string(r.first.step) : "-";
-}
-
-void print_text(const study::ValidationReport& report) {
-  std::ostringstream out;
-  out << "# graspcd validate " << report.scene << " (pairs " << report.config
-      << "): " << report.steps << " closing grasp steps of the grasp driven by "
-      << report.grasp_method << (report.gripped ? " (gripped)" : " (not gripped)")
-      << "; truth: CGAL " << exact::cgal_version()
-      << " on the same triangles or boxes in the same poses\n";
-  if (report.decomposed.pieces > 0) {
-    out << "# decomposed: the grasp ran natively with " << report.decomposed.replaced_geoms
-        << " geom(s) of " << report.decomposed.source << " colliding as "
-        << report.decomposed.pieces << " convex pieces each (" << report.decomposed_dir
-        << "); the pairs are checked on the true meshes\n";
-  }
-  std::size_t width = 4;
-  for (const study::MethodTable& t : report.methods) {
-    for (const study::PairRow& r : t.rows) width = std::max(width, r.pair.size());
-  }
-  out << std::left << std::setw(17) << "method" << std::setw(static_cast<int>(width) + 2) << "pair"
-      << std::setw(7) << "path" << std::right << std::setw(6) << "steps" << std::setw(7) << "agree"
-      << std::setw(7) << "truth" << std::setw(8) << "missed" << std::setw(7) << "false"
-      << std::setw(11) << "tri_missed" << std::setw(10) << "tri_false" << std::setw(20)
-      << "first_disagreement" << '\n';
-  for (const study::MethodTable& t : report.methods) {
-    for (const study::PairRow& r : t.rows) {
-      out << std::left << std::setw(17) << t.method << std::setw(static_cast<int>(width) + 2)
-          << r.pair << std::setw(7) << (r.box_box ? "boxes" : "trees") << std::right << std::setw(6)
-          << r.steps << std::setw(7) << r.agree << std::setw(7) << r.truth_hits << std::setw(8)
-          << r.missed << std::setw(7) << r.false_contacts << std::setw(11) << r.missed_tri_pairs
-          << std::setw(10) << r.false_tri_pairs << std::setw(20) << first_text(r) << '\n';
-    }
-  }
-  for (const study::MethodTable& t : report.methods) {
-    int checks = 0, agree = 0, missed = 0, false_contacts = 0;
-    for (const study::PairRow& r : t.rows) {
-      checks += r.steps;
-      agree += r.agree;
-      missed += r.missed;
-      false_contacts += r.false_contacts;
-    }
-    out << "# " << t.method << ": " << checks << " checks, " << agree << " agree, " << missed
-        << " missed, " << false_contacts << " false; " << std::fixed << std::setprecision(3)
-        << t.seconds << " s of queries\n";
-    for (const study::PairRow& r : t.rows) {
-      if (!r.disagreed) continue;
-      out << "# first disagreement of " << t.method << " on " << r.pair << ": step " << r.first.step
-          << ", CGAL " << (r.first.truth ? "intersect" : "disjoint");
-      if (!r.box_box) out << " (" << r.first.truth_pairs << " triangle pairs)";
-      out << ", " << t.method << ' ' << (r.first.answer ? "intersect" : "disjoint");
-      if (!r.box_box) out << " (" << r.first.answer_pairs << " triangle pairs)";
-      out << '\n';
-      if (!r.first.command.empty()) {
-        out << "#   reproduce: " << r.first.command << "   (add --exact for CGAL's answer)\n";
-      } else {
-        out << "#   add --out DIR to write the two meshes and the command that reproduces it\n";
-      }
-    }
-  }
-  out << "# contacts: " << report.steps_with_contact << " of " << report.steps
-      << " grasp steps had a contact to check\n";
-  out << "# result: " << (report.missed_any() ? "MISSED COLLISIONS" : "no missed collision")
-      << (report.steps_with_contact == 0 ? " (nothing touched: nothing was checked)" : "")
-      << "; CGAL " << std::fixed << std::setprecision(2) << report.exact_seconds
-      << " s, the methods " << report.tester_seconds << " s\n";
-  if (report.nonfinite_skips > 0) {
-    out << "# non-finite skips: " << report.nonfinite_skips
-        << " pair checks on a placement with NaN, inf or a number beyond 1e10 (not checked)\n";
-  }
-  std::cout << out.str();
-}
-
-void print_json(const study::ValidationReport& report) {
-  nlohmann::json methods = nlohmann::json::array();
-  for (const study::MethodTable& t : report.methods) {
-    nlohmann::json rows = nlohmann::json::array();
-    for (const study::PairRow& r : t.rows) {
-      nlohmann::json row = {{"pair", r.pair},
-                            {"geom1", r.geom1},
-                            {"geom2", r.geom2},
-                            {"path", r.box_box ? "boxes" : "trees"},
-                            {"steps", r.steps},
-                            {"agree", r.agree},
-                            {"truth_hits", r.truth_hits},
-                            {"missed", r.missed},
-                            {"false_contacts", r.false_contacts},
-                            {"pair_mismatch", r.pair_mismatch},
-                            {"missed_tri_pairs", r.missed_tri_pairs},
-                            {"false_tri_pairs", r.false_tri_pairs},
-                            {"first_disagreement", nullptr}};
-      if (r.disagreed) {
-        row["first_disagreement"] = {{"step", r.first.step},
-                                     {"truth", r.first.truth},
-                                     {"answer", r.first.answer},
-                                     {"truth_pairs", r.first.truth_pairs},
-                                     {"answer_pairs", r.first.answer_pairs},
-                                     {"files", r.first.files},
-                                     {"command", r.first.command}};
-      }
-      rows.push_back(row);
-    }
-    methods.push_back({{"method", t.method},
-                       {"missed_any", t.missed_any()},
-                       {"seconds", t.seconds},
-                       {"pairs", rows}});
-  }
-  nlohmann::json doc = {{"scene", report.scene},
-                        {"config", report.config},
-                        {"grasp_method", report.grasp_method},
-                        {"steps", report.steps},
-                        {"steps_with_contact", report.steps_with_contact},
-                        {"gripped", report.gripped},
-                        {"cgal", exact::cgal_version()},
-                        {"exact_seconds", report.exact_seconds},
-                        {"tester_seconds", report.tester_seconds},
-                        {"nonfinite_skips", report.nonfinite_skips},
-                        {"missed_any", report.missed_any()},
-                        {"methods", methods},
-                        {"decomposed", nullptr}};
-  if (report.decomposed.pieces > 0) {
-    doc["decomposed"] = {{"dir", report.decomposed_dir},
-                         {"source", report.decomposed.source},
-                         {"pieces", report.decomposed.pieces},
-                         {"geoms", report.decomposed.replaced_geoms}};
-  }
-  add_envelope(doc);
-  std::cout << doc.dump(2) << '\n';
-}
-
-// An object set's verdict column: held, or gripped/not gripped with the reason, or refused.
-std::string verdict_text(const nlohmann::json& row) {
-  if (row["status"] != "checked") return "refused";
-  if (row["held"].get<bool>()) return "held";
-  const std::string reason = row["reason"].is_string() ? row["reason"].get<std::string>() : "";
-  return std::string(row["gripped"].get<bool>() ? "gripped, not held" : "not gripped") +
-         (reason.empty() ? "" : ": " + reason);
-}
-
-// The object set's table: a header, one row per object, the refusals, the result.
-void print_object_set_text(const nlohmann::json& doc) {
-  std::ostringstream out;
-  const nlohmann::json& settings = doc["settings"];
-  const nlohmann::json& rows = doc["rows"];
-  out << "# graspcd validate --objects " << doc["objects_dir"].get<std::string>() << ": "
-      << rows.size() << " of " << doc["objects"].size() << " objects";
-  if (doc["shard"]["count"].get<int>() > 1) {
-    out << " (shard " << doc["shard"]["index"].get<int>() << " of "
-        << doc["shard"]["count"].get<int>() << ")";
-  }
-  out << " in the " << doc["hand"].get<std::string>() << " template, "
-      << (settings["fit"].get<bool>() ? "fitted" : "at the given scale") << "; truth: CGAL "
-      << exact::cgal_version() << '\n';
-  std::size_t width = 6;
-  for (const nlohmann::json& r : rows)
-    width = std::max(width, r["object"].get<std::string>().size());
-  out << std::left << std::setw(static_cast<int>(width) + 2) << "object" << std::right
-      << std::setw(9) << "scale" << std::setw(7) << "steps" << std::setw(9) << "contact"
-      << std::setw(7) << "cgal";
-  for (const nlohmann::json& m : settings["methods"]) {
-    out << std::setw(22) << m.get<std::string>() + " missed/false";
-  }
-  out << "  verdict\n";
-  for (const nlohmann::json& r : rows) {
-    out << std::left << std::setw(static_cast<int>(width) + 2) << r["object"].get<std::string>()
-        << std::right;
-    if (r["status"] == "checked") {
-      std::ostringstream scale;
-      scale << std::setprecision(4) << r["scale"].get<double>();
-      out << std::setw(9) << scale.str() << std::setw(7) << r["steps"].get<int>() << std::setw(9)
-          << r["steps_with_contact"].get<int>() << std::setw(7) << r["cgal_hits"].get<int>();
-      for (const nlohmann::json& m : r["methods"]) {
-        out << std::setw(22)
-            << std::to_string(m["missed"].get<int>()) + "/" +
-                   std::to_string(m["false_contacts"].get<int>());
-      }
-    } else {
-      out << std::setw(9) << "-" << std::setw(7) << "-" << std::setw(9) << "-" << std::setw(7)
-          << "-";
-      for (std::size_t k = 0; k < settings["methods"].size(); ++k) out << std::setw(22) << "-";
-    }
-    out << "  " << verdict_text(r) << '\n';
-  }
-  int refused = 0;
-  for (const nlohmann::json& r : rows) {
-    if (r["status"] == "checked") continue;
-    ++refused;
-    out << "# refused: " << r["error"].get<std::string>() << '\n';
-  }
-  const std::size_t checked = rows.size() - static_cast<std::size_t>(refused);
-  const bool missed = doc["missed_any"].get<bool>(), false_any = doc["false_any"].get<bool>();
-  out << "# result: "
-      << (missed && false_any ? "MISSED AND FALSE COLLISIONS"
-          : missed            ? "MISSED COLLISIONS"
-          : false_any         ? "FALSE COLLISIONS"
-                              : "no missed or false collision")
-      << "; " << checked << (checked == 1 ? " object" : " objects") << " checked, " << refused
-      << " refused\n";
-  std::cout << out.str();
-}
-
 // An object set's exit code: a method that missed a collision or gave a false one on some object
 // is the worst finding (1; on the template hands' triangle pairs every method answers exactly,
 // so a false collision is a defect too), then an object refused (2, bad input), else 0. Every
@@ -326,27 +111,13 @@ int object_set_exit_code(const nlohmann::json& doc) {
   return doc["refused"].get<int>() > 0 ? kExitBadInput : 0;
 }
 
-void write_json_file(const std::filesystem::path& path, nlohmann::json doc) {
-  std::error_code ec;
-  std::filesystem::create_directories(path.parent_path(), ec);
-  if (ec) {
-    throw io::InputError(path.parent_path().string(), 0,
-                         "cannot create the output folder: " + ec.message());
-  }
-  add_envelope(doc);
-  std::ofstream out(path);
-  out << doc.dump(1) << '\n';
-  out.flush();
-  if (!out) throw io::InputError(path.string(), 0, "cannot write the file");
-}
-
 void print_object_set(const nlohmann::json& doc, bool json) {
   if (json) {
     nlohmann::json with_envelope = doc;
     add_envelope(with_envelope);
     std::cout << with_envelope.dump(2) << '\n';
   } else {
-    print_object_set_text(doc);
+    std::cout << study::object_set_text(doc);
   }
 }
 
@@ -359,14 +130,10 @@ int run_object_set(ValidateCliOptions& o, const CLI::App& app) {
     throw UsageError("validate: --up must be one of x, y, z, -x, -y, -z (not '" + o.placement.up +
                      "')");
   }
-  const HandTemplate hand = hand_template(o.placement.hand, "validate");
-  const std::vector<study::TesterSpec> testers = testers_of(o, app, hand.scene);
   study::ObjectSetOptions options;
+  options.hand = hand_template(o.placement.hand, "validate");
+  const std::vector<study::TesterSpec> testers = testers_of(o, app, options.hand.scene);
   options.dir = o.objects;
-  options.hand = o.placement.hand;
-  options.template_path = hand.scene;
-  options.default_fit = hand.fit;
-  options.template_moved = hand.moved;
   options.placement = object_placement(o.placement, "");
   options.max_steps = o.steps;
   options.out_dir = o.out_dir;
@@ -385,21 +152,7 @@ int run_object_set(ValidateCliOptions& o, const CLI::App& app) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("validate: ") + e.what());
   }
-  // The objects' temporary scenes are gone: their pair configs are the template's.
-  const std::string template_pairs =
-      std::filesystem::path(hand.scene).replace_extension(".pairs.json").string();
-  const std::regex temporary_pairs(R"re(\S*/graspcd-object-[A-Za-z0-9]{6}/[^/ ]*\.pairs\.json)re");
-  warnings().edit([&](Warning& w) {
-    w.message = std::regex_replace(w.message, temporary_pairs, template_pairs);
-  });
-  name_user_files({}, o.placement.hand);
-  if (!o.out_dir.empty()) {
-    const study::Shard shard = options.shard.value_or(study::Shard{});
-    const std::string name = shard.count > 1 ? "objects.shard-" + std::to_string(shard.index) +
-                                                   "-of-" + std::to_string(shard.count) + ".json"
-                                             : "objects.json";
-    write_json_file(std::filesystem::path(o.out_dir) / name, doc);
-  }
+  if (!o.out_dir.empty()) study::write_object_set(o.out_dir, doc);
   progress.done("checked the objects of " + o.objects);
   print_object_set(doc, o.json);
   return object_set_exit_code(doc);
@@ -408,7 +161,7 @@ int run_object_set(ValidateCliOptions& o, const CLI::App& app) {
 // --merge FILE...: the shards joined, printed and, with --out, written as OUT/objects.json.
 int run_object_merge(ValidateCliOptions& o) {
   const nlohmann::json doc = study::merge_object_shards(o.merge);
-  if (!o.out_dir.empty()) write_json_file(std::filesystem::path(o.out_dir) / "objects.json", doc);
+  if (!o.out_dir.empty()) study::write_object_set(o.out_dir, doc);
   print_object_set(doc, o.json);
   return object_set_exit_code(doc);
 }
@@ -438,14 +191,7 @@ int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
     checked = step;
     progress.update(o.scene + ": grasp step " + std::to_string(step) + " checked");
   };
-  study::ValidationReport report;
-  try {
-    report = study::validate_scene(o.scene, testers, options);
-  } catch (const grasp::GraspInputError& e) {
-    throw io::InputError(e.file(), e.line(), e.message());
-  } catch (const mujoco::MujocoError& e) {
-    throw io::InputError(o.scene, 0, e.what());
-  }
+  const study::ValidationReport report = study::validate_scene(o.scene, testers, options);
   progress.done("checked " + o.scene + ": " + std::to_string(checked) + " grasp steps");
   if (report.steps_with_contact == 0) {
     warnings().add("validate_no_contact",
@@ -455,9 +201,11 @@ int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
                    "scene");
   }
   if (o.json) {
-    print_json(report);
+    nlohmann::json doc = study::validation_json(report);
+    add_envelope(doc);
+    std::cout << doc.dump(2) << '\n';
   } else {
-    print_text(report);
+    std::cout << study::validation_text(report);
   }
   return report.missed_any() ? kExitMissed : 0;
 }

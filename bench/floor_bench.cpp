@@ -284,7 +284,7 @@ void grasp(benchmark::State& state, const std::string& scene, const std::string&
     } else {
       try {
         r = graspcd::grasp::run_grasp(kMjcf + "/" + scene, options);
-      } catch (const graspcd::grasp::GraspInputError& e) {
+      } catch (const graspcd::io::InputError& e) {
         // Natively, a concave scene whose start MuJoCo's convex hulls cannot represent
         // (grasp.h): no native grasp to compare with, which is no failure of this benchmark.
         // Served, the scene ran when it was recorded: a failure.

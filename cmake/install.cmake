@@ -34,6 +34,9 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/graspcd/core ${PROJECT_SOURCE_DIR}/s
                   ${PROJECT_SOURCE_DIR}/src/graspcd/mujoco
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/graspcd
         FILES_MATCHING PATTERN "*.h")
+# Headers that moved keep their installed path, forwarding to the new one (src/compat/).
+install(FILES ${PROJECT_SOURCE_DIR}/src/compat/core/warnings.h
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/graspcd/core)
 install(EXPORT graspcdTargets NAMESPACE graspcd:: DESTINATION ${GRASPCD_INSTALL_CMAKEDIR})
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/graspcdConfig.cmake.in

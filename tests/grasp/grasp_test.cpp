@@ -160,7 +160,7 @@ TEST(GraspErrors, MissingSceneNamesTheFile) {
   try {
     run_grasp(kMjcf + "/no_such_scene.xml");
     FAIL() << "no exception";
-  } catch (const GraspInputError& e) {
+  } catch (const io::InputError& e) {
     const std::string message = e.what();
     EXPECT_EQ(message.rfind(kMjcf + "/no_such_scene.xml: ", 0), 0u) << message;
   }
@@ -174,7 +174,7 @@ TEST(GraspErrors, BadMjcfGivesMujocosMessageOnOneLineAfterTheFile) {
   try {
     run_grasp(file);
     FAIL() << "no exception";
-  } catch (const GraspInputError& e) {
+  } catch (const io::InputError& e) {
     const std::string message = e.what();
     EXPECT_EQ(message.rfind(file + ": ", 0), 0u) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
@@ -189,7 +189,7 @@ TEST(GraspErrors, MissingConfigNamesTheConfig) {
   try {
     run_grasp(scene("example1"), options);
     FAIL() << "no exception";
-  } catch (const GraspInputError& e) {
+  } catch (const io::InputError& e) {
     const std::string message = e.what();
     EXPECT_EQ(message.rfind(options.config_path + ": ", 0), 0u) << message;
   }
@@ -212,7 +212,7 @@ TEST(GraspErrors, NonFiniteStateStopsTheGrasp) {
     try {
       run_grasp(scene("example2"), options);
       FAIL() << "no exception";
-    } catch (const GraspInputError&) {
+    } catch (const io::InputError&) {
       FAIL() << "not an input error";
     } catch (const std::runtime_error& e) {
       const std::string message = e.what();
@@ -231,12 +231,6 @@ TEST(GraspErrors, FiniteGraspsSkipNothing) {
   EXPECT_EQ(r.nonfinite_skips, 0u);
   for (const GraspStepRecord& s : r.steps) EXPECT_EQ(s.nonfinite_skips, 0u);
   EXPECT_TRUE(r.warnings.empty());
-}
-
-TEST(GraspErrors, JoinLinesMakesOneLine) {
-  EXPECT_EQ(mujoco::join_lines("XML Error: bad\nElement 'x', line 3\n"),
-            "XML Error: bad; Element 'x', line 3");
-  EXPECT_EQ(mujoco::join_lines(""), "");
 }
 
 }  // namespace

@@ -12,7 +12,7 @@
 #include <string>
 #include <utility>
 
-#include "graspcd/core/warnings.h"
+#include "graspcd/io/warnings.h"
 #include "helpers/ring_mesh.h"
 #include "helpers/temp_dir.h"
 

@@ -69,7 +69,7 @@ TEST_F(StartRule, GraspcdStartsTheRingButNativeCollisionIsRefusedByItsHull) {
   try {
     run_grasp(scene, options(true));
     ADD_FAILURE() << "a native start inside the hull ran";
-  } catch (const GraspInputError& e) {
+  } catch (const io::InputError& e) {
     EXPECT_EQ(e.file(), scene);
     // The finger's edges lie inside the ring's hull (a 32-gon prism) up to its top and bottom,
     // 10 mm away; MuJoCo collides the finger's mesh as its hull too.
@@ -92,7 +92,7 @@ TEST_F(StartRule, TheDecomposedRingIsRefusedByThePiecesHulls) {
   try {
     run_decomposed_grasp(scene, pieces, options(false));
     ADD_FAILURE() << "a decomposed start inside a piece's hull ran";
-  } catch (const GraspInputError& e) {
+  } catch (const io::InputError& e) {
     EXPECT_EQ(e.file(), scene);
     // The halves meet in the plane y = 0, which each half's hull closes: finger 2's middle
     // segment straddles it, 8 mm wide.

@@ -340,12 +340,8 @@ TEST(RegistryPrimitives, PathsAndTreesPerTypeAndSize) {
   }
 }
 
-// Mesh hygiene in the bridge: a MuJoCo mesh with a zero-area face (MuJoCo 2.2 keeps it) gets a
-// tree without it, one warning naming the mesh and MuJoCo's face id, and a map from the tree's
-// face ids to MuJoCo's.
-TEST(RegistryHygiene, ZeroAreaFacesAreLeftOutOfTheTreeWithAWarning) {
-  TempDir dir;
-  const testing::ModelPtr m = load_scene(dir, R"(
+// A tetrahedron with a fifth face that is a point (three equal vertices), beside a sphere.
+constexpr const char* kTetWithAPointFace = R"(
 <mujoco>
   <asset>
     <mesh name="tet" vertex="0 0 0  .1 0 0  0 .1 0  0 0 .1  .2 0 0  .2 0 0  .2 0 0"
@@ -355,8 +351,14 @@ TEST(RegistryHygiene, ZeroAreaFacesAreLeftOutOfTheTreeWithAWarning) {
     <body name="object" pos="0 0 0.5"><freejoint/><geom name="tet" type="mesh" mesh="tet"/></body>
     <body name="tip" pos="0.3 0 0.5"><freejoint/><geom name="tip" type="sphere" size="0.01"/></body>
   </worldbody>
-</mujoco>)",
-                                         {});
+</mujoco>)";
+
+// Mesh hygiene in the MuJoCo layer: a MuJoCo mesh with a zero-area face (MuJoCo 2.2 keeps it) gets
+// a tree without it, one warning naming the mesh and MuJoCo's face id, and a map from the tree's
+// face ids to MuJoCo's.
+TEST(RegistryHygiene, ZeroAreaFacesAreLeftOutOfTheTreeWithAWarning) {
+  TempDir dir;
+  const testing::ModelPtr m = load_scene(dir, kTetWithAPointFace, {});
   ASSERT_TRUE(m);
   ASSERT_EQ(m->mesh_facenum[0], 5);  // MuJoCo keeps face 4 5 6, a point (three equal vertices stay
                                      // equal through MuJoCo's recentring; collinear ones need not)
@@ -379,6 +381,39 @@ TEST(RegistryHygiene, ZeroAreaFacesAreLeftOutOfTheTreeWithAWarning) {
             "hyg.json: mesh 0 'tet': dropped 1 zero-area faces (MuJoCo face ids, from 0: 1; each "
             "spans a segment or a point)");
   EXPECT_TRUE(t->closedness.closed()) << t->closedness.describe();
+}
+
+// A scene graspcd wrote (scene_names.h): the registry's messages name the config the user knows
+// and call a mesh of the hand the hand's, the object's mesh not.
+TEST(RegistryHygiene, AWrittenScenesWarningsNameTheUsersFilesAndTheHandsMeshes) {
+  TempDir dir;
+  const testing::ModelPtr m = load_scene(dir, kTetWithAPointFace, {});
+  ASSERT_TRUE(m);
+  RegistryConfig c;
+  c.patterns = {{"geom:tip", "body:object"}};
+  SceneNames names;
+  names.files = {{"/tmp/written/hyg.pairs.json", "template.pairs.json"}};
+  names.hand = "the robotiq hand's ";
+  names.object_mesh = "object_mesh";
+  const Registry hand(m.get(), c, "/tmp/written/hyg.pairs.json", names);
+  ASSERT_EQ(hand.warnings().size(), 1u);
+  EXPECT_EQ(hand.warnings()[0].rfind("template.pairs.json: the robotiq hand's mesh 0 'tet': "
+                                     "dropped 1 zero-area faces",
+                                     0),
+            0u)
+      << hand.warnings()[0];
+  names.object_mesh = "tet";
+  const Registry object(m.get(), c, "/tmp/written/hyg.pairs.json", names);
+  ASSERT_EQ(object.warnings().size(), 1u);
+  EXPECT_EQ(object.warnings()[0].rfind("template.pairs.json: mesh 0 'tet': dropped", 0), 0u)
+      << object.warnings()[0];
+  try {
+    c.patterns = {{"geom:tip", "geom:none*"}};
+    const Registry refused(m.get(), c, "/tmp/written/hyg.pairs.json", names);
+    FAIL() << "no exception";
+  } catch (const io::InputError& e) {
+    EXPECT_EQ(e.file(), "template.pairs.json");
+  }
 }
 
 }  // namespace

@@ -30,8 +30,8 @@
 #include <utility>
 #include <vector>
 
-#include "graspcd/core/warnings.h"
 #include "graspcd/grasp/grasp.h"
+#include "graspcd/io/warnings.h"
 #include "graspcd/mujoco/model_loading.h"
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/nonconvex_contacts.h"

@@ -15,7 +15,7 @@ namespace graspcd::decompose {
 namespace {
 
 void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh,
-               const std::string& comment) {
+               const std::string& comment, const std::filesystem::path& named) {
   std::ofstream out(path, std::ios::binary);
   out << "# " << comment << '\n' << std::setprecision(17);
   for (const Vec3& v : mesh.vertices) out << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
@@ -23,7 +23,7 @@ void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh,
     out << "f " << f[0] + 1 << ' ' << f[1] + 1 << ' ' << f[2] + 1 << '\n';
   }
   out.flush();
-  if (!out) throw std::runtime_error(path.string() + ": cannot write the piece");
+  if (!out) throw std::runtime_error(named.string() + ": cannot write the piece");
 }
 
 // XML forbids "--" inside a comment.
@@ -38,8 +38,9 @@ std::string comment_text(std::string text) {
 
 DecompositionFiles write_decomposition_files(const std::vector<ConvexPiece>& pieces,
                                              const std::string& dir, const std::string& stem,
-                                             const std::string& comment) {
+                                             const std::string& comment, const std::string& named) {
   const std::filesystem::path folder(dir);
+  const std::filesystem::path shown(named.empty() ? dir : named);
   DecompositionFiles files;
   files.fragment = stem + ".xml";
   tinyxml2::XMLDocument doc;
@@ -54,7 +55,7 @@ DecompositionFiles write_decomposition_files(const std::vector<ConvexPiece>& pie
     const std::string name = stem + "_piece_" + std::to_string(k);
     const std::string file = name + ".obj";
     write_obj(folder / file, pieces[k].hull,
-              "graspcd decompose: convex piece " + std::to_string(k) + " of " + stem);
+              "graspcd decompose: convex piece " + std::to_string(k) + " of " + stem, shown / file);
     files.pieces.push_back(file);
     tinyxml2::XMLElement* mesh = asset->InsertNewChildElement("mesh");
     mesh->SetAttribute("name", name.c_str());
@@ -66,7 +67,8 @@ DecompositionFiles write_decomposition_files(const std::vector<ConvexPiece>& pie
   }
   const std::string fragment = (folder / files.fragment).string();
   if (doc.SaveFile(fragment.c_str()) != tinyxml2::XML_SUCCESS) {
-    throw std::runtime_error(fragment + ": cannot write the MJCF fragment");
+    throw std::runtime_error((shown / files.fragment).string() +
+                             ": cannot write the MJCF fragment");
   }
   return files;
 }

@@ -26,9 +26,11 @@ struct DecompositionFiles {
 // The mesh files are named relative to `dir`: a model that includes the fragment sets
 // <compiler meshdir="DIR"/> (or copies the <mesh> lines with its own paths). `comment` (one line,
 // e.g. the source mesh and the command) opens the fragment as an XML comment. Throws
-// std::runtime_error naming the file that cannot be written.
+// std::runtime_error naming the file that cannot be written, in the folder `named` (default
+// `dir`: the folder the user knows, when `dir` is a private one renamed to it later).
 DecompositionFiles write_decomposition_files(const std::vector<ConvexPiece>& pieces,
                                              const std::string& dir, const std::string& stem,
-                                             const std::string& comment);
+                                             const std::string& comment,
+                                             const std::string& named = "");
 
 }  // namespace graspcd::decompose

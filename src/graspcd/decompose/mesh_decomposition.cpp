@@ -12,7 +12,6 @@
 
 #include "graspcd/core/clock.h"
 #include "graspcd/core/geometry.h"
-#include "graspcd/core/warnings.h"
 #include "graspcd/decompose/decomposition_files.h"
 #include "graspcd/decompose/hacd.h"
 #include "graspcd/decompose/vhacd.h"
@@ -20,7 +19,9 @@
 #include "graspcd/exact/simplify.h"
 #include "graspcd/exact/surface_distance.h"
 #include "graspcd/io/mesh_io.h"
+#include "graspcd/io/output_files.h"
 #include "graspcd/io/text_input.h"
+#include "graspcd/io/warnings.h"
 
 namespace graspcd::decompose {
 
@@ -159,11 +160,52 @@ std::optional<Manifest::Volume> added_volume(const std::vector<TriangleMesh>& hu
   }
 }
 
-}  // namespace
+// The output folder, written whole or not at all: the pieces go to a private folder beside it
+// (.NAME.graspcd-XXXXXX, removed on errors and on INT, TERM and HUP), renamed to it at the end; a
+// folder that holds an earlier decomposition (decomposition.json) or nothing is replaced whole,
+// so no stale piece stays; one that holds anything else is refused before the work.
+struct OutputFolder {
+  fs::path target;
+  std::optional<io::RemoveIfEmpty> created_parent;
+  io::CleanupGuard work;
+};
 
-const char* engine_name(Engine engine) { return engine == Engine::kVhacd ? "vhacd" : "hacd"; }
+void prepare_out(const std::string& out, OutputFolder& f) {
+  f.target = fs::absolute(out).lexically_normal();
+  if (f.target.filename().empty()) f.target = f.target.parent_path();
+  std::error_code ec;
+  if (fs::exists(f.target, ec)) {
+    if (!fs::is_directory(f.target, ec)) throw io::InputError(out, 0, "not a folder");
+    if (!fs::is_empty(f.target, ec) && !fs::exists(f.target / "decomposition.json", ec)) {
+      throw io::InputError(out, 0,
+                           "holds files graspcd decompose did not write (no decomposition.json): "
+                           "give a new or empty folder");
+    }
+  }
+  const fs::path parent = f.target.parent_path();
+  if (io::prepare_output_folder(parent.string())) f.created_parent.emplace(parent);
+  f.work = io::make_private_folder(parent, "." + f.target.filename().string() + ".graspcd", out);
+}
 
-DecomposeRun decompose_mesh(const DecomposeOptions& o) {
+// The written folder renamed to `out` (an earlier one moved aside and removed).
+void commit_out(OutputFolder& f, const std::string& out) {
+  std::error_code ec;
+  if (fs::exists(f.target, ec)) {
+    const io::CleanupGuard old = io::make_private_folder(
+        f.target.parent_path(), "." + f.target.filename().string() + ".graspcd-old", out);
+    fs::rename(f.target, old.path(), ec);
+    if (ec) throw io::InputError(out, 0, "cannot replace the folder: " + ec.message());
+    fs::rename(f.work.path(), f.target, ec);
+    if (ec) throw io::InputError(out, 0, "cannot write the folder: " + ec.message());
+  } else {
+    fs::rename(f.work.path(), f.target, ec);
+    if (ec) throw io::InputError(out, 0, "cannot write the folder: " + ec.message());
+  }
+  f.work.release();
+}
+
+// The decomposition written into `work`, named `o.out` in messages.
+DecomposeRun decompose_into(const DecomposeOptions& o, const std::string& work) {
   if (o.engine == Engine::kVhacd) {
     if (o.simplify > 0) throw std::invalid_argument("simplify is for the HACD engine");
     if (const std::string missing = vhacd_missing(vhacd_options(o)); !missing.empty()) {
@@ -190,8 +232,8 @@ DecomposeRun decompose_mesh(const DecomposeOptions& o) {
     warnings().add("mesh_hygiene", w);
   }
   std::error_code ec;
-  fs::create_directories(o.out, ec);
-  if (ec || !fs::is_directory(o.out)) {
+  fs::create_directories(work, ec);
+  if (ec || !fs::is_directory(work)) {
     throw io::InputError(o.out, 0, "cannot create the output folder: " + ec.message());
   }
 
@@ -223,12 +265,13 @@ DecomposeRun decompose_mesh(const DecomposeOptions& o) {
   DecompositionFiles files;
   try {
     files = write_decomposition_files(
-        d.pieces, o.out, stem,
+        d.pieces, work, stem,
         "graspcd decompose: " + std::to_string(d.pieces.size()) + " convex pieces (" +
             (o.engine == Engine::kVhacd ? "V-HACD" : "HACD") + ") of " +
             fs::path(o.mesh).filename().string() +
             (o.scale == 1 ? std::string(", in its own coordinates and scale")
-                          : ", in its own coordinates times the scale " + scale_text(o.scale)));
+                          : ", in its own coordinates times the scale " + scale_text(o.scale)),
+        o.out);
   } catch (const std::runtime_error& e) {
     throw io::InputError(o.out, 0, e.what());
   }
@@ -247,8 +290,46 @@ DecomposeRun decompose_mesh(const DecomposeOptions& o) {
     m.pieces.push_back(
         {files.pieces[k], d.pieces[k].hull.vertices.size(), d.pieces[k].hull.faces.size()});
   }
-  std::string document = write_manifest(o.out, m);
+  std::string document = write_manifest(work, m);
   return DecomposeRun{std::move(m), std::move(document)};
+}
+
+}  // namespace
+
+const char* engine_name(Engine engine) { return engine == Engine::kVhacd ? "vhacd" : "hacd"; }
+
+std::string decomposition_text(const Manifest& m, const DecomposeOptions& o) {
+  std::ostringstream out;
+  out << std::setprecision(4);
+  out << "engine " << m.engine << "\n";
+  out << "pieces " << m.piece_count << " (at most " << o.pieces << ")\n";
+  if (m.simplify) {
+    out << "simplify_faces " << m.simplify->faces_before;
+    if (m.simplify->decimated) {
+      out << " -> " << m.simplify->faces_after << " (at most " << o.simplify << ") in "
+          << m.simplify->seconds << " s\n";
+    } else {
+      out << " (at most " << o.simplify << ": not decimated)\n";
+    }
+  }
+  out << "seconds " << m.seconds << "\n";
+  out << "hausdorff_m " << m.hausdorff.distance << " +- " << m.hausdorff.error_bound << "\n";
+  if (m.volume) {
+    out << "volume_added_m3 " << m.volume->added << " (" << 100 * m.volume->added_fraction
+        << "% of " << m.volume->original << ")\n";
+  } else {
+    out << "volume_added_m3 - (open mesh)\n";
+  }
+  out << "fragment " << (std::filesystem::path(o.out) / m.fragment).string() << "\n";
+  return out.str();
+}
+
+DecomposeRun decompose_mesh(const DecomposeOptions& o) {
+  OutputFolder folder;
+  prepare_out(o.out, folder);
+  DecomposeRun run = decompose_into(o, folder.work.path().string());
+  commit_out(folder, o.out);
+  return run;
 }
 
 }  // namespace graspcd::decompose

@@ -57,12 +57,19 @@ struct DecomposeRun {
   std::string document;  // decomposition.json as written (with graspcd's envelope), no final '\n'
 };
 
-// Decomposes `options.mesh` into `options.out` and writes the manifest there. Warnings (the mesh's
-// hygiene, flat clusters left out, a volume CGAL cannot measure) go to the process's sink. Throws
-// io::InputError (graspcd/io/text_input.h) naming the mesh for a missing or bad mesh or a failed
-// decomposition, naming the folder when it cannot be created or written; VhacdUnavailable
-// (vhacd.h) for Engine::kVhacd where node or the vhacd-js package is missing, before the folder is
-// made; std::invalid_argument for simplify with Engine::kVhacd.
+// Decomposes `options.mesh` into `options.out` and writes the manifest there. The folder is
+// written whole or not at all: in a private folder beside it (.NAME.graspcd-XXXXXX, removed on
+// errors and on INT, TERM and HUP), renamed to it at the end; a folder holding an earlier
+// decomposition (decomposition.json) or nothing is replaced whole, one holding anything else is
+// refused before the work. Warnings (the mesh's hygiene, flat clusters left out, a volume CGAL
+// cannot measure) go to the process's sink. Throws io::InputError naming the mesh for a missing
+// or bad mesh or a failed decomposition, naming `options.out` when it cannot be used or written;
+// VhacdUnavailable (vhacd.h) for Engine::kVhacd where node or the vhacd-js package is missing;
+// std::invalid_argument for simplify with Engine::kVhacd.
 DecomposeRun decompose_mesh(const DecomposeOptions& options);
+
+// The text of `graspcd decompose` (its --help, "Text output"): the engine, the pieces, the
+// simplification, the time, the Hausdorff distance, the volume added and the fragment's path.
+std::string decomposition_text(const Manifest& manifest, const DecomposeOptions& options);
 
 }  // namespace graspcd::decompose

@@ -34,12 +34,7 @@ struct Manifest {
 };
 
 Manifest read_manifest(const std::string& dir) {
-  decompose::Manifest manifest;
-  try {
-    manifest = decompose::read_manifest(dir);
-  } catch (const io::InputError& e) {
-    throw GraspInputError(e.file(), e.message(), e.line());
-  }
+  const decompose::Manifest manifest = decompose::read_manifest(dir);
   Manifest m;
   m.source = manifest.source;
   for (const decompose::Manifest::Piece& p : manifest.pieces) {
@@ -75,7 +70,7 @@ DecomposedScene write_decomposed_scene(const std::string& scene_path,
   const Manifest manifest = read_manifest(decomposition_dir);
   tinyxml2::XMLDocument doc;
   if (doc.LoadFile(scene_path.c_str()) != tinyxml2::XML_SUCCESS || doc.RootElement() == nullptr) {
-    throw GraspInputError(scene_path, "cannot read the scene (XML)");
+    throw io::InputError(scene_path, 0, "cannot read the scene (XML)");
   }
   DecomposedScene out;
   out.source = manifest.source;
@@ -101,8 +96,9 @@ DecomposedScene write_decomposed_scene(const std::string& scene_path,
     ++out.mesh_assets;
   });
   if (out.mesh_assets == 0) {
-    throw GraspInputError(scene_path, "no <mesh> of the scene reads " + source_name +
-                                          ", the source of " + decomposition_dir);
+    throw io::InputError(
+        scene_path, 0,
+        "no <mesh> of the scene reads " + source_name + ", the source of " + decomposition_dir);
   }
 
   // Their geoms: kept for the mass, out of collision, followed by the pieces (mass 0).
@@ -135,11 +131,11 @@ DecomposedScene write_decomposed_scene(const std::string& scene_path,
   std::string pattern =
       (original.parent_path() / ("." + original.stem().string() + ".decomposed-XXXXXX")).string();
   const int fd = mkstemp(pattern.data());
-  if (fd < 0) throw GraspInputError(scene_path, "cannot write a scene beside it");
+  if (fd < 0) throw io::InputError(scene_path, 0, "cannot write a scene beside it");
   close(fd);
   if (doc.SaveFile(pattern.c_str()) != tinyxml2::XML_SUCCESS) {
     fs::remove(pattern);
-    throw GraspInputError(scene_path, "cannot write a scene beside it");
+    throw io::InputError(scene_path, 0, "cannot write a scene beside it");
   }
   out.scene = pattern;
   return out;
@@ -154,14 +150,11 @@ GraspResult run_decomposed_grasp(const std::string& scene_path,
   if (written != nullptr) *written = scene;
   options.native = true;
   if (options.config_path.empty()) options.config_path = mujoco::pair_config_path(scene_path);
-  GraspResult result;
-  try {
-    result = run_grasp(scene.scene, options);
-  } catch (const GraspInputError& e) {
-    if (e.file() != scene.scene) throw;
-    // Its line would be the written scene's: not the user's.
-    throw GraspInputError(scene_path, "with " + decomposition_dir + ": " + e.message());
-  }
+  // A refusal of the written scene names the user's, without its line (the written scene's).
+  options.names.written_scene = scene.scene;
+  options.names.scene = scene_path;
+  options.names.scene_context = "with " + decomposition_dir + ": ";
+  GraspResult result = run_grasp(scene.scene, options);
   result.scene = scene_path;
   return result;
 }

@@ -32,7 +32,7 @@ struct DecomposedScene {
 // MuJoCo places each piece by its own centre of mass and the geom's pos and quat, so the pieces
 // stand where the mesh stood. The copy is written into the scene's folder as a hidden file whose
 // name is unique (removed by the caller); its <include>s and meshdir keep working.
-// Throws GraspInputError (grasp.h) naming DIR for a missing or bad decomposition.json, naming
+// Throws io::InputError (grasp.h) naming DIR for a missing or bad decomposition.json, naming
 // the scene when it cannot be read, holds no mesh of the source file, or its folder cannot be
 // written.
 DecomposedScene write_decomposed_scene(const std::string& scene_path,
@@ -41,7 +41,7 @@ DecomposedScene write_decomposed_scene(const std::string& scene_path,
 // The grasp of `scene_path` with its object decomposed: write_decomposed_scene, run_grasp under
 // MuJoCo's native collision with SCENE's pair config (options.config_path when given) driving the
 // hand, the written scene removed on return. `written` (when given) gets the DecomposedScene
-// before the grasp runs. The result names `scene_path`; a GraspInputError about the written scene
+// before the grasp runs. The result names `scene_path`; a io::InputError about the written scene
 // names `scene_path` too ("with DIR: ..."). Used by graspcd grasp --decomposed and by validate's
 // truth side (study/validate.h).
 GraspResult run_decomposed_grasp(const std::string& scene_path,

@@ -1,10 +1,12 @@
-// The "grasp" section of a pair config (the rest of the file belongs to the MuJoCo seam,
+// The "grasp" section of a pair config (the rest of the file belongs to the MuJoCo layer,
 // graspcd/mujoco/pair_config.h): how the grasp experiment drives a hand through its own actuators.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "graspcd/mujoco/scene_names.h"
 
 namespace graspcd::grasp {
 
@@ -42,7 +44,9 @@ struct DriveConfig {
 // for bad JSON (the rest of the config is checked by parse_registry_config).
 std::optional<DriveConfig> parse_drive_config(const std::string& json_text,
                                               const std::string& source);
-// The same, from a file. Throws std::runtime_error naming the file when it cannot be read.
-std::optional<DriveConfig> load_drive_config(const std::string& path);
+// The same, from a file (named as `names` has it). Throws std::runtime_error naming the file when
+// it cannot be read.
+std::optional<DriveConfig> load_drive_config(const std::string& path,
+                                             const mujoco::SceneNames& names = {});
 
 }  // namespace graspcd::grasp

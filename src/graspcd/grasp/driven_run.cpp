@@ -8,7 +8,7 @@ namespace graspcd::grasp {
 DrivenRun::DrivenRun(const mjModel* m, mjData* d, mujoco::Registry* registry,
                      const DriveConfig& drive, const std::string& scene, const std::string& config)
     : HandRun(m, d, registry, scene), drive_(drive) {
-  const auto bad = [&](const std::string& what) { return GraspInputError(config, what); };
+  const auto bad = [&](const std::string& what) { return io::InputError(config, 0, what); };
   const auto body = [&](const std::string& name) {
     const int id = mj_name2id(m, mjOBJ_BODY, name.c_str());
     if (id < 0) throw bad("'grasp': the scene has no body named '" + name + "'");

@@ -23,7 +23,7 @@ namespace graspcd::grasp {
 
 class DrivenRun : public HandRun {
  public:
-  // Throws a GraspInputError naming `config` for a body, actuator or touch pattern the scene
+  // Throws a io::InputError naming `config` for a body, actuator or touch pattern the scene
   // does not have.
   DrivenRun(const mjModel* m, mjData* d, mujoco::Registry* registry, const DriveConfig& drive,
             const std::string& scene, const std::string& config);

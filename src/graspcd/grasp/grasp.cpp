@@ -11,19 +11,11 @@
 #include "graspcd/grasp/hand_run.h"
 #include "graspcd/grasp/start_check.h"
 #include "graspcd/mujoco/collision.h"
+#include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
 #include "graspcd/mujoco/registry.h"
 
 namespace graspcd::grasp {
-
-// A config's error as a GraspInputError: the seam's refusals (input_error.h) and the drive
-// config's carry their file and line; anything else is named by the config's path.
-GraspInputError config_error(const std::string& config_path, const std::runtime_error& e) {
-  if (const auto* input = dynamic_cast<const GraspInputError*>(&e)) {
-    return GraspInputError(input->file(), mujoco::join_lines(input->message()), input->line());
-  }
-  return GraspInputError(config_path, mujoco::join_lines(e.what()));
-}
 
 namespace {
 
@@ -33,25 +25,27 @@ namespace {
 // the meshes, or of the pieces) by check_hull_start.
 // `truth`: the model with the true object (true_object_model) for a decomposed scene, else null.
 void throw_if_bad_start(const mjModel* m, const mjData* d, int object, const std::string& scene,
-                        bool native, const mjModel* truth) {
+                        const GraspOptions& options, const mjModel* truth) {
   const bool decomposed = truth != nullptr;
-  const std::string problem = check_start_state(decomposed ? truth : m, d, object);
+  const mujoco::SceneNames& names = options.names;
+  const std::string problem = check_start_state(decomposed ? truth : m, d, object, names);
   if (!problem.empty()) {
-    throw GraspInputError(scene, "the start state is not valid: " + problem);
+    throw names.refusal(scene, 0, "the start state is not valid: " + problem);
   }
-  if (!native) return;
+  if (!options.native) return;
   const std::string hull = check_hull_start(m, d, object);
   if (!hull.empty()) {
-    throw GraspInputError(scene, std::string("cannot start with ") +
-                                     (decomposed ? "--decomposed" : "--native") + ": " + hull +
-                                     " (a limit of the " + (decomposed ? "pieces" : "hull") +
-                                     ", not of the scene; graspcd's contacts start this scene)");
+    throw names.refusal(scene, 0,
+                        std::string("cannot start with ") +
+                            (decomposed ? "--decomposed" : "--native") + ": " + hull +
+                            " (a limit of the " + (decomposed ? "pieces" : "hull") +
+                            ", not of the scene; graspcd's contacts start this scene)");
   }
 }
 
 // The pair config of a grasp: its "grasp" section (drive_config.h) when it has one and, unless
 // the collision is native, the registry built on it with the options' overrides. Errors name the
-// config (config_error).
+// config.
 struct GraspConfig {
   mujoco::RegistryConfig registry_config;
   std::unique_ptr<mujoco::Registry> registry;
@@ -65,33 +59,26 @@ GraspConfig load_grasp_config(const mjModel* m, const std::string& config_path,
   // that is all the config says.
   std::error_code exists_ec;
   if (std::filesystem::is_regular_file(config_path, exists_ec)) {
-    try {
-      if (options.native) out.registry_config = mujoco::load_registry_config(config_path);
-      out.drive = load_drive_config(config_path);
-    } catch (const std::runtime_error& e) {
-      throw config_error(config_path, e);
+    if (options.native) {
+      out.registry_config = mujoco::load_registry_config(config_path, options.names);
     }
+    out.drive = load_drive_config(config_path, options.names);
   }
   if (options.native) return out;
-  try {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(config_path, ec))
-      throw GraspInputError(config_path, "cannot open the pair config");
-    mujoco::RegistryConfig& config = out.registry_config;
-    config = mujoco::load_registry_config(config_path);
-    if (options.method) config.method = *options.method;
-    if (options.cap) config.detector.cap = *options.cap;
-    if (options.switch_passes) config.detector.switch_passes = *options.switch_passes;
-    if (options.front_list) config.front_list = *options.front_list;
-    if (options.contact_reuse) config.contact_reuse = *options.contact_reuse;
-    if (options.reduction) config.manifold.reduction = *options.reduction;
-    if (options.max_contacts) config.manifold.max_per_pair = *options.max_contacts;
-    out.registry = std::make_unique<mujoco::Registry>(m, config, config_path);
-  } catch (const GraspInputError&) {
-    throw;
-  } catch (const std::runtime_error& e) {
-    throw config_error(config_path, e);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(config_path, ec)) {
+    throw options.names.refusal(config_path, 0, "cannot open the pair config");
   }
+  mujoco::RegistryConfig& config = out.registry_config;
+  config = mujoco::load_registry_config(config_path, options.names);
+  if (options.method) config.method = *options.method;
+  if (options.cap) config.detector.cap = *options.cap;
+  if (options.switch_passes) config.detector.switch_passes = *options.switch_passes;
+  if (options.front_list) config.front_list = *options.front_list;
+  if (options.contact_reuse) config.contact_reuse = *options.contact_reuse;
+  if (options.reduction) config.manifold.reduction = *options.reduction;
+  if (options.max_contacts) config.manifold.max_per_pair = *options.max_contacts;
+  out.registry = std::make_unique<mujoco::Registry>(m, config, config_path, options.names);
   return out;
 }
 
@@ -100,7 +87,9 @@ GraspConfig load_grasp_config(const mjModel* m, const std::string& config_path,
 // Paper section 9 (the grasp) with the computed-torque law of section 7, eq. (12)-(16); the
 // phases are described in grasp.h.
 GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options) {
-  const auto model = mujoco::load_model(scene_path);
+  // MuJoCo's errors name the scene (mujoco_messages.h).
+  const mujoco::ScopedMujocoErrors mujoco_errors(scene_path, options.names);
+  const auto model = mujoco::load_model(scene_path, options.names);
   if (options.noslip_iterations) model->opt.noslip_iterations = *options.noslip_iterations;
   if (options.multiccd) {
     if (*options.multiccd) {
@@ -142,7 +131,8 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   // A hand driven through its own actuators (the config's "grasp" section), or ours.
   std::unique_ptr<HandRun> run;
   if (drive) {
-    run = std::make_unique<DrivenRun>(m, d, registry.get(), *drive, scene_path, config_path);
+    run = std::make_unique<DrivenRun>(m, d, registry.get(), *drive, scene_path,
+                                      options.names.file(config_path));
   } else {
     run = std::make_unique<GraspRun>(m, d, registry.get(), options, scene_path);
   }
@@ -150,7 +140,7 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   // e.g. a gripper half closed with a pad through a mug's handle), else the model's qpos0.
   if (m->nkey > 0) mj_resetDataKeyframe(m, d, 0);
   mj_forward(m, d);
-  throw_if_bad_start(m, d, run->object(), scene_path, options.native, truth.get());
+  throw_if_bad_start(m, d, run->object(), scene_path, options, truth.get());
   if (truth) run->set_truth(truth.get());
   if (registry) registry->reset_stats();
   run->run(options, result);

@@ -17,8 +17,9 @@
 #include "graspcd/core/contact_manifold.h"
 #include "graspcd/core/separators.h"
 #include "graspcd/grasp/true_penetration.h"
-#include "graspcd/mujoco/input_error.h"
+#include "graspcd/io/input_error.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
+#include "graspcd/mujoco/scene_names.h"
 
 namespace graspcd::grasp {
 
@@ -42,12 +43,11 @@ inline constexpr double kEjectSpeed = 2.0;
 // The verdict text names the object's final tilt from this many degrees on (grasp.h, "tilted").
 inline constexpr double kTiltShownDeg = 2.0;
 
-// A scene or config that cannot be used (model_loading.h): the file, the line and the message
-// apart, printed as one line "FILE: MESSAGE" or "FILE:LINE: MESSAGE".
-using GraspInputError = mujoco::InputError;
-
 struct GraspOptions {
   std::string config_path;  // pair config; empty: SCENE.pairs.json beside the scene
+  // How messages name the files of a scene graspcd wrote (mujoco/scene_names.h: an object's scene,
+  // a decomposed scene); empty: as they are.
+  mujoco::SceneNames names;
   std::optional<Method> method;
   std::optional<int> cap;               // perceptron pass cap override
   std::optional<int> switch_passes;     // Neuro-SAT switch override
@@ -95,7 +95,7 @@ struct GraspStepRecord {
   int step = 0;                    // 1-based
   int contacts = 0;                // finger-object contacts after the step's last physics step
   std::vector<bool> touching;      // by GraspResult::segments: those with such a contact then
-  std::uint64_t detection_ns = 0;  // tree query time over the step's physics steps (bridge)
+  std::uint64_t detection_ns = 0;  // tree query time over the step's physics steps
   std::uint64_t box_tests = 0;
   std::uint64_t front_skips = 0;  // front pairs kept apart by their gap, untested
   std::uint64_t triangle_tests = 0;

@@ -113,8 +113,8 @@ void throw_if_nonfinite(const mjData* d, const std::string& scene, const std::st
   }
 }
 
-// Appends grasp step k's record (its contacts, segments touching, the bridge's counters over the
-// step, the object's height) to the result, and adds its detection time to the closing's.
+// Appends grasp step k's record (its contacts, segments touching, the MuJoCo layer's counters over
+// the step, the object's height) to the result, and adds its detection time to the closing's.
 void add_step_record(int k, int contacts, std::vector<bool> touching,
                      const mujoco::BridgeStats& stats, double object_z, GraspResult& result) {
   GraspStepRecord record;
@@ -331,7 +331,7 @@ void HandRun::scan_contacts() {
   contacts_sum_ += contacts_;
 }
 
-// The bridge's statistics since the last call (zero with native collision).
+// The MuJoCo layer's statistics since the last call (zero with native collision).
 mujoco::BridgeStats HandRun::take_stats() {
   if (!registry_) return mujoco::BridgeStats{};
   const mujoco::BridgeStats s = registry_->take_stats();

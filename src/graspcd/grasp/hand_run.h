@@ -1,8 +1,8 @@
 // One grasp run (grasp.h, run_grasp) on either hand: the phases of paper section 9 (close in grasp
 // steps, squeeze, settle, lift, hold), the physics steps with their contact scan and non-finite
-// check, the bridge's statistics and the verdicts. HandRun holds that structure once; a hand says
-// how it moves through the hooks below: our four-finger hand (grasp_run.h, joint targets of the
-// computed-torque controller) and a driven real hand (driven_run.h, the controls of its own
+// check, the MuJoCo layer's statistics and the verdicts. HandRun holds that structure once; a hand
+// says how it moves through the hooks below: our four-finger hand (grasp_run.h, joint targets of
+// the computed-torque controller) and a driven real hand (driven_run.h, the controls of its own
 // actuators). Phase lengths are counted in physics steps: phase_steps converts a phase's seconds.
 #pragma once
 
@@ -87,7 +87,8 @@ class HandRun {
     void start() { last = -2; }
     void add(int i, int geom1, int geom2);
   };
-  // The bridge's counters summed over a whole grasp (every phase), as GraspResult reports them.
+  // The MuJoCo layer's counters summed over a whole grasp (every phase), as GraspResult reports
+  // them.
   struct BridgeTotals {
     std::uint64_t detection_ns = 0, contained = 0, nonfinite_skips = 0, reused = 0;
     void add(const mujoco::BridgeStats& s);

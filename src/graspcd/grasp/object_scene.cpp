@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "graspcd/core/geometry.h"
-#include "graspcd/core/warnings.h"
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/output_files.h"
 #include "graspcd/io/text_input.h"
+#include "graspcd/io/warnings.h"
 
 namespace graspcd::grasp {
 
@@ -270,8 +270,9 @@ std::string units_hint(double size, double scale, bool fitted, const io::MeshSta
 // kSupportGap above the support point, centred on it across gravity. Warns when it comes out
 // larger than kLargeObject. The scene and pairs paths are left empty.
 ObjectScene place_object(const TriangleMesh& mesh, const ObjectPlacement& placement,
-                         const GravityFrame& f, const TemplateRoom& room, const TemplateParts& t,
-                         const std::string& template_path, const io::MeshStats& stats) {
+                         double fit_fraction, const GravityFrame& f, const TemplateRoom& room,
+                         const TemplateParts& t, const std::string& template_path,
+                         const io::MeshStats& stats) {
   const Eigen::Quaterniond q = object_rotation(placement, f.up);
   const Mat3 R = q.toRotationMatrix();
   // The turned mesh's extent in (e1, e2, up), unscaled.
@@ -296,7 +297,7 @@ ObjectScene place_object(const TriangleMesh& mesh, const ObjectPlacement& placem
     out.scale = std::numeric_limits<double>::infinity();
     if (width > 0) out.scale = (*room.fit)[0] / width;
     if (extent[2] > 0) out.scale = std::min(out.scale, (*room.fit)[1] / extent[2]);
-    out.scale *= placement.fit_fraction;
+    out.scale *= fit_fraction;
   }
   const double s = out.scale;
   out.size = {s * extent[0], s * extent[1], s * extent[2]};
@@ -495,23 +496,23 @@ void save_scene(tinyxml2::XMLDocument& doc, const std::string& template_path,
 
 }  // namespace
 
-ObjectScene write_object_scene(const ObjectPlacement& placement, const std::string& template_path,
-                               const std::string& hand, const std::string& dir,
-                               const std::optional<std::array<double, 2>>& default_fit,
-                               const std::vector<TemplatePath>& moved) {
+ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTemplate& hand,
+                               const std::string& dir) {
+  const std::string& template_path = hand.scene;
   io::MeshStats stats;
   TriangleMesh mesh = read_object_mesh(placement.file, &stats);
   tinyxml2::XMLDocument doc;
   const TemplateParts t = read_template(doc, template_path);
   const GravityFrame frame = gravity_frame(t.root, template_path);
-  const TemplateRoom room = template_room(t, default_fit, template_path);
-  ObjectScene out = place_object(mesh, placement, frame, room, t, template_path, stats);
+  const TemplateRoom room = template_room(t, hand.fit, template_path);
+  ObjectScene out =
+      place_object(mesh, placement, hand.fit_fraction, frame, room, t, template_path, stats);
 
   const fs::path target = fs::path(dir);
   fs::create_directories(target);
   const std::string stem = fs::path(placement.file).stem().string();
   const fs::path meshes = target / (stem + ".meshes");
-  const fs::path mesh_folder = rewrite_paths(t, template_path, target, meshes, moved);
+  const fs::path mesh_folder = rewrite_paths(t, template_path, target, meshes, hand.moved);
   // The object's mesh moves with the scene: copied into STEM.meshes/ under its own file name (a
   // decomposition of it finds it by that name). A closed mesh whose faces point inward: MuJoCo's
   // inertia and graspcd's containment read the faces' direction, so the scene loads the mesh
@@ -546,19 +547,20 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const std::stri
   set_object(t, object_file.string(), mesh_folder, out);
   raise_size(doc, t.root);
   replace_comments(doc, t.root,
-                   scene_header(template_path, hand, placement, out, room.support, stem));
+                   scene_header(template_path, hand.name, placement, out, room.support, stem));
 
   out.scene = (target / (stem + ".xml")).string();
   out.pairs = (target / (stem + ".pairs.json")).string();
   out.meshes = meshes.string();
   save_scene(doc, template_path, out);
+  out.names = {out.scene,
+               placement.file,
+               "in the template scene: ",
+               out.units_hint.empty() ? "" : "; " + out.units_hint,
+               {{out.pairs, hand.pairs()}, {object_file.string(), placement.file}},
+               hand.mesh_owner(),
+               "object_mesh"};
   return out;
 }
-
-TempFolder::TempFolder()
-    : guard_(io::make_private_folder(io::temporary_folder(), "graspcd-object",
-                                     io::temporary_folder().string())) {}
-
-const std::filesystem::path& TempFolder::path() const { return guard_.path(); }
 
 }  // namespace graspcd::grasp

@@ -1,38 +1,26 @@
-// A scene for a user's object, generated from a template scene (graspcd grasp --object; README,
-// "A new object"). The template is any MJCF scene with a pair config beside it
-// (TEMPLATE.pairs.json) whose object is the body `object`, a child of <worldbody> with a free
-// joint and one mesh geom. The new scene is the template read and written by tinyxml2 with:
-//  - that mesh asset's file replaced by the user's mesh and its scale set (the asset is renamed
-//    "object_mesh", the geom "object"); a closed mesh whose faces all point inward (negative
-//    signed volume, io::turn_right_way_out) is written turned right way out as
-//    STEM.meshes/object/STEM.outward.obj, which the asset names instead, with the warning
-//    "mesh_inside_out"; a mesh in a format MuJoCo 2.2 does not read (anything but OBJ and binary
-//    STL: io::load_mesh) is written as STEM.meshes/object/STEM.converted.obj (as graspcd read it,
-//    in its file units);
-//  - the object body turned (the file's `up` axis along -gravity, then `yaw` about it, or the
-//    quaternion `pose`) and placed with its lowest point along gravity kSupportGap above the
-//    support point, centred on it across gravity;
-//  - the object's mesh copied into STEM.meshes/object/ beside the scene (its file name kept) and
-//    named relative to the scene, so that the scene's folder can be moved or copied;
-//  - every other file path (<include file>, <compiler texturedir>, and asset files when no
-//    meshdir is set) made absolute: the hand stays where it is installed or shared; a meshdir
-//    (or assetdir) becomes STEM.meshes/, which holds an absolute link to every file of the
-//    template's mesh folder;
-//  - <size nconmax njmax> raised to at least 1000 and 4000 (the contacts of a fine mesh);
-//  - the template's comments replaced by a header saying what the scene is and how it was made.
-// The template may carry its placement in <custom>: <numeric name="graspcd_support" data="x y z"/>
-// (the support point, world frame; default: the object body's pos) and <numeric
-// name="graspcd_fit" data="width height"/> (the room the hand has for an object: its width across
-// gravity and its height along it, m; needed by `fit`).
+// A scene for a user's object, written from a template hand's scene (hand_templates.h; the
+// contract of a template: docs/design.md, "Object scenes"). The template is read and written by
+// tinyxml2 with:
+//  - the object body's mesh asset replaced by the user's mesh, copied into STEM.meshes/object/
+//    beside the scene and named relative to it (asset "object_mesh", geom "object"); a closed
+//    mesh whose faces all point inward is written turned right way out (STEM.outward.obj,
+//    warning "mesh_inside_out"), one in a format MuJoCo 2.2 does not read as
+//    STEM.converted.obj;
+//  - the object turned (the file's `up` axis against gravity, then `yaw` about it, or `pose`),
+//    scaled (given, or fitted to the template's room) and placed with its lowest point
+//    kSupportGap above the support point, centred on it across gravity;
+//  - every other path made absolute, a meshdir made STEM.meshes/ holding links to the hand's
+//    meshes, so that the scene's folder can be moved;
+//  - <size nconmax njmax> raised to at least 1000 and 4000, the template's comments replaced by
+//    a header that says how the scene was made.
 #pragma once
 
 #include <array>
-#include <filesystem>
 #include <optional>
 #include <string>
-#include <vector>
 
-#include "graspcd/io/output_files.h"
+#include "graspcd/grasp/hand_templates.h"
+#include "graspcd/mujoco/scene_names.h"
 
 namespace graspcd::grasp {
 
@@ -41,23 +29,12 @@ namespace graspcd::grasp {
 inline constexpr double kSupportGap = 0.5e-3;
 
 struct ObjectPlacement {
-  std::string file;  // the user's mesh (any format io::load_mesh reads)
-  double scale = 1;  // file units -> m; the file's units are kept by default
-  bool fit = false;  // scale to the template's graspcd_fit instead
-  // With `fit`: the fitted scale times this (0 < f <= 1), the margin the hand needs to close on
-  // the object (docs/objects.md, "--fit and each hand's margin").
-  double fit_fraction = 1;
-  std::string up = "z";                       // the file axis pointing up: x, y, z, -x, -y or -z
+  std::string file;      // the user's mesh (any format io::load_mesh reads)
+  double scale = 1;      // file units -> m; the file's units are kept by default
+  bool fit = false;      // scale to the template's room instead (times HandTemplate::fit_fraction)
+  std::string up = "z";  // the file axis pointing up: x, y, z, -x, -y or -z
   double yaw_degrees = 0;                     // then a turn about the up direction
   std::optional<std::array<double, 4>> pose;  // w x y z: the object's rotation, instead of up/yaw
-};
-
-// A template's file paths that begin with `from` (as the template writes them) name files under
-// the folder `to` (its links resolved), not beside the template: e.g. the real hands'
-// "../../shared/models/" of mjcf/real_*.xml when the templates are installed far from the models.
-struct TemplatePath {
-  std::string from;
-  std::string to;
 };
 
 // The marker line of a generated scene's header comment: graspcd recognises its own scenes by it
@@ -77,30 +54,16 @@ struct ObjectScene {
   // units, e.g. "the object is 60 m across at --scale 1: is the file in millimetres? try --scale
   // 0.001"; also the warning "mesh_units". A refusal of the scene adds it to its line.
   std::string units_hint;
+  // How messages name the written files: the scene as the user's mesh ("in the template scene"),
+  // the pair config as the template's, the mesh copy as the user's mesh, the hand's meshes as
+  // the hand's (mujoco/scene_names.h).
+  mujoco::SceneNames names;
 };
 
-// Writes the scene into `dir` (created). `hand` names the template in the header (e.g.
-// "robotiq"). `default_fit` is used when the template has no graspcd_fit; `moved` says where the
-// template's paths that begin with a TemplatePath's `from` are (first match). Throws
-// io::InputError naming the mesh file for a bad mesh, naming the template (and its line) for a
-// template that breaks the contract above; std::invalid_argument for a bad `up`.
-ObjectScene write_object_scene(const ObjectPlacement& placement, const std::string& template_path,
-                               const std::string& hand, const std::string& dir,
-                               const std::optional<std::array<double, 2>>& default_fit = {},
-                               const std::vector<TemplatePath>& moved = {});
-
-// A temporary folder for a scene that the user keeps not (grasp --object without --write-scene,
-// validate --objects): graspcd-object-XXXXXX created under the system's temporary folder ($TMPDIR,
-// else /tmp), removed with everything in it when this goes out of scope, and on INT, TERM and HUP
-// (io/output_files.h). Throws io::InputError naming the temporary folder when it cannot be
-// created.
-class TempFolder {
- public:
-  TempFolder();
-  const std::filesystem::path& path() const;
-
- private:
-  io::CleanupGuard guard_;
-};
+// Writes the scene of `placement` in `hand` into `dir` (created). Throws io::InputError naming
+// the mesh file for a bad mesh, naming the template (and its line) for a template that breaks
+// the contract; std::invalid_argument for a bad `up`.
+ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTemplate& hand,
+                               const std::string& dir);
 
 }  // namespace graspcd::grasp

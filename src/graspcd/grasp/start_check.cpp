@@ -9,7 +9,7 @@
 #include "graspcd/core/containment.h"
 #include "graspcd/core/obb_tree.h"
 #include "graspcd/core/penetration.h"
-#include "graspcd/core/warnings.h"
+#include "graspcd/io/warnings.h"
 #include "graspcd/mujoco/collision_pose.h"
 #include "graspcd/mujoco/primitives.h"
 #include "graspcd/mujoco/registry.h"
@@ -18,15 +18,18 @@ namespace graspcd::grasp {
 
 namespace {
 
-// "geom 'NAME'", or for an unnamed geom "geom N (TYPE of body 'BODY')".
-std::string geom_name(const mjModel* m, int g) {
+// "geom 'NAME'", or for an unnamed geom "geom N (TYPE of body 'BODY')"; with `names`, a mesh of
+// the hand is called the hand's ("geom 12 (the robotiq hand's mesh 'pad' of body 'left')").
+std::string geom_name(const mjModel* m, int g, const mujoco::SceneNames* names = nullptr) {
   const char* name = mj_id2name(m, mjOBJ_GEOM, g);
   if (name != nullptr && *name != '\0') return "geom '" + std::string(name) + "'";
   const char* body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]);
   std::string type = mujoco::geom_type_name(m->geom_type[g]);
   if (m->geom_type[g] == mjGEOM_MESH) {
     const char* mesh = mj_id2name(m, mjOBJ_MESH, m->geom_dataid[g]);
-    if (mesh != nullptr) type += " '" + std::string(mesh) + "'";
+    if (mesh != nullptr) {
+      type = (names != nullptr ? names->mesh_owner(mesh) : "") + type + " '" + mesh + "'";
+    }
   }
   return "geom " + std::to_string(g) + " (" + type + " of body '" +
          (body != nullptr ? body : "world") + "')";
@@ -113,11 +116,12 @@ std::optional<WorldSurface> world_surface(const mjModel* m, const mjData* d, int
 }
 
 // Once per geom and check (`warned` by geom id).
-void warn_open(const mjModel* m, int g, std::vector<char>& warned) {
+void warn_open(const mjModel* m, int g, std::vector<char>& warned,
+               const mujoco::SceneNames& names) {
   if (warned[static_cast<std::size_t>(g)]) return;
   warned[static_cast<std::size_t>(g)] = 1;
   warnings().add("start_check_open",
-                 "start check: " + geom_name(m, g) +
+                 "start check: " + geom_name(m, g, &names) +
                      " is not a closed mesh: what lies inside it is not checked");
 }
 
@@ -144,7 +148,8 @@ std::string inside_hull(const mjModel* m, int hull_geom, const std::string& what
 
 }  // namespace
 
-std::string check_start_state(const mjModel* m, const mjData* d, int object_body) {
+std::string check_start_state(const mjModel* m, const mjData* d, int object_body,
+                              const mujoco::SceneNames& names) {
   const int root = m->body_rootid[object_body];
   const auto in_object = [&](int g) { return m->body_rootid[m->geom_bodyid[g]] == root; };
   std::vector<char> warned(static_cast<std::size_t>(m->ngeom), 0);
@@ -192,7 +197,7 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
                  " (at most " + millimetres(kStartPenetration) + " allowed)";
         }
       } else {
-        warn_open(m, g, warned);
+        warn_open(m, g, warned, names);
       }
       if (object_closed) {
         const VertexPenetration p = deepest_point_inside(object->tree, other->probes);
@@ -201,7 +206,7 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
                  millimetres(p.depth) + " (at most " + millimetres(kStartPenetration) + " allowed)";
         }
       } else {
-        warn_open(m, o, warned);
+        warn_open(m, o, warned, names);
       }
     }
   }

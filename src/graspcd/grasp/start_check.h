@@ -1,13 +1,13 @@
 // The start-state check of a grasp: before the first physics step, the object must not lie
-// inside the hand, a finger or its support, nor any of them inside the object. A grasp that
-// starts interpenetrated ends in a verdict that means nothing (MuJoCo pushes the bodies apart
-// with whatever force the overlap gives), so run_grasp (grasp.h) refuses it as bad input.
+// inside the hand, a finger or its support, nor any of them inside the object (a grasp that
+// starts interpenetrated ends in a verdict that means nothing); run_grasp (grasp.h) refuses it as
+// bad input.
 //
 // What is checked, at the initial state (after mj_forward): every geom of the object's body tree
 // against every other geom the contype/conaffinity filter lets collide with it (explicit <pair>
 // elements are not read), skipping pairs whose bounding spheres (geom_rbound) are farther apart
 // than kStartPenetration. The geoms' surfaces are MuJoCo's own float vertices placed in the world
-// (meshes: mesh_face, not the hull; primitives: the bridge's tessellations, primitives.h).
+// (meshes: mesh_face, not the hull; primitives: the MuJoCo layer's tessellations, primitives.h).
 //  - A plane (the floor): the depth of the object's lowest vertex below it.
 //  - Anything else: the depth inside the other's closed solid of each vertex of one geom and of
 //    points along its edges at most kStartPenetration apart, both ways (exact inside test,
@@ -24,6 +24,8 @@
 
 #include <string>
 
+#include "graspcd/mujoco/scene_names.h"
+
 namespace graspcd::grasp {
 
 // The largest penetration allowed at the start, m. A scene placed by hand or by graspcd grasp
@@ -33,7 +35,9 @@ inline constexpr double kStartPenetration = 0.5e-3;
 
 // The first violation as one message (no file name in front), or "" when the start state is
 // valid. `object_body` is the object's body id; `d` holds the initial state after mj_forward.
-std::string check_start_state(const mjModel* m, const mjData* d, int object_body);
+// `names` words the warnings of a scene graspcd wrote (a mesh of the hand called the hand's).
+std::string check_start_state(const mjModel* m, const mjData* d, int object_body,
+                              const mujoco::SceneNames& names = {});
 
 // The start as MuJoCo's native collision sees it (--native, and the pieces of --decomposed, which
 // are mesh geoms collided natively): every mesh geom is its convex hull (MuJoCo 2.2's mesh_graph,

@@ -1,9 +1,7 @@
 // The true meshes' penetration over a grasp run, whatever geometry the run collides (graspcd's
-// contacts on the true meshes, MuJoCo's convex hulls with --native, convex pieces with
-// --decomposed): how deep the object went into a hand geom or its support, or one of them into
-// the object, as the true surfaces say. A configuration whose contacts let the true meshes pass
-// through each other (a hull that holds a finger off the object, pieces that leave a gap) or that
-// throws the object through its support shows it here, even when no contact is left to judge.
+// contacts, MuJoCo's convex hulls with --native, convex pieces with --decomposed): how deep the
+// object went into a hand geom or its support, or one of them into the object, as the true
+// surfaces say.
 //
 // What is measured, once per grasp step (every physics_steps_per_grasp_step physics steps, in
 // every phase): for each object geom and each geom outside the object's body tree that the
@@ -14,18 +12,16 @@
 //    solid, by the exact inside test and the distance to the surface of core/penetration.h
 //    (deepest_point_inside), both ways. Probes are a geom's vertices and points along its edges
 //    at most kTrueProbeSpacing apart (MuJoCo's float vertices in the geom frame; primitives: the
-//    bridge's tessellations, primitives.h). A vertex measure can underestimate the true depth
+//    MuJoCo layer's tessellations, primitives.h). A vertex measure can underestimate the true depth
 //    (penetration.h); it never invents one.
 //  - a geom whose mesh is not closed has no inside: only the other's inside is tested (its own
 //    probes in the other's solid), and the result says so (TruePenetration::partial); two open
 //    meshes are not measured at all (TruePenetration::unmeasured).
 //  - a plane: the depth of the object's lowest probe below it (its solid is the half-space under
 //    it). Height fields are not measured (unmeasured).
-// A sample per grasp step (10 ms at the shipped 2 ms step): an object thrown faster than a thin
-// support's thickness per grasp step can pass through it between two samples and leave only a
-// shallow depth (the Shadow hand's mug thrown through its table at 11 m/s: 2.3 mm); the ejection
-// verdict (grasp.h) catches such a run, and the race ranks it by its outcome first. A plane has no
-// thickness to pass: the depth below it stays.
+// A sample per grasp step: an object thrown faster than a thin support's thickness per grasp step
+// can pass through it between two samples and leave only a shallow depth; the ejection verdict
+// (grasp.h) catches such a run. A plane has no thickness to pass: the depth below it stays.
 // A pair that moved too little since its last measure to pass the deepest of its side found so
 // far is not measured again (a depth moves no more than the probes do): the maxima, their step
 // and geom are those of measuring every pair at every grasp step.

@@ -21,16 +21,11 @@
 #include <string>
 #include <vector>
 
+#include "graspcd/io/input_error.h"
+
 namespace graspcd::io {
 
 namespace {
-
-// The first line of a message, trimmed.
-std::string first_line(const std::string& text) {
-  std::string line = text.substr(0, text.find('\n'));
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-  return line;
-}
 
 ImportedMesh import_in_process(const std::string& path, const std::string& format) {
   ImportedMesh out;
@@ -42,7 +37,7 @@ ImportedMesh import_in_process(const std::string& path, const std::string& forma
   const aiScene* scene =
       importer.ReadFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices);
   if (scene == nullptr) {
-    out.error = first_line(importer.GetErrorString());
+    out.error = one_line(importer.GetErrorString());
     if (out.error.find("bad_alloc") != std::string::npos) {
       out.error = "the import library (Assimp) ran out of memory reading it";
     }
@@ -221,7 +216,7 @@ ImportedMesh import_in_child(const std::string& path, const std::string& format,
       bytes = encode(failed);
     } catch (const std::exception& e) {
       ImportedMesh failed;
-      failed.error = first_line(e.what());
+      failed.error = one_line(e.what());
       bytes = encode(failed);
     }
     std::size_t done = 0;

@@ -1,7 +1,7 @@
 // The reader of the mesh formats that graspcd reads through Assimp 5.2 (Debian's libassimp): PLY
 // (ASCII and binary), glTF 2.0 (.gltf with its buffers, .glb) and COLLADA (.dae). Used by
-// load_mesh (mesh_io.h), which applies the checks and the hygiene every format gets; nothing
-// else includes it, and no Assimp header leaks out of it.
+// load_mesh (mesh_io.h), which applies the checks and the hygiene every format gets; no Assimp
+// header leaks out of it.
 #pragma once
 
 #include <cstdint>
@@ -20,7 +20,7 @@ namespace graspcd::io {
 struct ImportedMesh {
   TriangleMesh mesh;
   std::vector<std::string> parts;  // the meshes' names, in order ("" when unnamed)
-  // On failure: Assimp's message (its first line), and where it was found when the reader knows:
+  // On failure: Assimp's message (on one line), and where it was found when the reader knows:
   // the mesh (1-based) and its face (1-based) or vertex; 0 when not known.
   std::string error;
   std::size_t error_mesh = 0;

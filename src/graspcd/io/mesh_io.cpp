@@ -24,6 +24,7 @@
 
 #include "graspcd/core/mesh_hygiene.h"
 #include "graspcd/core/tolerances.h"
+#include "graspcd/io/input_error.h"
 #include "graspcd/io/mesh_import.h"
 
 namespace graspcd::io {
@@ -74,13 +75,6 @@ std::string lower_extension(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
-}
-
-// The first line of a tinyobjloader message, without its trailing newline.
-std::string first_line(const std::string& text) {
-  std::string line = text.substr(0, text.find('\n'));
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-  return line;
 }
 
 // tinyobjloader's number parser reads what it does not understand as 0 or as a prefix of the token
@@ -256,7 +250,7 @@ TriangleMesh load_obj(const std::string& path, std::vector<std::string>& objects
   tinyobj::ObjReader reader;
   if (!reader.ParseFromFile(path, config)) {
     // tinyobjloader names the line inside its message, as "line N".
-    const std::string message = first_line(reader.Error());
+    const std::string message = one_line(reader.Error());
     std::smatch match;
     std::size_t line = 0;
     if (std::regex_search(message, match, std::regex("line (\\d+)"))) {

@@ -71,27 +71,15 @@ void write_obj(const std::string& path, const TriangleMesh& mesh);
 // coordinates in the exact-arithmetic range, faces of at least 3 vertices naming vertices of the
 // file) and the same hygiene (below); a file of several meshes or objects is one mesh, all of
 // them concatenated.
-//  - OBJ: every object and group is concatenated into one mesh; polygons are triangulated
-//    (tinyobjloader's triangulation); normals, texture coordinates and materials are ignored.
-//    Coordinates are the doubles tinyobjloader's own number parser gives (its double build). That
-//    parser reads a word such as "nan" as 0 and "1e999" as inf, so every vertex line ('v' then a
-//    blank) is first read with the command line's number grammar (text_input.h, parse_number):
-//    3, 4 (x y z w) or 6 (x y z r g b) numbers, no hexadecimal floats (tinyobjloader cannot read
-//    them); a bad one is reported at its line, "FILE:LINE: vertex N: <parse_number's message>".
-//    Face lines are checked at their line too ("FILE:LINE: face N: ..."): at least 3 vertices,
-//    each index naming a vertex of the file. A UTF-8 byte-order mark at the start of the file is
-//    refused ("FILE:1: UTF-8 byte-order mark"): no OBJ reader sees the first line's vertex then.
-//    tinyobjloader's values must then equal those to within its rounding (relative 1e-12), or
-//    the line is reported.
-//  - STL: binary only (80-byte header, uint32 count, 50-byte records; the file size must be
-//    84 + 50 * count).
-//  - ASCII STL and OFF: read here (double precision, the number grammar of the command line),
-//    an error naming its line; OFF polygons are triangulated as fans.
-//  - PLY (ASCII and binary), glTF 2.0 and GLB, COLLADA: Assimp 5.2 (single precision floats,
-//    node transforms applied, polygons triangulated, COLLADA's axes kept and its unit turned to
-//    metres), in a child process, so that a crash or a hang of Assimp on a hostile file is one
-//    error ("FILE: the import library (Assimp) crashed reading it (signal 11, ...)"). Assimp
-//    names no line: an error names the mesh and face when it is a face of fewer than 3 vertices.
+//  - OBJ (tinyobjloader, double precision): every object and group concatenated, polygons
+//    triangulated; normals, texture coordinates and materials ignored. Every vertex line is read
+//    with the command line's number grammar (text_input.h, parse_number), every face line
+//    checked, each error at its line ("FILE:LINE: vertex N: ...", "FILE:LINE: face N: ..."); a
+//    UTF-8 byte-order mark is refused.
+//  - binary STL; ASCII STL and OFF (read here, double precision, errors at their line; OFF
+//    polygons triangulated as fans).
+//  - PLY, glTF 2.0 and GLB, COLLADA: Assimp 5.2 in a child process (mesh_import.h): a crash or a
+//    hang of Assimp on a hostile file is one error; errors name the mesh and face, not a line.
 // Hygiene (core/mesh_hygiene.h), after reading either format: equal vertices are welded, and
 // zero-area faces are dropped (docs/design.md "Semantics"); `stats` says what was done, and maps
 // every loaded face to its face id in the file. A mesh whose faces all have zero area is an error.

@@ -4,11 +4,9 @@
 //
 // Cleanup on INT, TERM and HUP: install_cleanup_handlers() sets a handler for the three signals
 // that removes every path registered with a CleanupGuard (a file, or a folder with everything in
-// it) and ends the process with exit code 128 + the signal's number. The handler is
-// async-signal-safe: the paths are copied into a fixed table when they are registered (with the
-// signals blocked), and the handler only reads that table and calls lstat, open, openat,
-// getdents64, unlinkat, close and _exit; it allocates nothing. Errors and normal returns remove
-// the same paths through CleanupGuard's destructor.
+// it) and ends the process with exit code 128 + the signal's number (async-signal-safe: it
+// allocates nothing). Errors and normal returns remove the same paths through CleanupGuard's
+// destructor.
 #pragma once
 
 #include <filesystem>
@@ -89,8 +87,5 @@ class AtomicFile {
   std::string write_path_;
   CleanupGuard guard_;
 };
-
-// `text` with every occurrence of `from` replaced by `to`.
-std::string replace_all(std::string text, const std::string& from, const std::string& to);
 
 }  // namespace graspcd::io

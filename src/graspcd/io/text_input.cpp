@@ -20,14 +20,6 @@ namespace graspcd::io {
 
 namespace {
 
-std::string located(const std::string& file, std::size_t line, const std::string& message) {
-  std::ostringstream out;
-  out << file;
-  if (line > 0) out << ':' << line;
-  out << ": " << message;
-  return out.str();
-}
-
 bool is_blank(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
 }
@@ -140,12 +132,6 @@ void require_regular_file(const std::string& path) {
                                               : "a device or special file";
   throw InputError(path, 0, std::string("not a regular file (") + kind + ")");
 }
-
-InputError::InputError(std::string file, std::size_t line, std::string message)
-    : std::runtime_error(located(file, line, message)),
-      file_(std::move(file)),
-      line_(line),
-      message_(std::move(message)) {}
 
 TextReader::TextReader(const std::string& path) {
   if (path == "-") {

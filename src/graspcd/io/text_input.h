@@ -14,24 +14,9 @@
 
 #include "graspcd/core/geometry.h"
 #include "graspcd/core/obb.h"
+#include "graspcd/io/input_error.h"
 
 namespace graspcd::io {
-
-// Bad input, located: what() is "FILE:LINE: message", or "FILE: message" when line() is 0 (no
-// particular line, e.g. a file that cannot be opened).
-class InputError : public std::runtime_error {
- public:
-  InputError(std::string file, std::size_t line, std::string message);
-
-  const std::string& file() const { return file_; }
-  std::size_t line() const { return line_; }  // 1-based physical line; 0 = the file as a whole
-  const std::string& message() const { return message_; }
-
- private:
-  std::string file_;
-  std::size_t line_;
-  std::string message_;
-};
 
 // A value that is well formed as numbers but not as the object they describe (a non-orthonormal R,
 // a negative half-extent). Carries no location: the caller knows the line and rethrows it as an

@@ -1,5 +1,5 @@
-// The served paths of the seam (collision_served.h): the tree query with its contacts, and the
-// exact box-box path.
+// The served paths of the MuJoCo layer (collision_served.h): the tree query with its contacts, and
+// the exact box-box path.
 #include "graspcd/mujoco/collision_served.h"
 
 #include <algorithm>

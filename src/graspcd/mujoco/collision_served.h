@@ -1,4 +1,5 @@
-// The served paths of the seam: what graspcd answers for a pair its registry serves (registry.h).
+// The served paths of the MuJoCo layer: what graspcd answers for a pair its registry serves
+// (registry.h).
 #pragma once
 
 #include <mujoco/mujoco.h>

@@ -1,5 +1,5 @@
-// The process-wide side of the seam (collision_table.h): graspcd's entries in mjCOLLISIONFUNC and
-// the model -> registry table that its function looks registries up in.
+// The process-wide side of the MuJoCo layer (collision_table.h): graspcd's entries in
+// mjCOLLISIONFUNC and the model -> registry table that its function looks registries up in.
 #include "graspcd/mujoco/collision_table.h"
 
 #include <array>

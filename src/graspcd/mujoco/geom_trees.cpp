@@ -98,10 +98,11 @@ std::vector<int> resolve_pattern(const mjModel* m, const std::string& pattern,
   std::vector<int> out = match_geoms(m, pattern);
   for (int g : out) {
     if (!served_geom_type(m->geom_type[g])) {
-      refuse(source, "pattern '" + pattern + "' matches " + unserved_geom(m, g));
+      throw io::InputError(source, 0, "pattern '" + pattern + "' matches " + unserved_geom(m, g));
     }
   }
-  if (out.empty()) refuse(source, "pattern '" + pattern + "' matches no collidable geom");
+  if (out.empty())
+    throw io::InputError(source, 0, "pattern '" + pattern + "' matches no collidable geom");
   return out;
 }
 
@@ -147,16 +148,16 @@ GeomTrees::GeomTrees(const mjModel* m) {
 }
 
 void GeomTrees::add_geom(const mjModel* m, int g, const std::string& source,
-                         const WarningSink& warn) {
+                         const WarningSink& warn, const SceneNames& names) {
   const MeshTree*& slot = by_geom_[static_cast<std::size_t>(g)];
   if (slot) return;
-  slot = m->geom_type[g] == mjGEOM_MESH ? &mesh_tree_of(m, m->geom_dataid[g], source, warn)
+  slot = m->geom_type[g] == mjGEOM_MESH ? &mesh_tree_of(m, m->geom_dataid[g], source, warn, names)
                                         : &primitive_tree_of(m, g, source);
 }
 
 // Mesh hygiene: the tree leaves zero-area faces out (core/mesh_hygiene.h).
 const MeshTree& GeomTrees::mesh_tree_of(const mjModel* m, int mesh, const std::string& source,
-                                        const WarningSink& warn) {
+                                        const WarningSink& warn, const SceneNames& names) {
   auto it = meshes_.find(mesh);
   if (it != meshes_.end()) return it->second;
   HygieneReport hygiene;
@@ -164,9 +165,10 @@ const MeshTree& GeomTrees::mesh_tree_of(const mjModel* m, int mesh, const std::s
   const std::string mname = object_name(m, mjOBJ_MESH, mesh);
   const std::string what =
       "mesh " + std::to_string(mesh) + (mname.empty() ? "" : " '" + mname + "'");
-  if (tris.empty()) refuse(source, what + " has no face of non-zero area");
+  if (tris.empty()) throw io::InputError(source, 0, what + " has no face of non-zero area");
   if (!hygiene.dropped_faces.empty()) {
-    warn("mesh_zero_area_faces", dropped_faces_message(source, what, hygiene.dropped_faces));
+    warn("mesh_zero_area_faces",
+         dropped_faces_message(source, names.mesh_owner(mname) + what, hygiene.dropped_faces));
   }
   MeshTree built = make_tree(tris);
   built.source_face = std::move(hygiene.source_face);
@@ -181,7 +183,7 @@ const MeshTree& GeomTrees::primitive_tree_of(const mjModel* m, int g, const std:
   try {
     shape = tessellate_primitive(m->geom_type[g], m->geom_size + 3 * g);
   } catch (const std::invalid_argument& e) {
-    refuse(source, "geom " + std::to_string(g) + ": " + e.what());
+    throw io::InputError(source, 0, "geom " + std::to_string(g) + ": " + e.what());
   }
   std::vector<Triangle> tris;
   for (std::size_t f = 0; f < shape.faces.size(); ++f) tris.push_back(shape.triangle(f));

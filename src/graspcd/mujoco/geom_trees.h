@@ -23,6 +23,7 @@
 #include "graspcd/core/contact.h"
 #include "graspcd/core/containment.h"
 #include "graspcd/core/obb_tree.h"
+#include "graspcd/mujoco/scene_names.h"
 
 namespace graspcd::mujoco {
 
@@ -85,8 +86,9 @@ class GeomTrees {
   // Builds the tree of geom `g` (a served type) unless its mesh's or shape's exists already.
   // Throws std::runtime_error starting with `source` for a mesh with no face of non-zero area or a
   // primitive that cannot be tessellated; reports dropped zero-area faces to `warn`
-  // ("mesh_zero_area_faces").
-  void add_geom(const mjModel* m, int g, const std::string& source, const WarningSink& warn);
+  // ("mesh_zero_area_faces"), a mesh of the hand called so by `names`.
+  void add_geom(const mjModel* m, int g, const std::string& source, const WarningSink& warn,
+                const SceneNames& names = {});
 
   // The tree of a mesh id, or nullptr when no geom of the mesh was added.
   const MeshTree* mesh_tree(int mesh_id) const {
@@ -104,7 +106,7 @@ class GeomTrees {
 
  private:
   const MeshTree& mesh_tree_of(const mjModel* m, int mesh, const std::string& source,
-                               const WarningSink& warn);
+                               const WarningSink& warn, const SceneNames& names);
   const MeshTree& primitive_tree_of(const mjModel* m, int g, const std::string& source);
 
   std::unordered_map<int, MeshTree> meshes_;  // by mesh id

@@ -54,10 +54,9 @@ void refuse_duplicate_keys(const std::string& text, const std::string& source) {
       const std::string key = decoded.get<std::string>();
       const auto [at, inserted] = frames.back().key_lines.emplace(key, line);
       if (!inserted) {
-        refuse(source,
-               "duplicate key '" + key + "' (lines " + std::to_string(at->second) + " and " +
-                   std::to_string(line) + ")",
-               line);
+        throw io::InputError(source, line,
+                             "duplicate key '" + key + "' (lines " + std::to_string(at->second) +
+                                 " and " + std::to_string(line) + ")");
       }
     }
   }
@@ -68,8 +67,8 @@ void refuse_duplicate_keys(const std::string& text, const std::string& source) {
 nlohmann::json parse_json_config(const std::string& text, const std::string& source) {
   // nlohmann's reader ends its input at a NUL byte and would take what comes after for nothing.
   if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
-    refuse(source, "a NUL byte in the config (byte " + std::to_string(nul + 1) + ")",
-           line_of(text, nul));
+    throw io::InputError(source, line_of(text, nul),
+                         "a NUL byte in the config (byte " + std::to_string(nul + 1) + ")");
   }
   nlohmann::json j;
   try {
@@ -81,9 +80,6 @@ nlohmann::json parse_json_config(const std::string& text, const std::string& sou
         std::regex_replace(e.what(), std::regex(R"(^\[json\.exception\.[^\]]*\] )"), "");
     message =
         std::regex_replace(message, std::regex(R"(^parse error at line \d+, column \d+: )"), "");
-    for (char& c : message) {
-      if (c == '\n' || c == '\r') c = ' ';
-    }
     std::size_t line = 0;
     if (const auto* parse = dynamic_cast<const nlohmann::json::parse_error*>(&e)) {
       // byte: 1-based position of the character that failed (0: unknown).
@@ -96,7 +92,7 @@ nlohmann::json parse_json_config(const std::string& text, const std::string& sou
         if (at != std::string::npos) line = line_of(text, at);
       }
     }
-    refuse(source, "bad JSON: " + message, line);
+    throw io::InputError(source, line, "bad JSON: " + message);
   }
   refuse_duplicate_keys(text, source);
   return j;
@@ -105,10 +101,10 @@ nlohmann::json parse_json_config(const std::string& text, const std::string& sou
 std::string read_config_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
-    refuse(path, "not a regular file");
+    throw io::InputError(path, 0, "not a regular file");
   }
   std::ifstream in(path, std::ios::binary);
-  if (!in) refuse(path, "cannot open the config file");
+  if (!in) throw io::InputError(path, 0, "cannot open the config file");
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();

@@ -78,31 +78,13 @@ std::string qhull_line(const std::string& text) {
 
 }  // namespace
 
-std::string join_lines(const std::string& text) {
-  std::string out;
-  std::size_t pos = 0;
-  while (pos <= text.size()) {
-    std::size_t end = text.find_first_of("\r\n", pos);
-    if (end == std::string::npos) end = text.size();
-    std::string line = text.substr(pos, end - pos);
-    const auto first = line.find_first_not_of(" \t");
-    const auto last = line.find_last_not_of(" \t");
-    if (first != std::string::npos) {
-      if (!out.empty()) out += "; ";
-      out += line.substr(first, last - first + 1);
-    }
-    pos = end + 1;
-  }
-  return out;
-}
-
-ModelPtr load_model(const std::string& path) {
+ModelPtr load_model(const std::string& path, const SceneNames& names) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec) || !std::ifstream(path).good())
-    throw InputError(path, "cannot open the scene file");
+    throw names.refusal(path, 0, "cannot open the scene file");
   // What MuJoCo would accept with a warning or misread (scene_check.h), then MuJoCo's own checks,
   // then the compiled numbers (model_check.h: the same rule for what the checks cannot see).
-  check_scene_file(path);
+  check_scene_file(path, names);
   char error[2048] = "";
   ModelPtr m;
   std::string qhull;
@@ -117,13 +99,13 @@ ModelPtr load_model(const std::string& path) {
     }
   }
   if (!m) {
-    std::string message = join_lines(error);
+    std::string message = io::one_line(error);
     if (message.empty()) message = "MuJoCo could not load it";
     if (!qhull.empty()) message += "; " + qhull;
-    throw InputError(path, message);
+    throw names.refusal(path, 0, message);
   }
   const std::string non_finite = find_non_finite(m.get());
-  if (!non_finite.empty()) throw InputError(path, non_finite);
+  if (!non_finite.empty()) throw names.refusal(path, 0, non_finite);
   return m;
 }
 

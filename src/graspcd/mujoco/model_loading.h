@@ -1,20 +1,21 @@
-// Loading an MJCF scene for graspcd: the checks before MuJoCo reads it (scene_check.h), MuJoCo's
-// own reader with its messages captured, and the compiled numbers (model_check.h). Every refusal
-// is an InputError that carries the file, the line and the message apart and prints as one line.
+// Loading an MJCF scene: graspcd's checks before MuJoCo reads it (scene_check.h), MuJoCo's reader
+// with its messages captured, then the compiled numbers (model_check.h).
 #pragma once
 
 #include <string>
 
 #include "graspcd/mujoco/input_error.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
+#include "graspcd/mujoco/scene_names.h"
 
 namespace graspcd::mujoco {
 
-// Loads an MJCF file. A missing file or MuJoCo's error become an InputError whose message is
-// "FILE: <MuJoCo's message on one line>" (docs/mujoco.md, "Loading a scene").
-ModelPtr load_model(const std::string& path);
+// Loads an MJCF file. Throws InputError for a missing file, a refused scene or MuJoCo's error
+// ("FILE: <MuJoCo's message on one line>", docs/mujoco.md, "Loading a scene"); a scene graspcd
+// wrote is named as `names` says.
+ModelPtr load_model(const std::string& path, const SceneNames& names = {});
 
-// Joins MuJoCo's multi-line error text into one line (line breaks become "; ", blanks trimmed).
-std::string join_lines(const std::string& text);
+// The one-line rule, io::one_line, under its name before 0.5.
+inline std::string join_lines(const std::string& text) { return io::one_line(text); }
 
 }  // namespace graspcd::mujoco

@@ -4,29 +4,26 @@
 
 #include <string>
 
+#include "graspcd/io/input_error.h"
+
 namespace graspcd::mujoco {
 namespace {
 
 thread_local WarningSink* t_capture = nullptr;
+// The scene this thread simulates (ScopedMujocoErrors), or null.
+thread_local const ScopedMujocoErrors* t_scene = nullptr;
 
-// MuJoCo's messages end with no newline but may hold several lines (e.g. "Pre-allocated contact
-// buffer is full. Increase nconmax above 1. Time = 0.0020."); the sink keeps one line.
+// The sink keeps one line of each message (io::one_line).
 void on_mujoco_warning(const char* message) {
-  std::string line = message != nullptr ? message : "";
-  for (char& c : line) {
-    if (c == '\n' || c == '\r') c = ' ';
-  }
-  line = "MuJoCo: " + line;
+  const std::string line = "MuJoCo: " + io::one_line(message != nullptr ? message : "");
   warnings().add("mujoco_warning", line);
   if (t_capture != nullptr) t_capture->add("mujoco_warning", line);
 }
 
 [[noreturn]] void on_mujoco_error(const char* message) {
-  std::string line = message != nullptr ? message : "";
-  for (char& c : line) {
-    if (c == '\n' || c == '\r') c = ' ';
-  }
-  throw MujocoError("MuJoCo error: " + line);
+  const std::string line = "MuJoCo error: " + io::one_line(message != nullptr ? message : "");
+  if (t_scene != nullptr) throw io::InputError(t_scene->file(), 0, line + t_scene->note());
+  throw MujocoError(line);
 }
 
 }  // namespace
@@ -40,5 +37,14 @@ ScopedMujocoWarnings::ScopedMujocoWarnings(WarningSink& sink) : previous_(t_capt
 }
 
 ScopedMujocoWarnings::~ScopedMujocoWarnings() { t_capture = previous_; }
+
+ScopedMujocoErrors::ScopedMujocoErrors(const std::string& scene, const SceneNames& names)
+    : file_(names.file(scene)),
+      note_(scene == names.written_scene ? names.note : ""),
+      previous_(t_scene) {
+  t_scene = this;
+}
+
+ScopedMujocoErrors::~ScopedMujocoErrors() { t_scene = previous_; }
 
 }  // namespace graspcd::mujoco

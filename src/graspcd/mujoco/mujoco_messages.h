@@ -1,4 +1,4 @@
-// MuJoCo's warnings into graspcd's one warning sink (graspcd/core/warnings.h).
+// MuJoCo's warnings into graspcd's one warning sink (graspcd/io/warnings.h).
 //
 // MuJoCo 2.2 prints a warning (a full contact buffer, a bad number in the state, "XML contains a
 // 'NaN'") on stdout and appends it to MUJOCO_LOG.TXT in the working folder, unless the process sets
@@ -15,14 +15,17 @@
 //
 // MuJoCo's errors (mju_error: e.g. its stack or arena is too small for the model) print, append to
 // MUJOCO_LOG.TXT and exit(1) by default, which skips every destructor (a temporary folder stays
-// behind) and names no file. route_mujoco_errors() makes them a MujocoError exception instead,
-// thrown out of the MuJoCo call (mj_step, mj_makeData, ...), whose state is then not to be used
-// again: the caller reports it naming its scene and gives up that model.
+// behind) and names no file. route_mujoco_errors() makes them an exception instead, thrown out of
+// the MuJoCo call (mj_step, mj_makeData, ...), whose state is then not to be used again: an
+// io::InputError naming the scene while a ScopedMujocoErrors lives on the thread, else a
+// MujocoError.
 #pragma once
 
 #include <stdexcept>
+#include <string>
 
-#include "graspcd/core/warnings.h"
+#include "graspcd/io/warnings.h"
+#include "graspcd/mujoco/scene_names.h"
 
 namespace graspcd::mujoco {
 
@@ -48,6 +51,25 @@ class ScopedMujocoWarnings {
 
  private:
   WarningSink* previous_;
+};
+
+// While alive, a MuJoCo error raised on this thread (with route_mujoco_errors()) is an
+// io::InputError naming the scene being simulated as `names` has it: "SCENE: MuJoCo error:
+// MESSAGE", with the names' note for a scene graspcd wrote.
+class ScopedMujocoErrors {
+ public:
+  explicit ScopedMujocoErrors(const std::string& scene, const SceneNames& names = {});
+  ~ScopedMujocoErrors();
+  ScopedMujocoErrors(const ScopedMujocoErrors&) = delete;
+  ScopedMujocoErrors& operator=(const ScopedMujocoErrors&) = delete;
+
+  const std::string& file() const { return file_; }
+  const std::string& note() const { return note_; }
+
+ private:
+  std::string file_;
+  std::string note_;
+  const ScopedMujocoErrors* previous_;
 };
 
 }  // namespace graspcd::mujoco

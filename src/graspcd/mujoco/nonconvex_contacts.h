@@ -46,7 +46,7 @@ class NonconvexContacts {
   // Errors: std::runtime_error with a one-line message starting with `config_path` for a missing
   // file, bad JSON, an unknown field or method, a pattern that matches no collidable geom, a
   // matched geom of a type graspcd does not serve (plane, height field); std::runtime_error when
-  // kMaxAttachedModels models use the bridge already. Nothing is installed when it throws.
+  // kMaxAttachedModels models use the MuJoCo layer already. Nothing is installed when it throws.
   NonconvexContacts(const mjModel* m, const std::string& config_path,
                     std::optional<Method> method = std::nullopt);
   // The same from a config built in code (patterns and/or geom id pairs, pair_config.h); `source`

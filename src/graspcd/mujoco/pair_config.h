@@ -21,9 +21,8 @@
 //     "contact_reuse": 2e-5,   // metres in [0, 0.001]: reuse a pair's contacts while it moves
 //                              // less (contact.h, ReusedContacts); 0: exact contacts every step
 //     "pairs": [ {"a": "finger*", "b": "body:object"} , ... ],
-//     "grasp": { ... }         // not the seam's: how the grasp experiment drives a hand; the
-//                              // grasp module reads it from the file (graspcd/grasp/
-//                              // drive_config.h), this parser accepts it unread
+//     "grasp": { ... }         // how the grasp experiment drives a hand (graspcd/grasp/
+//                              // drive_config.h); accepted unread here
 //   }
 // A pair entry may carry its own "max_contacts" and "max_patch_contacts", which override the
 // top-level ones for the geom pairs it registers (the first entry to register a pair decides).
@@ -45,6 +44,7 @@
 
 #include "graspcd/core/contact.h"
 #include "graspcd/core/separators.h"
+#include "graspcd/mujoco/scene_names.h"
 
 namespace graspcd::mujoco {
 
@@ -83,11 +83,8 @@ struct RegistryConfig {
   // touch geom1 moved more than this (metres) relative to geom1, and the larger geom's rim turned
   // no more, since the pair's last exact query on the same mjData, its contacts are refreshed
   // instead of queried (their depths along their normals; a region that begins or ends to touch
-  // within this drift is seen at the next exact query). The default, kDefaultContactReuse (20 um),
-  // keeps every served-contact check (the judge's 0 phantom / 0 missed on the shipped and concave
-  // grasps, their verdicts, the hard scenes' bounds, validate) and halves a served step on the
-  // examples (docs/performance.md); 0: every step's contacts from an exact query (the default
-  // before 0.4). At most kMaxContactReuse.
+  // within this drift is seen at the next exact query). Why 20 um by default: docs/design.md, "The
+  // MuJoCo layer"; 0: every step's contacts from an exact query. At most kMaxContactReuse.
   static constexpr double kDefaultContactReuse = 2e-5;
   double contact_reuse = kDefaultContactReuse;
   static constexpr double kMaxContactReuse = 0.001;
@@ -102,8 +99,8 @@ RegistryConfig parse_registry_config(const std::string& json_text, const std::st
 // The pair config of a scene when none is named: SCENE.pairs.json beside SCENE.xml (the scene's
 // extension, if any, replaced).
 std::string pair_config_path(const std::string& scene_path);
-// Reads and parses a config file. Throws std::runtime_error naming the file when it cannot be read
-// or does not parse.
-RegistryConfig load_registry_config(const std::string& path);
+// Reads and parses a config file. Throws std::runtime_error naming the file (as `names` has it,
+// for a copy graspcd wrote) when it cannot be read or does not parse.
+RegistryConfig load_registry_config(const std::string& path, const SceneNames& names = {});
 
 }  // namespace graspcd::mujoco

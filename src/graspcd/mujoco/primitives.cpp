@@ -1,5 +1,24 @@
 #include "graspcd/mujoco/primitives.h"
 
+// The curved primitives, circumscribed (primitives.h): a surface of revolution about z,
+// polygonised twice:
+//   1. The meridian profile, a polygon in the (rho, z) half-plane circumscribing the true profile:
+//      for the sphere, the half of a regular 2M-gon around the circle of radius r, its vertices
+//      at angles -pi/2 + k pi/M (k = 0..M) and radius r / cos(pi/(2M)), so its edges are tangent
+//      to the circle. M is odd, so the edge at the equator is vertical and tangent at rho = r.
+//      Capsule: the sphere's profile with the lower half moved down by the half-length h and the
+//      upper half moved up by h (the Minkowski sum with the axis segment; its side is exactly the
+//      cylinder rho = r). Cylinder: the rectangle rho <= r, |z| <= h, exact.
+//   2. Around z, every profile vertex (rho, z) with rho > 0 becomes a ring of N vertices at
+//      angles 2 pi j / N and radius rho / cos(pi/N) (the regular N-gon circumscribing the circle
+//      of radius rho); profile vertices on the axis (rho = 0) are single pole vertices. Adjacent
+//      rings share their angles, so each band is made of planar trapezoids (two triangles each)
+//      and every horizontal section of the solid is the N-gon around that section of the
+//      revolved profile, which contains the true section.
+//   Ellipsoid: the unit sphere's tessellation scaled by the three radii; an affine map keeps
+//   "contains", so it circumscribes the ellipsoid.
+//   All curved radii are multiplied by (1 + kTessPad) against rounding of sines and cosines.
+
 #include <algorithm>
 #include <array>
 #include <cmath>

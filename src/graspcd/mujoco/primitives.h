@@ -1,31 +1,14 @@
 // Triangle meshes of MuJoCo's primitive geoms, for the tree path of served pairs (docs/design.md,
 // "The MuJoCo layer"; the tolerances are in docs/library.md). Every mesh is closed,
-// outward-oriented (counter-clockwise seen from outside),
-// convex, and in the geom frame (centre at the origin; capsule and cylinder axes along z), as
-// MuJoCo places the primitive: geom_size holds the box half-extents, the sphere radius, the
-// capsule's and cylinder's radius and half-length, the ellipsoid's three radii.
+// outward-oriented (counter-clockwise seen from outside), convex, and in the geom frame (centre at
+// the origin; capsule and cylinder axes along z), as MuJoCo places the primitive: geom_size holds
+// the box half-extents, the sphere radius, the capsule's and cylinder's radius and half-length, the
+// ellipsoid's three radii.
 //
 // Box: exact. 8 corners at (+-hx, +-hy, +-hz), 12 triangles, tolerance 0.
 //
 // Curved primitives are CIRCUMSCRIBED: the true solid lies inside the tessellation's solid, so a
-// tessellation can only report extra contacts, never miss one. Construction (a surface of
-// revolution about z, polygonised twice):
-//   1. The meridian profile, a polygon in the (rho, z) half-plane circumscribing the true profile:
-//      for the sphere, the half of a regular 2M-gon around the circle of radius r, its vertices
-//      at angles -pi/2 + k pi/M (k = 0..M) and radius r / cos(pi/(2M)), so its edges are tangent
-//      to the circle. M is odd, so the edge at the equator is vertical and tangent at rho = r.
-//      Capsule: the sphere's profile with the lower half moved down by the half-length h and the
-//      upper half moved up by h (the Minkowski sum with the axis segment; its side is exactly the
-//      cylinder rho = r). Cylinder: the rectangle rho <= r, |z| <= h, exact.
-//   2. Around z, every profile vertex (rho, z) with rho > 0 becomes a ring of N vertices at
-//      angles 2 pi j / N and radius rho / cos(pi/N) (the regular N-gon circumscribing the circle
-//      of radius rho); profile vertices on the axis (rho = 0) are single pole vertices. Adjacent
-//      rings share their angles, so each band is made of planar trapezoids (two triangles each)
-//      and every horizontal section of the solid is the N-gon around that section of the
-//      revolved profile, which contains the true section.
-//   Ellipsoid: the unit sphere's tessellation scaled by the three radii; an affine map keeps
-//   "contains", so it circumscribes the ellipsoid.
-//   All curved radii are multiplied by (1 + kTessPad) against rounding of sines and cosines.
+// tessellation can only report extra contacts, never miss one (the construction: primitives.cpp).
 //
 // Resolution: N = kTessAround = 32 around the axis, M = kTessProfile = 15 profile segments over
 // the half circle. Triangles: sphere, ellipsoid, capsule 2 N (M - 1) = 896; cylinder 4 N = 128.
@@ -66,8 +49,8 @@ TriangleMesh tessellate_ellipsoid(const Vec3& radii);
 TriangleMesh tessellate_capsule(double radius, double half_length);
 TriangleMesh tessellate_cylinder(double radius, double half_height);
 
-// True for the geom types the bridge tessellates or serves exactly: sphere, capsule, ellipsoid,
-// cylinder, box.
+// True for the geom types the MuJoCo layer tessellates or serves exactly: sphere, capsule,
+// ellipsoid, cylinder, box.
 bool is_primitive(int geom_type);
 // "plane", "hfield", "sphere", "capsule", "ellipsoid", "cylinder", "box", "mesh", or "type N".
 const char* geom_type_name(int geom_type);

@@ -4,7 +4,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "graspcd/core/warnings.h"
+#include "graspcd/io/warnings.h"
 #include "graspcd/mujoco/input_error.h"
 #include "graspcd/mujoco/model_check.h"
 
@@ -14,22 +14,24 @@ namespace graspcd::mujoco {
 // mesh and per primitive (type, size) that a pair served by trees uses (docs/design.md: trees once
 // per mesh, in the geom frame, shared by the geoms of a mesh; primitives through a tessellated
 // mesh, primitives.h).
-Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::string& source)
+Registry::Registry(const mjModel* m, const RegistryConfig& config, const std::string& source,
+                   const SceneNames& names)
     : model_(m), config_(config), trees_(m) {
-  check_model(source);
-  add_pattern_pairs(source);
-  add_geom_pairs(source);
-  warn_served_margins(source);
-  choose_paths_and_build_trees(source);
-  warn_open_meshes(source);
+  const std::string named = names.file(source);
+  check_model(named);
+  add_pattern_pairs(named);
+  add_geom_pairs(named);
+  warn_served_margins(named);
+  choose_paths_and_build_trees(named, names);
+  warn_open_meshes(named, names);
 }
 
 // A model with a non-finite number (MuJoCo compiles a NaN attribute with a warning) is refused
 // here, at construction, never met inside mj_step (model_check.h).
 void Registry::check_model(const std::string& source) const {
-  if (!model_) refuse(source, "no model");
+  if (!model_) throw io::InputError(source, 0, "no model");
   const std::string non_finite = find_non_finite(model_);
-  if (!non_finite.empty()) refuse(source, non_finite);
+  if (!non_finite.empty()) throw io::InputError(source, 0, non_finite);
 }
 
 void Registry::add_pattern_pairs(const std::string& source) {
@@ -48,7 +50,8 @@ void Registry::add_pattern_pairs(const std::string& source) {
       }
     }
     if (!any) {
-      refuse(source, "pair ('" + p.a + "', '" + p.b + "') selects no pair of distinct geoms");
+      throw io::InputError(source, 0,
+                           "pair ('" + p.a + "', '" + p.b + "') selects no pair of distinct geoms");
     }
   }
 }
@@ -57,11 +60,12 @@ void Registry::add_geom_pairs(const std::string& source) {
   const mjModel* m = model_;
   for (const auto& [a, b] : config_.geom_pairs) {
     if (a < 0 || b < 0 || a >= m->ngeom || b >= m->ngeom || a == b) {
-      refuse(source, "bad geom pair (" + std::to_string(a) + ", " + std::to_string(b) + ")");
+      throw io::InputError(source, 0,
+                           "bad geom pair (" + std::to_string(a) + ", " + std::to_string(b) + ")");
     }
     for (int g : {a, b}) {
       if (!served_geom_type(m->geom_type[g])) {
-        refuse(source, "geom pair member " + unserved_geom(m, g));
+        throw io::InputError(source, 0, "geom pair member " + unserved_geom(m, g));
       }
     }
     add_pair(a, b, config_.manifold);
@@ -85,7 +89,7 @@ void Registry::warn_served_margins(const std::string& source) {
 
 // The path of each pair; trees for the geoms of pairs served by trees only: one per mesh, one per
 // primitive (type, size).
-void Registry::choose_paths_and_build_trees(const std::string& source) {
+void Registry::choose_paths_and_build_trees(const std::string& source, const SceneNames& names) {
   const mjModel* m = model_;
   const WarningSink sink = [this](const std::string& code, const std::string& message) {
     warn(code, message);
@@ -96,13 +100,13 @@ void Registry::choose_paths_and_build_trees(const std::string& source) {
       continue;
     }
     p.path = PairPath::kTrees;
-    for (int g : {p.geom_lo, p.geom_hi}) trees_.add_geom(m, g, source, sink);
+    for (int g : {p.geom_lo, p.geom_hi}) trees_.add_geom(m, g, source, sink, names);
   }
 }
 
 // Open meshes (core/containment.h): the separate containment check needs a closed solid, so it is
 // skipped inside them; their pairs still get every surface contact. Once per mesh.
-void Registry::warn_open_meshes(const std::string& source) {
+void Registry::warn_open_meshes(const std::string& source, const SceneNames& names) {
   const mjModel* m = model_;
   std::set<int> warned;
   for (const ServedPair& p : pairs_) {
@@ -113,7 +117,7 @@ void Registry::warn_open_meshes(const std::string& source) {
       const int mesh = m->geom_dataid[g];
       if (!warned.insert(mesh).second) continue;
       const std::string mname = object_name(m, mjOBJ_MESH, mesh);
-      warn("mesh_open", source + ": mesh " + std::to_string(mesh) +
+      warn("mesh_open", source + ": " + names.mesh_owner(mname) + "mesh " + std::to_string(mesh) +
                             (mname.empty() ? "" : " '" + mname + "'") + " is " +
                             t->closedness.describe() +
                             "; containment inside it is not checked (surface contacts only)");

@@ -4,22 +4,14 @@
 // mjData, the statistics and the construction's warnings. Attaching a registry to its model is
 // collision_table.h's (attach returns the handle that detaches it).
 //
-// A pair is served by one of two paths (PairPath):
-// - kBoxBox, both geoms boxes: exact and without triangles. The pair's Detector tests the two
-//   boxes (geom frame: centre 0, axes identity, half-extents geom_size, geom2 placed in geom1's
-//   frame by relative_pose); proven disjoint gives 0 contacts, otherwise MuJoCo's own box-box
-//   function (the original entry saved by install(), called with margin 0) makes the contacts.
-// - kTrees, every other pair: the tree query of the two geoms' OBB trees and contacts from the
-//   intersecting triangle pairs, reduced to a small manifold (contact.h: patches by normal and
-//   adjacency, at most max_patch_contacts points each and max_contacts per pair; the full
-//   triangle-pair list is what validate and the study check). Trees: geom_trees.h.
-// Planes and height fields are not served (MuJoCo keeps them).
+// A pair is served by one of two paths (PairPath; collision_served.h): two boxes by the
+// detector's box test and MuJoCo's own box-box contacts, every other pair by the tree query of
+// the two geoms' OBB trees (geom_trees.h) and a contact manifold of its intersecting triangle
+// pairs (contact.h). Planes and height fields are not served (MuJoCo keeps them).
 //
-// State: everything a served pair carries from call to call (its detector's warm state, its query
-// front, its reused contacts, whether its geoms were last found one inside the other) lives in one
-// DataPairState per (mjData, pair), in one map (pair_state). What is kept per pair (ServedPair:
-// geoms, path, contact budget) and per model (the trees, the config) is immutable after
-// construction; the statistics are per registry.
+// What a served pair carries from call to call lives in one DataPairState per (mjData, pair);
+// what is kept per pair (ServedPair) and per model (the trees, the config) is immutable after
+// construction.
 //
 // Errors of the construction, each a std::runtime_error with a one-line message that starts with
 // the config's name: a pattern that matches no collidable geom, a matched collidable geom of a
@@ -40,6 +32,7 @@
 #include "graspcd/core/separators.h"
 #include "graspcd/mujoco/geom_trees.h"
 #include "graspcd/mujoco/pair_config.h"
+#include "graspcd/mujoco/scene_names.h"
 
 namespace graspcd::mujoco {
 
@@ -96,10 +89,12 @@ struct ServedPair {
 class Registry {
  public:
   // Resolves patterns and geom pairs against `m`, builds the trees. `source` names the config in
-  // error messages (e.g. its file name, or "<program>"). Throws std::runtime_error for the errors
-  // listed at the top of this file (a pattern that matches nothing, an unserved geom type, ...),
-  // std::invalid_argument for detector options out of range (core/separators.h).
-  Registry(const mjModel* m, const RegistryConfig& config, const std::string& source = "<program>");
+  // messages (e.g. its file name, or "<program>"), as `names` has it for a scene graspcd wrote
+  // (scene_names.h: the template's config, the hand's meshes). Throws std::runtime_error for the
+  // errors listed at the top of this file (a pattern that matches nothing, an unserved geom type,
+  // ...), std::invalid_argument for detector options out of range (core/separators.h).
+  Registry(const mjModel* m, const RegistryConfig& config, const std::string& source = "<program>",
+           const SceneNames& names = {});
   Registry(const Registry&) = delete;
   Registry& operator=(const Registry&) = delete;
 
@@ -125,16 +120,10 @@ class Registry {
   std::size_t primitive_tree_count() const { return trees_.primitive_tree_count(); }
 
   // Non-fatal findings of the construction, one line each, starting with the config's name: a
-  // served geom with a non-zero margin (served pairs report intersecting surfaces only,
-  // docs/design.md "The MuJoCo layer"); a mesh of a pair served by trees that is not closed
-  // (core/containment.h: "mesh N 'name' is not closed: ...; containment inside it is not checked
-  // (surface contacts only)"), since the containment check needs a closed solid: its pairs get
-  // their surface contacts, and containment is decided only inside the pair's other geom, if
-  // closed (closedness welds MuJoCo's per-face vertices by position); a mesh with zero-area
-  // faces, which its tree leaves out ("mesh N 'name': dropped K zero-area faces (MuJoCo faces
-  // ...)"; MeshTree::source_face maps the rest).
-  // Each is also added to the process's sink (graspcd/core/warnings.h), which the command line
-  // prints and the JSON envelope carries.
+  // served geom with a non-zero margin (served pairs report intersecting surfaces only); a mesh
+  // of a pair served by trees that is not closed (no containment check inside it: "mesh N 'name'
+  // is not closed: ..."); a mesh with zero-area faces, which its tree leaves out ("mesh N 'name':
+  // dropped K zero-area faces ..."). Each is also added to the process's sink (io/warnings.h).
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   BridgeStats& stats() { return stats_; }
@@ -196,8 +185,8 @@ class Registry {
   void add_pattern_pairs(const std::string& source);
   void add_geom_pairs(const std::string& source);
   void warn_served_margins(const std::string& source);
-  void choose_paths_and_build_trees(const std::string& source);
-  void warn_open_meshes(const std::string& source);
+  void choose_paths_and_build_trees(const std::string& source, const SceneNames& names);
+  void warn_open_meshes(const std::string& source, const SceneNames& names);
   void add_pair(int g1, int g2, const ManifoldOptions& manifold);
   Detector make_detector() const { return Detector(config_.method, config_.detector); }
   // Adds a warning to warnings_ and to the process's sink under `code`.

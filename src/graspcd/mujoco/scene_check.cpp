@@ -54,6 +54,7 @@ struct MeshFile {
 };
 
 struct Scan {
+  const SceneNames* names = nullptr;  // how messages name the files
   fs::path main_dir;    // the main file's folder: includes and mesh folders start there
   std::string meshdir;  // <compiler meshdir>, or assetdir, as written
   std::vector<MeshFile> meshes;
@@ -71,10 +72,10 @@ void scan_element(const std::string& path, const tinyxml2::XMLElement* e, Scan& 
     const std::string bad = non_finite_word(value);
     if (bad.empty()) continue;
     const char* label = e->Attribute("name");
-    throw InputError(path,
-                     "<" + element + (label ? std::string(" name=\"") + label + "\"" : "") + "> " +
-                         name + "=\"" + value + "\": non-finite number \"" + bad + "\"",
-                     static_cast<std::size_t>(a->GetLineNum()));
+    throw scan.names->refusal(path, static_cast<std::size_t>(a->GetLineNum()),
+                              "<" + element +
+                                  (label ? std::string(" name=\"") + label + "\"" : "") + "> " +
+                                  name + "=\"" + value + "\": non-finite number \"" + bad + "\"");
   }
   if (element == "compiler") {
     if (const char* dir = e->Attribute("assetdir")) scan.meshdir = dir;
@@ -98,10 +99,10 @@ void scan_file(const std::string& path, Scan& scan) {
   if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS || doc.RootElement() == nullptr) return;
   // MuJoCo's reader reads the first root element and ignores what follows it.
   if (const tinyxml2::XMLElement* second = doc.RootElement()->NextSiblingElement()) {
-    refuse(path,
-           std::string("a second root element <") + second->Name() + "> after <" +
-               doc.RootElement()->Name() + ">: an XML file has one root",
-           static_cast<std::size_t>(second->GetLineNum()));
+    throw scan.names->refusal(path, static_cast<std::size_t>(second->GetLineNum()),
+                              std::string("a second root element <") + second->Name() +
+                                  "> after <" + doc.RootElement()->Name() +
+                                  ">: an XML file has one root");
   }
   ++scan.depth;
   scan_element(path, doc.RootElement(), scan);
@@ -110,8 +111,9 @@ void scan_file(const std::string& path, Scan& scan) {
 
 }  // namespace
 
-void check_scene_file(const std::string& path) {
+void check_scene_file(const std::string& path, const SceneNames& names) {
   Scan scan;
+  scan.names = &names;
   scan.main_dir = fs::path(path).parent_path();
   scan_file(path, scan);
   // The meshes, found as MuJoCo 2.2 finds them: an absolute file as is, otherwise in meshdir,
@@ -121,11 +123,7 @@ void check_scene_file(const std::string& path) {
     if (file.is_relative()) file = scan.main_dir / fs::path(scan.meshdir) / file;
     std::error_code ec;
     if (!fs::exists(file, ec)) continue;  // MuJoCo's error names it
-    try {
-      io::check_mesh_file(file.lexically_normal().string());
-    } catch (const io::InputError& e) {
-      throw InputError(e.file(), e.message(), e.line());
-    }
+    io::check_mesh_file(file.lexically_normal().string());
   }
 }
 

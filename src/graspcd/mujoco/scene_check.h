@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include "graspcd/mujoco/scene_names.h"
+
 namespace graspcd::mujoco {
 
 // Reads the MJCF file `path` with tinyxml2 (MuJoCo's own XML parser) and the files it includes,
@@ -16,7 +18,7 @@ namespace graspcd::mujoco {
 //    relative to the main file's folder) that io::check_mesh_file refuses: an OBJ with a
 //    byte-order mark, a non-finite or unreadable vertex, a bad face; a bad binary STL.
 // An XML syntax error, a missing include or a missing mesh file is left to MuJoCo, whose message
-// the caller reports.
-void check_scene_file(const std::string& path);
+// the caller reports. Refusals of a scene graspcd wrote are named by `names`.
+void check_scene_file(const std::string& path, const SceneNames& names = {});
 
 }  // namespace graspcd::mujoco

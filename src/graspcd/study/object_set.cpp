@@ -6,16 +6,20 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
+#include <iomanip>
 #include <map>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
 
-#include "graspcd/core/warnings.h"
-#include "graspcd/grasp/grasp.h"
+#include "graspcd/exact/exact.h"
+#include "graspcd/grasp/object_run.h"
 #include "graspcd/io/text_input.h"
-#include "graspcd/mujoco/mujoco_messages.h"
+#include "graspcd/io/warnings.h"
+#include "graspcd/version/envelope.h"
 
 namespace graspcd::study {
 
@@ -120,6 +124,37 @@ std::string shard_name(int index, int count) {
   return "objects.shard-" + std::to_string(index) + "-of-" + std::to_string(count) + ".json";
 }
 
+// An object set's verdict column: held, or gripped/not gripped with the reason, or refused.
+std::string verdict_text(const json& row) {
+  if (row["status"] != "checked") return "refused";
+  if (row["held"].get<bool>()) return "held";
+  const std::string reason = row["reason"].is_string() ? row["reason"].get<std::string>() : "";
+  return std::string(row["gripped"].get<bool>() ? "gripped, not held" : "not gripped") +
+         (reason.empty() ? "" : ": " + reason);
+}
+
+// One row of the table: the object, its scale, steps, steps with contact, CGAL's hits, each
+// method's missed/false, the verdict ('-' for a refused object).
+void object_row(std::ostream& out, const json& r, std::size_t width, std::size_t methods) {
+  out << std::left << std::setw(static_cast<int>(width) + 2) << r["object"].get<std::string>()
+      << std::right;
+  if (r["status"] == "checked") {
+    std::ostringstream scale;
+    scale << std::setprecision(4) << r["scale"].get<double>();
+    out << std::setw(9) << scale.str() << std::setw(7) << r["steps"].get<int>() << std::setw(9)
+        << r["steps_with_contact"].get<int>() << std::setw(7) << r["cgal_hits"].get<int>();
+    for (const json& m : r["methods"]) {
+      out << std::setw(22)
+          << std::to_string(m["missed"].get<int>()) + "/" +
+                 std::to_string(m["false_contacts"].get<int>());
+    }
+  } else {
+    out << std::setw(9) << "-" << std::setw(7) << "-" << std::setw(9) << "-" << std::setw(7) << "-";
+    for (std::size_t k = 0; k < methods; ++k) out << std::setw(22) << "-";
+  }
+  out << "  " << verdict_text(r) << '\n';
+}
+
 }  // namespace
 
 std::vector<std::string> find_object_files(const std::string& dir) {
@@ -180,49 +215,37 @@ json validate_object_set(const ObjectSetOptions& options, const std::vector<Test
       options.log("object " + std::to_string(i + 1) + " of " + std::to_string(objects.size()) +
                   ": " + object);
     }
+    grasp::ObjectRunOptions run_options;
+    run_options.file = file;
+    run_options.hand = options.hand;
+    grasp::ObjectRun run(run_options);
     grasp::ObjectPlacement placement = options.placement;
     placement.file = file;
-    grasp::TempFolder folder;
-    grasp::ObjectScene scene;
     // A bad object is its row and a warning; a bad --up (std::invalid_argument) stops the set.
     try {
-      scene = grasp::write_object_scene(placement, options.template_path, options.hand,
-                                        folder.path().string(), options.default_fit,
-                                        options.template_moved);
+      run.write(placement);
       ValidateOptions validate;
       validate.max_steps = options.max_steps;
+      validate.names = run.names();
       if (!options.out_dir.empty()) {
         validate.out_dir =
             (fs::path(options.out_dir) / fs::path(object).replace_extension()).string();
       }
-      const ValidationReport report = validate_scene(scene.scene, testers, validate);
+      const ValidationReport report = validate_scene(run.scene(), testers, validate);
       if (report.steps_with_contact == 0) {
         warnings().add("validate_no_contact",
                        file + ": no grasp step had a contact to check (no pair ever touched)",
                        "scene");
       }
-      rows.push_back(checked_row(object, scene, report));
+      rows.push_back(checked_row(object, run.description().scene, report));
     } catch (const io::InputError& e) {
       rows.push_back(refused_row(object, e.what()));
-    } catch (const grasp::GraspInputError& e) {
-      // The scene is a temporary file: the error names the user's object. An object far too
-      // large says what its units likely are (grasp::ObjectScene::units_hint).
-      const std::string hint = scene.units_hint.empty() ? "" : "; " + scene.units_hint;
-      const std::string error = e.file() == scene.scene
-                                    ? file + ": in the template scene: " + e.message() + hint
-                                    : std::string(e.what()) + hint;
-      rows.push_back(refused_row(object, error));
-    } catch (const mujoco::MujocoError& e) {
-      const std::string hint = scene.units_hint.empty() ? "" : "; " + scene.units_hint;
-      rows.push_back(refused_row(object, file + ": " + e.what() + hint));
-    }
-    if (rows.back()["status"] == "refused") {
-      warnings().add("object_refused", rows.back()["error"].get<std::string>(), "scene");
+      warnings().add("object_refused", e.what(), "scene");
     }
   }
   json doc = {{"objects_dir", options.dir},
-              {"hand", options.hand},
-              {"template", options.template_path},
+              {"hand", options.hand.name},
+              {"template", options.hand.scene},
               {"settings", settings_json(options, testers)},
               {"objects", objects},
               {"shard", {{"index", shard.index}, {"count", shard.count}}},
@@ -301,6 +324,63 @@ json merge_object_shards(const std::vector<std::string>& files) {
   merged.erase("graspcd");
   merged.erase("warnings");
   return merged;
+}
+
+std::string object_set_text(const json& doc) {
+  std::ostringstream out;
+  const json& settings = doc["settings"];
+  const json& rows = doc["rows"];
+  out << "# graspcd validate --objects " << doc["objects_dir"].get<std::string>() << ": "
+      << rows.size() << " of " << doc["objects"].size() << " objects";
+  if (doc["shard"]["count"].get<int>() > 1) {
+    out << " (shard " << doc["shard"]["index"].get<int>() << " of "
+        << doc["shard"]["count"].get<int>() << ")";
+  }
+  out << " in the " << doc["hand"].get<std::string>() << " template, "
+      << (settings["fit"].get<bool>() ? "fitted" : "at the given scale") << "; truth: CGAL "
+      << exact::cgal_version() << '\n';
+  std::size_t width = 6;
+  for (const json& r : rows) width = std::max(width, r["object"].get<std::string>().size());
+  out << std::left << std::setw(static_cast<int>(width) + 2) << "object" << std::right
+      << std::setw(9) << "scale" << std::setw(7) << "steps" << std::setw(9) << "contact"
+      << std::setw(7) << "cgal";
+  for (const json& m : settings["methods"]) {
+    out << std::setw(22) << m.get<std::string>() + " missed/false";
+  }
+  out << "  verdict\n";
+  for (const json& r : rows) object_row(out, r, width, settings["methods"].size());
+  int refused = 0;
+  for (const json& r : rows) {
+    if (r["status"] == "checked") continue;
+    ++refused;
+    out << "# refused: " << r["error"].get<std::string>() << '\n';
+  }
+  const std::size_t checked = rows.size() - static_cast<std::size_t>(refused);
+  const bool missed = doc["missed_any"].get<bool>(), false_any = doc["false_any"].get<bool>();
+  out << "# result: "
+      << (missed && false_any ? "MISSED AND FALSE COLLISIONS"
+          : missed            ? "MISSED COLLISIONS"
+          : false_any         ? "FALSE COLLISIONS"
+                              : "no missed or false collision")
+      << "; " << checked << (checked == 1 ? " object" : " objects") << " checked, " << refused
+      << " refused\n";
+  return out.str();
+}
+
+void write_object_set(const std::string& out_dir, json doc) {
+  const int index = doc["shard"]["index"].get<int>(), count = doc["shard"]["count"].get<int>();
+  const fs::path path = fs::path(out_dir) / (count > 1 ? shard_name(index, count) : "objects.json");
+  std::error_code ec;
+  fs::create_directories(path.parent_path(), ec);
+  if (ec) {
+    throw io::InputError(path.parent_path().string(), 0,
+                         "cannot create the output folder: " + ec.message());
+  }
+  add_envelope(doc);
+  std::ofstream out(path);
+  out << doc.dump(1) << '\n';
+  out.flush();
+  if (!out) throw io::InputError(path.string(), 0, "cannot write the file");
 }
 
 }  // namespace graspcd::study

@@ -1,9 +1,9 @@
 // `graspcd validate --objects DIR`: a set of objects checked against CGAL, one row per
 // object. Every OBJ and STL file under DIR (searched recursively, the extension in any case,
-// sorted by its path relative to DIR) goes through the `grasp --object` workflow
-// (grasp/object_scene.h): placed in the template hand's scene with the same placement options
-// (--fit, --scale, --up, --yaw), its start state checked, then validate_scene() (validate.h) runs
-// the grasp and checks every registered pair at every closing grasp step.
+// sorted by its path relative to DIR) goes through the `grasp --object` run (grasp/object_run.h):
+// placed in the template hand's scene with the same placement options (--fit, --scale, --up,
+// --yaw), its start state checked, then validate_scene() (validate.h) runs the grasp and checks
+// every registered pair at every closing grasp step.
 //
 // A row: the object's scale and size, the closing grasp steps checked, those at which CGAL found
 // some pair intersecting (steps with contact), CGAL's hits (pair checks that intersect, summed
@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "graspcd/grasp/hand_templates.h"
 #include "graspcd/grasp/object_scene.h"
 #include "graspcd/study/study.h"
 #include "graspcd/study/validate.h"
@@ -31,11 +32,8 @@
 namespace graspcd::study {
 
 struct ObjectSetOptions {
-  std::string dir;            // searched recursively
-  std::string hand;           // the template's name in the output (project, robotiq, ...)
-  std::string template_path;  // the template scene (object_scene.h)
-  std::optional<std::array<double, 2>> default_fit;  // when the template has no graspcd_fit
-  std::vector<grasp::TemplatePath> template_moved;   // where its hand's models are, if moved
+  std::string dir;           // searched recursively
+  grasp::HandTemplate hand;  // the template (grasp/hand_templates.h)
   // scale, fit, up, yaw_degrees, pose: the same for every object (file is ignored).
   grasp::ObjectPlacement placement;
   int max_steps = 400;  // most closing grasp steps per object
@@ -70,5 +68,13 @@ nlohmann::json validate_object_set(const ObjectSetOptions& options,
 // (not a shard, another set or settings, another split, a shard given twice) or naming the
 // missing shard and its objects.
 nlohmann::json merge_object_shards(const std::vector<std::string>& files);
+
+// The set's table (`validate --objects` without --json): a header, one row per object, the
+// refusals, the result.
+std::string object_set_text(const nlohmann::json& doc);
+
+// The document with its envelope as OUT/objects.json, or OUT/objects.shard-i-of-N.json for a
+// shard. Throws io::InputError naming the folder or file that cannot be written.
+void write_object_set(const std::string& out_dir, nlohmann::json doc);
 
 }  // namespace graspcd::study

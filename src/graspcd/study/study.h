@@ -18,7 +18,7 @@
 namespace graspcd::study {
 
 // Runs the study; progress lines go to `log` (stderr in the command). Throws std::runtime_error
-// (and grasp::GraspInputError for a bad scene) with a one-line message.
+// (and io::InputError for a bad scene) with a one-line message.
 void run_study(const StudyOptions& options, const std::function<void(const std::string&)>& log);
 
 // Joins sweep shard files (each written by a --shard run) into OUT/sweep.json and OUT/sweep.csv.

@@ -8,7 +8,9 @@
 #include <stdexcept>
 
 #include "graspcd/grasp/grasp.h"
+#include "graspcd/io/input_error.h"
 #include "graspcd/mujoco/model_loading.h"
+#include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/study/replay.h"
 #include "graspcd/version/envelope.h"
 
@@ -112,7 +114,7 @@ std::vector<double> step_medians(const std::vector<std::vector<double>>& step_ns
 }
 
 void write_trajectory(const std::string& path, const Recording& r, const MeshScene* scene,
-                      const StepTimes& times) {
+                      const StepTimes& times, const std::string& named) {
   const mujoco::ModelPtr model = mujoco::load_model(r.scene);
   const mjModel* m = model.get();
   if (r.ngeom != m->ngeom || r.qpos.size() != r.xpos.size() || r.contacts.size() != r.xpos.size())
@@ -212,17 +214,18 @@ void write_trajectory(const std::string& path, const Recording& r, const MeshSce
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);
   std::ofstream file(path);
   file << out.dump() << "\n";
-  if (!file) throw std::runtime_error(path + ": cannot write");
+  if (!file) throw io::InputError(named.empty() ? path : named, 0, "cannot write");
 }
 
 void export_grasp(const std::string& scene, const std::string& path,
                   const TrajectoryOptions& options) {
+  const mujoco::ScopedMujocoErrors mujoco_errors(scene);  // MuJoCo's errors name the scene
   const Recording r =
       record_grasp(std::filesystem::path(scene).stem().string(), scene, false, options.max_steps);
   const mujoco::ModelPtr model = mujoco::load_model(scene);
   const int finger = mj_name2id(model.get(), mjOBJ_GEOM, "finger1_A");
   if (finger < 0 || model->geom_type[finger] != mjGEOM_MESH) {
-    write_trajectory(path, r, nullptr, {});
+    write_trajectory(path, r, nullptr, {}, options.out_name);
     return;
   }
   const MeshScene mesh_scene(scene);
@@ -232,7 +235,7 @@ void export_grasp(const std::string& scene, const std::string& path,
     const ReplayStats st = replay(mesh_scene, r, *querier, options.repeats);
     times.emplace_back(method_name(m), step_medians(st.step_ns));
   }
-  write_trajectory(path, r, &mesh_scene, times);
+  write_trajectory(path, r, &mesh_scene, times, options.out_name);
 }
 
 }  // namespace graspcd::study

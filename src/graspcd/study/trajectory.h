@@ -35,21 +35,22 @@ std::vector<Obb> boxes_at_depth(const ObbTree& tree, int depth);
 
 // Writes `recording` as a trajectory file to `path`. `scene` (may be null: the box hand has no
 // served meshes) gives the OBB trees; `times` the per-step detection times (may be empty).
-// Loads the recording's scene again for the native contacts. Throws std::runtime_error naming
-// the file it cannot write, or the scene (grasp::GraspInputError) it cannot load.
+// Loads the recording's scene again for the native contacts. Throws io::InputError naming the
+// file it cannot write (`named`, default `path`) or the scene it cannot load.
 void write_trajectory(const std::string& path, const Recording& recording, const MeshScene* scene,
-                      const StepTimes& times);
+                      const StepTimes& times, const std::string& named = "");
 
 struct TrajectoryOptions {
   std::vector<Method> methods = {Method::kSat, Method::kSatCached, Method::kNeuroSat};
   int repeats = 1;  // timed replays per method (per-step medians)
   int max_steps = 400;
+  std::string out_name;  // how messages name the written file (default: its path)
 };
 
 // `graspcd trajectory`: records the grasp of `scene` served by graspcd (SAT), replays it with each
 // method for its per-step detection times (all contacts, as Table 1) and writes the trajectory to
 // `path`. A scene whose finger segments are not meshes (the box hand) gets neither times nor OBB
-// trees. Throws grasp::GraspInputError for a bad scene, std::runtime_error otherwise.
+// trees. Throws io::InputError for a bad scene, std::runtime_error otherwise.
 void export_grasp(const std::string& scene, const std::string& path,
                   const TrajectoryOptions& options);
 

@@ -378,6 +378,7 @@ ValidationReport validate_scene(const std::string& scene, const std::vector<Test
   grasp::GraspOptions grasp;
   grasp.config_path = options.config_path;
   grasp.max_steps = options.max_steps;
+  grasp.names = options.names;
   const std::string config =
       options.config_path.empty() ? mujoco::pair_config_path(scene) : options.config_path;
   if (options.decomposed_dir.empty()) {
@@ -395,22 +396,13 @@ ValidationReport validate_scene(const std::string& scene, const std::vector<Test
   }
   // The decomposed grasp runs natively (no registry): the pairs and trees come from a registry of
   // the config built, unattached, on a copy of its model with the true object colliding.
-  mujoco::RegistryConfig registry_config;
-  try {
-    registry_config = mujoco::load_registry_config(config);
-  } catch (const std::runtime_error& e) {
-    throw grasp::config_error(config, e);
-  }
+  const mujoco::RegistryConfig registry_config = mujoco::load_registry_config(config);
   mujoco::ModelPtr truth;
   std::unique_ptr<mujoco::Registry> registry;
   grasp.on_grasp_step = [&](const mjModel* m, const mjData* d, int step) {
     if (!registry) {
       truth = grasp::true_object_model(m);
-      try {
-        registry = std::make_unique<mujoco::Registry>(truth.get(), registry_config, config);
-      } catch (const std::runtime_error& e) {
-        throw grasp::config_error(config, e);
-      }
+      registry = std::make_unique<mujoco::Registry>(truth.get(), registry_config, config);
     }
     validator.check_step(*registry, d, step);
   };

@@ -33,6 +33,7 @@
 #include "graspcd/core/separators.h"
 #include "graspcd/core/tree_query.h"
 #include "graspcd/grasp/decomposed_scene.h"
+#include "graspcd/mujoco/scene_names.h"
 
 namespace graspcd::study {
 
@@ -73,6 +74,8 @@ struct ValidateOptions {
   // `graspcd grasp --decomposed`), and at its poses every registered pair is checked on the true
   // meshes (the original geoms, grasp::true_object_model), as without it.
   std::string decomposed_dir;
+  // How messages name the files of a scene graspcd wrote (grasp::GraspOptions::names).
+  mujoco::SceneNames names;
 };
 
 // The first disagreement of a (method, pair), and the files that reproduce it.
@@ -137,7 +140,7 @@ struct ValidationReport {
 };
 
 // Runs the grasp of `scene` and checks every tester at every closing grasp step. Throws
-// grasp::GraspInputError for a missing or bad scene or config (as `graspcd grasp`).
+// io::InputError for a missing or bad scene or config (as `graspcd grasp`).
 ValidationReport validate_scene(const std::string& scene, const std::vector<TesterSpec>& testers,
                                 const ValidateOptions& options = {});
 

@@ -5,13 +5,13 @@
 //
 // beside the document's own keys, which it never changes. The commit is taken at build time
 // (provenance.h), so a committed reference report names the code it was made from; the warnings
-// are the process's sink (graspcd/core/warnings.h) when the document is written.
+// are the process's sink (graspcd/io/warnings.h) when the document is written.
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "graspcd/core/warnings.h"
+#include "graspcd/io/warnings.h"
 
 namespace graspcd {
 

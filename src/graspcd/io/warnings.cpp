@@ -1,4 +1,4 @@
-#include "graspcd/core/warnings.h"
+#include "graspcd/io/warnings.h"
 
 #include <utility>
 
@@ -34,11 +34,6 @@ std::vector<Warning> WarningSink::list() const {
 bool WarningSink::empty() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   return warnings_.empty();
-}
-
-void WarningSink::edit(const std::function<void(Warning&)>& change) {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  for (Warning& w : warnings_) change(w);
 }
 
 void WarningSink::clear() {

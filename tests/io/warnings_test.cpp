@@ -1,4 +1,4 @@
-#include "graspcd/core/warnings.h"
+#include "graspcd/io/warnings.h"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,27 @@
+// The output of one grasp (`graspcd grasp`; its --help says what each field means): the JSON
+// document and the text, each a function of the grasp result and of what ran (an object run's
+// description, a decomposed scene).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "graspcd/grasp/decomposed_scene.h"
+#include "graspcd/grasp/grasp_result.h"
+#include "graspcd/grasp/object_run.h"
+
+namespace graspcd::grasp {
+
+// The document without its envelope (version/envelope.h): scene, method, the steps, the verdicts
+// and measures; "object" with an object run, "decomposed" (with the decomposition's folder
+// `decomposed_dir`) with a decomposed scene.
+nlohmann::json grasp_json(const GraspResult& r, const ObjectRunDescription* object = nullptr,
+                          const DecomposedScene* decomposed = nullptr,
+                          const std::string& decomposed_dir = "");
+
+// The text: "# object ..." with an object run, the per-step table (left out when `quiet`), the
+// summary lines, "# decomposed: ..." with a decomposed scene.
+std::string grasp_text(const GraspResult& r, const ObjectRunDescription* object = nullptr,
+                       const DecomposedScene* decomposed = nullptr, bool quiet = false);
+
+}  // namespace graspcd::grasp

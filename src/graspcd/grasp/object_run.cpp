@@ -1,0 +1,146 @@
+#include "graspcd/grasp/object_run.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <system_error>
+
+#include "graspcd/io/input_error.h"
+
+namespace graspcd::grasp {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The files a kept scene leaves in DIR.
+struct SceneTargets {
+  fs::path dir;
+  std::string stem;
+  fs::path scene() const { return dir / (stem + ".xml"); }
+  fs::path pairs() const { return dir / (stem + ".pairs.json"); }
+  fs::path meshes() const { return dir / (stem + ".meshes"); }
+};
+
+// Whether `scene` is a scene graspcd generated: its header carries kGeneratedMarker.
+bool generated_by_graspcd(const fs::path& scene) {
+  std::ifstream in(scene, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head.find(kGeneratedMarker) != std::string::npos;
+}
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  return fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec);
+}
+
+// Before the work: the targets replace no file the run reads and, without `force`, none graspcd
+// did not write.
+void check_scene_targets(const SceneTargets& t, const HandTemplate& hand,
+                         const std::string& object_file, bool force) {
+  std::error_code ec;
+  const bool ours = generated_by_graspcd(t.scene());
+  for (const fs::path& target : {t.scene(), t.pairs(), t.meshes()}) {
+    if (same_file(target, hand.scene) || same_file(target, hand.pairs())) {
+      throw io::InputError(target.string(), 0,
+                           "is the template this run reads: not overwritten (write the scene "
+                           "into another folder)");
+    }
+    const fs::path object = fs::absolute(object_file).lexically_normal();
+    const fs::path folder = fs::absolute(target).lexically_normal();
+    if (same_file(target, object_file) || object.string().rfind(folder.string() + "/", 0) == 0) {
+      throw io::InputError(target.string(), 0,
+                           "holds the object this run reads: not overwritten (write the scene "
+                           "into another folder)");
+    }
+    if (!force && fs::exists(fs::symlink_status(target, ec)) && !ours) {
+      throw io::InputError(
+          target.string(), 0,
+          "exists and graspcd did not write it (no '" + std::string(kGeneratedMarker) + "' in " +
+              t.scene().filename().string() + "): not overwritten; --force replaces it");
+    }
+  }
+}
+
+// The written files renamed from the private folder `work` into place, replacing graspcd's
+// earlier ones (moved into `work`, removed with it), DIR locked meanwhile.
+void keep_scene(const SceneTargets& t, const fs::path& work) {
+  const int lock = ::open(t.dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (lock >= 0) ::flock(lock, LOCK_EX);
+  const auto move = [&](const std::string& name, const std::string& old) {
+    const fs::path target = t.dir / name;
+    std::error_code ec;
+    if (fs::exists(fs::symlink_status(target, ec))) fs::rename(target, work / old, ec);
+    fs::rename(work / name, target, ec);
+    if (ec) {
+      if (lock >= 0) ::close(lock);
+      throw io::InputError(target.string(), 0, "cannot write: " + ec.message());
+    }
+  };
+  move(t.meshes().filename().string(), "replaced.meshes");
+  move(t.pairs().filename().string(), "replaced.pairs.json");
+  move(t.scene().filename().string(), "replaced.xml");
+  if (lock >= 0) ::close(lock);
+}
+
+SceneTargets targets_of(const ObjectRunOptions& o) {
+  return {o.write_scene, fs::path(o.file).stem().string()};
+}
+
+}  // namespace
+
+ObjectRun::ObjectRun(const ObjectRunOptions& options) : options_(options) {
+  const std::string& dir = options.write_scene;
+  if (dir.empty()) {
+    const fs::path temporary = io::temporary_folder();
+    folder_ = io::make_private_folder(temporary, "graspcd-object", temporary.string());
+  } else {
+    if (io::prepare_output_folder(dir)) created_.emplace(dir);
+    check_scene_targets(targets_of(options), options.hand, options.file, options.force);
+    folder_ = io::make_private_folder(dir, ".graspcd-" + targets_of(options).stem, dir);
+  }
+  description_.file = options.file;
+  description_.hand = options.hand.name;
+}
+
+const ObjectScene& ObjectRun::write(const ObjectPlacement& placement) {
+  description_.scene = write_object_scene(placement, options_.hand, folder_.path().string());
+  // A kept scene's pair config is the user's file from now on: messages name it there.
+  if (!options_.write_scene.empty()) {
+    for (auto& [written, known] : description_.scene.names.files) {
+      if (written == description_.scene.pairs) known = targets_of(options_).pairs().string();
+    }
+  }
+  return description_.scene;
+}
+
+GraspResult ObjectRun::grasp(GraspOptions options) {
+  options.names = names();
+  GraspResult result;
+  try {
+    result = run_grasp(scene(), options);
+  } catch (const io::InputError&) {
+    keep();  // a refused scene is kept too, so that it can be edited
+    throw;
+  }
+  keep();
+  result.scene = description_.kept ? description_.scene.scene : description_.file;
+  return result;
+}
+
+void ObjectRun::keep() {
+  if (options_.write_scene.empty() || description_.kept) return;
+  const SceneTargets t = targets_of(options_);
+  keep_scene(t, folder_.path());
+  description_.kept = true;
+  description_.scene.scene = t.scene().string();
+  description_.scene.pairs = t.pairs().string();
+  description_.scene.meshes = t.meshes().string();
+}
+
+}  // namespace graspcd::grasp

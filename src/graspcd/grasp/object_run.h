@@ -1,0 +1,71 @@
+// Running a user's mesh in a template hand: `graspcd grasp --object` and, per object,
+// `graspcd validate --objects`. An ObjectRun makes a folder of its own, writes the object's scene
+// there (object_scene.h; its messages name the files as the user knows them, ObjectScene::names),
+// runs the grasp and, with `write_scene`, keeps the scene.
+//
+// Without `write_scene` the folder is graspcd-object-XXXXXX under the system's temporary folder
+// ($TMPDIR, else /tmp), removed with the run. With `write_scene` DIR the run leaves DIR/STEM.xml,
+// DIR/STEM.pairs.json and DIR/STEM.meshes (STEM: the mesh file's stem). It checks them before
+// the work: it never replaces a file it reads (the template, its pair config, the mesh) and,
+// without `force`, none graspcd did not write (a STEM.xml without kGeneratedMarker, and the files
+// beside it). The scene is written and simulated in a private folder DIR/.graspcd-STEM-XXXXXX
+// (two runs of one stem into DIR each simulate their own) and renamed into place at the end, DIR
+// locked (flock) meanwhile, so that two runs ending together leave one run's files. Every folder
+// the run made is removed on errors and on INT, TERM and HUP (io/output_files.h).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "graspcd/grasp/grasp.h"
+#include "graspcd/grasp/hand_templates.h"
+#include "graspcd/grasp/object_scene.h"
+#include "graspcd/io/output_files.h"
+
+namespace graspcd::grasp {
+
+struct ObjectRunOptions {
+  std::string file;  // the user's mesh
+  HandTemplate hand;
+  std::string write_scene;  // DIR: keep the scene there; empty: a temporary folder
+  bool force = false;       // write_scene may replace files graspcd did not write
+};
+
+// What ran, as the output describes it.
+struct ObjectRunDescription {
+  std::string file;  // the user's mesh, as given
+  std::string hand;  // the template's name
+  ObjectScene scene;
+  bool kept = false;  // scene names the kept files (else removed ones)
+};
+
+class ObjectRun {
+ public:
+  // Checks the targets and makes the run's folder. Throws io::InputError naming the target it
+  // must not replace or the folder it cannot write.
+  explicit ObjectRun(const ObjectRunOptions& options);
+
+  // Writes the scene of `placement` (its file: the run's) into the folder; its messages name the
+  // files as ObjectScene::names has them, the pair config of a kept scene as DIR/STEM.pairs.json.
+  // Throws io::InputError naming a bad mesh or template; std::invalid_argument for a bad `up`.
+  const ObjectScene& write(const ObjectPlacement& placement);
+
+  const std::string& scene() const { return description_.scene.scene; }
+  const mujoco::SceneNames& names() const { return description_.scene.names; }
+  const ObjectRunDescription& description() const { return description_; }
+
+  // run_grasp on the written scene with its names; then the scene is kept (with `write_scene`),
+  // also when the grasp refuses it (so that it can be edited). The result's scene is the kept
+  // scene, or the user's mesh.
+  GraspResult grasp(GraspOptions options);
+
+ private:
+  void keep();
+
+  ObjectRunOptions options_;
+  std::optional<io::RemoveIfEmpty> created_;  // DIR, when this run created it
+  io::CleanupGuard folder_;                   // the temporary or private folder
+  ObjectRunDescription description_;
+};
+
+}  // namespace graspcd::grasp

@@ -1,0 +1,42 @@
+// The names a user knows the files of a scene by when graspcd wrote that scene for them (a
+// user's mesh in a template hand, grasp/object_scene.h; an object's convex pieces beside its
+// scene, grasp/decomposed_scene.h). The loader (model_loading.h), the registry (registry.h) and
+// the grasp make their messages with these names: no message names a file the user never gave.
+// Empty names change nothing.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "graspcd/io/input_error.h"
+
+namespace graspcd::mujoco {
+
+struct SceneNames {
+  // The written scene, and what a refusal of it says instead: `scene` (the user's file), line 0,
+  // `scene_context` before the message ("in the template scene: ") and `note` after it (what the
+  // object's size says about its units, "; the object is 60 m across ...").
+  std::string written_scene;
+  std::string scene;
+  std::string scene_context;
+  std::string note;
+  // Other written files and the files the user knows them by (a copied pair config -> the
+  // template's, the copied mesh -> the user's mesh).
+  std::vector<std::pair<std::string, std::string>> files;
+  // What a warning calls a mesh of the hand, any named mesh but `object_mesh`: "the robotiq
+  // hand's " (empty: nothing).
+  std::string hand;
+  std::string object_mesh;
+
+  // The file a message names for `path`.
+  std::string file(const std::string& path) const;
+  // The refusal of `path` (at `line`, 0 for the whole file) with these names.
+  io::InputError refusal(const std::string& path, std::size_t line,
+                         const std::string& message) const;
+  // "the robotiq hand's " for a mesh of the hand named `mesh_name`, else "".
+  std::string mesh_owner(const std::string& mesh_name) const;
+};
+
+}  // namespace graspcd::mujoco
