@@ -86,8 +86,8 @@ Command add_study_command(CLI::App& parent) {
                   "Join sweep shard files (from --shard runs) into OUT/sweep.json and .csv")
       ->expected(1, -1);
   app->footer(wrap_help(
-      "Records each grasp once (the triangle-hand examples 1-3 with graspcd's bridge and SAT; "
-      "the box hand with the bridge's exact box-box path), then replays the recorded poses of "
+      "Records each grasp once (the triangle-hand examples 1-3 with graspcd's contacts and SAT; "
+      "the box hand with graspcd's exact box-box path), then replays the recorded poses of "
       "every "
       "closing grasp step for every method, --repeats times (the perceptron methods that run to "
       "their cap --perceptron-repeats times), and reports medians with min-max. "

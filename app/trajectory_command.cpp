@@ -65,7 +65,7 @@ Command add_trajectory_command(CLI::App& parent) {
       ->check(positive_number())
       ->capture_default_str();
   app->footer(wrap_help(
-      "Records the grasp of paper section 9 with graspcd's bridge (SAT), replays the recorded "
+      "Records the grasp of paper section 9 with graspcd's contacts (SAT), replays the recorded "
       "poses with each of --methods (all contacts, as Table 1) and writes one JSON file: the "
       "meshes once in their geom frames, per closing grasp step every geom's pose, our contacts "
       "and MuJoCo's native convex-hull contacts at the same joint positions, the detection time "

@@ -258,7 +258,7 @@ Command add_validate_command(CLI::App& parent) {
       "every triangle pair: hours on example 3, ask for it by name) against CGAL's exact brute "
       "force over "
       "the same triangles in the same pose: the pair's answer (the surfaces intersect or not) "
-      "and its set of intersecting triangle pairs. The methods query the bridge's own trees, "
+      "and its set of intersecting triangle pairs. The methods query the MuJoCo layer's own trees, "
       "built from MuJoCo's float vertices in the geom frames, in all-contacts mode, one detector "
       "per pair kept across the steps; box-box pairs are checked with the method's box test "
       "against CGAL's exact box overlap. Use it on a new scene or object before trusting its "

@@ -101,11 +101,11 @@ class StackScene : public ::testing::Test {
   int ball_ = -1, floor_ = -1, a_ = -1, b_ = -1, c_ = -1;
 };
 
-// (a) and (b): with the bridge, the served pair's contacts are all ours and MuJoCo's function is
-// never called for it; the unserved mesh pair and the primitive pair get exactly MuJoCo's
-// contacts, bit for bit.
+// (a) and (b): with graspcd installed, the served pair's contacts are all ours and MuJoCo's
+// function is never called for it; the unserved mesh pair and the primitive pair get exactly
+// MuJoCo's contacts, bit for bit.
 TEST_F(StackScene, ServedPairsGetOurContactsOthersAreUntouched) {
-  // Without the bridge.
+  // Without graspcd installed.
   const DataPtr native = forward();
   const auto native_ab = contacts_between(native.get(), a_, b_);
   const auto native_bc = contacts_between(native.get(), b_, c_);
@@ -114,7 +114,7 @@ TEST_F(StackScene, ServedPairsGetOurContactsOthersAreUntouched) {
   ASSERT_EQ(native_bc.size(), 1u);
   ASSERT_EQ(native_ball.size(), 1u);
 
-  // With the bridge, MuJoCo's original entry wrapped in a call log.
+  // With graspcd installed, MuJoCo's original entry wrapped in a call log.
   const mjfCollision saved = table_entry();
   CallLog::real = saved;
   CallLog::calls.clear();
@@ -122,7 +122,7 @@ TEST_F(StackScene, ServedPairsGetOurContactsOthersAreUntouched) {
   DataPtr ours;
   BridgeStats stats;
   {
-    ScopedInstall bridge;
+    ScopedInstall scope;
     RegistryConfig config;
     config.patterns = {{"cube_a", "cube_b"}};
     Registry registry(model_.get(), config);
@@ -163,7 +163,7 @@ TEST_F(StackScene, ServedPairsGetOurContactsOthersAreUntouched) {
 // A registry that is attached but serves other pairs leaves a model exactly as MuJoCo sees it.
 TEST_F(StackScene, AttachedRegistryWithoutThisPairDelegates) {
   const DataPtr native = forward();
-  ScopedInstall bridge;
+  ScopedInstall scope;
   RegistryConfig config;
   config.patterns = {{"cube_a", "cube_c"}};  // 11 cm apart: no contact either way
   Registry registry(model_.get(), config);
@@ -177,7 +177,7 @@ TEST_F(StackScene, AttachedRegistryWithoutThisPairDelegates) {
 // Non-finite state (collision.h): a served pair whose placement holds NaN, an infinity or a number
 // beyond mjMAXVAL gets 0 contacts, runs no query and is counted; other pairs are MuJoCo's.
 TEST_F(StackScene, NonFinitePlacementIsSkippedAndCounted) {
-  ScopedInstall bridge;
+  ScopedInstall scope;
   RegistryConfig config;
   config.patterns = {{"cube_a", "cube_b"}};
   Registry registry(model_.get(), config);
@@ -345,7 +345,7 @@ TEST(Install, UnservedPairsGoToTheOriginalOfTheirOwnTypePair) {
   const int cube2 = mj_name2id(m.get(), mjOBJ_GEOM, "cube2");
   DataPtr ours;
   {
-    ScopedInstall bridge;
+    ScopedInstall scope;
     RegistryConfig config;
     config.patterns = {{"cube", "cube2"}};
     Registry registry(m.get(), config);
@@ -396,7 +396,7 @@ TEST(Install, UnservedPairsGoToTheOriginalOfTheirOwnTypePair) {
 // Many models come and go: each attachment detaches its registry, and a model without one collides
 // natively.
 TEST(Install, ManyModelsAttachAndDetach) {
-  ScopedInstall bridge;
+  ScopedInstall scope;
   TempDir dir;
   for (int round = 0; round < 12; ++round) {
     ModelPtr m = load_scene(dir, kStackScene, {{"cube", testing::make_box_mesh(0.04, 0.04, 0.04)}});
@@ -437,7 +437,7 @@ TEST(Contacts, TheManifoldBudgetWithUnitNormalsFromGeom1ToGeom2) {
 </mujoco>)",
                                 {{"s", testing::make_uv_sphere(0.05, 24, 48)}});
   ASSERT_TRUE(m);
-  ScopedInstall bridge;
+  ScopedInstall scope;
   RegistryConfig config;
   config.patterns = {{"s1", "s2"}};
   config.max_depth = 0.004;
@@ -479,7 +479,7 @@ TEST(Contacts, TheManifoldBudgetWithUnitNormalsFromGeom1ToGeom2) {
               static_cast<unsigned long long>(registry.stats().detection_ns));
 }
 
-// (e) At random poses of a sphere around a torus (non-convex), "any contact" from the bridge is
+// (e) At random poses of a sphere around a torus (non-convex), "any contact" from graspcd is
 // CGAL's "any intersecting triangle pair" on the same posed float vertices, and the tree found
 // exactly CGAL's number of intersecting pairs; for every method of the detector.
 class CgalAgreement : public ::testing::TestWithParam<Method> {};
@@ -498,7 +498,7 @@ TEST_P(CgalAgreement, AnswerAgreesWithCgalOnTheSamePosedVertices) {
                                 {{"torus", testing::make_torus(0.05, 0.015, 40, 20)},
                                  {"ball", testing::make_uv_sphere(0.02, 12, 16)}});
   ASSERT_TRUE(m);
-  ScopedInstall bridge;
+  ScopedInstall scope;
   RegistryConfig config;
   config.method = GetParam();
   // The answer cannot depend on the pass cap (a capped perceptron says "may overlap"); a small
@@ -568,7 +568,7 @@ INSTANTIATE_TEST_SUITE_P(EveryMethod, CgalAgreement, ::testing::ValuesIn(methods
                          });
 
 // (f) A U-shape (non-convex) with a small cube in its cavity, 3 cm from each wall: MuJoCo's
-// convex hull says contact; the surfaces do not meet, and the bridge says none. Pushed into the
+// convex hull says contact; the surfaces do not meet, and graspcd says none. Pushed into the
 // right wall, the cube gets our contacts with the wall's normal.
 const char* kCavityScene = R"(
 <mujoco>
@@ -599,7 +599,7 @@ TEST(Contacts, BodyInsideANonConvexCavityGetsNoContactFromUs) {
   EXPECT_LT(hull[0]->dist, 0.0);
 
   // Ours: asked, searched, nothing.
-  ScopedInstall bridge;
+  ScopedInstall scope;
   RegistryConfig config;
   config.patterns = {{"u", "cube"}};
   Registry registry(m.get(), config);
@@ -651,7 +651,7 @@ TEST(Containment, ASegmentWhollyInsideIsReportedNotContacted) {
   ASSERT_TRUE(m);
   const int gb = mj_name2id(m.get(), mjOBJ_GEOM, "big");
   const int gs = mj_name2id(m.get(), mjOBJ_GEOM, "small");
-  ScopedInstall bridge;
+  ScopedInstall scope;
   RegistryConfig config;
   config.patterns = {{"small", "big"}};
   Registry registry(m.get(), config);
@@ -697,7 +697,7 @@ TEST(Containment, InsideAnOpenMeshIsNotCheckedAndTheRegistryWarns) {
   ASSERT_TRUE(m);
   const int gb = mj_name2id(m.get(), mjOBJ_GEOM, "big");
   const int gs = mj_name2id(m.get(), mjOBJ_GEOM, "small");
-  ScopedInstall bridge;
+  ScopedInstall scope;
   RegistryConfig config;
   config.patterns = {{"small", "big"}};
   Registry registry(m.get(), config, "nested.json");
@@ -742,12 +742,12 @@ TEST(Dynamics, CubeFallsIntoTheCavityAndRestsOnItsFloor) {
                                  {"cube", testing::make_box_mesh(0.01, 0.01, 0.01)}});
   ASSERT_TRUE(m);
   const int body = mj_name2id(m.get(), mjOBJ_BODY, "probe");
-  const auto run = [&](bool bridge, double seconds) {
+  const auto run = [&](bool served, double seconds) {
     DataPtr d(mj_makeData(m.get()));
     std::unique_ptr<ScopedInstall> install;
     std::unique_ptr<Registry> registry;
     Attachment attached;
-    if (bridge) {
+    if (served) {
       install = std::make_unique<ScopedInstall>();
       RegistryConfig config;
       config.patterns = {{"u", "cube"}};
@@ -789,7 +789,7 @@ TEST(Dynamics, CubeStacksOnACube) {
 </mujoco>)",
                                 {{"cube", testing::make_box_mesh(0.04, 0.04, 0.04)}});
   ASSERT_TRUE(m);
-  ScopedInstall bridge;
+  ScopedInstall scope;
   RegistryConfig config;
   config.patterns = {{"base", "top"}};
   Registry registry(m.get(), config);
@@ -836,11 +836,11 @@ TEST(Dynamics, BallRestsInsideARealBowl) {
   const ModelPtr m = load_scene(dir, xml, {{"ball", testing::make_uv_sphere(0.015, 12, 16)}});
   ASSERT_TRUE(m);
   const int body = mj_name2id(m.get(), mjOBJ_BODY, "ball");
-  const auto final_z = [&](bool bridge) {
+  const auto final_z = [&](bool served) {
     std::unique_ptr<ScopedInstall> install;
     std::unique_ptr<Registry> registry;
     Attachment attached;
-    if (bridge) {
+    if (served) {
       install = std::make_unique<ScopedInstall>();
       RegistryConfig config;
       config.patterns = {{"bowl", "ball"}};
@@ -851,7 +851,7 @@ TEST(Dynamics, BallRestsInsideARealBowl) {
     while (d->time < 2.0) mj_step(m.get(), d.get());
     // Ours comes to rest in the bowl (on the flat hull top the native ball may still roll).
     const double* v = d->cvel + 6 * body;
-    if (bridge) {
+    if (served) {
       EXPECT_LT(Vec3(v[3], v[4], v[5]).norm(), 0.02);
     }
     return d->xpos[3 * body + 2];

@@ -1,10 +1,10 @@
-// Primitive geoms in the bridge. The tessellations (graspcd/mujoco/primitives.h): closed, outward,
-// convex, the box exact, curved primitives circumscribed (sampled points of the true surface never
-// lie outside the tessellation's solid) within their documented tolerance, which is nearly reached.
-// Served pairs with primitives in MuJoCo: a tessellated primitive never misses a contact that the
-// true surfaces have and reports none beyond the tolerance; box-box pairs are exact and never
-// touch triangles (bit-for-bit MuJoCo's contacts); the box hand (mjcf/hand_boxes.xml) closes,
-// lifts and holds with the bridge exactly as natively.
+// Primitive geoms in the MuJoCo layer. The tessellations (graspcd/mujoco/primitives.h): closed,
+// outward, convex, the box exact, curved primitives circumscribed (sampled points of the true
+// surface never lie outside the tessellation's solid) within their documented tolerance, which is
+// nearly reached. Served pairs with primitives in MuJoCo: a tessellated primitive never misses a
+// contact that the true surfaces have and reports none beyond the tolerance; box-box pairs are
+// exact and never touch triangles (bit-for-bit MuJoCo's contacts); the box hand
+// (mjcf/hand_boxes.xml) closes, lifts and holds with graspcd exactly as natively.
 #include "graspcd/mujoco/primitives.h"
 
 #include <gtest/gtest.h>
@@ -325,7 +325,7 @@ void place(const mjModel* m, mjData* d, int g, const Vec3& pos, const double* qu
 
 // A sphere (tessellated) against a mesh cube, and a sphere against a capsule (both tessellated),
 // at random positions with the sphere's centre outside the other solid: when the true surfaces
-// meet the bridge reports contact; when they are farther apart than the tessellations'
+// meet graspcd reports contact; when they are farther apart than the tessellations'
 // tolerances, it reports none.
 TEST(ServedPrimitives, TessellatedPairsNeverMissAContactAndAddNoneBeyondTheTolerance) {
   TempDir dir;
@@ -345,7 +345,7 @@ TEST(ServedPrimitives, TessellatedPairsNeverMissAContactAndAddNoneBeyondTheToler
   ASSERT_TRUE(m);
   const int cube = geom_id(m.get(), "cube"), capsule = geom_id(m.get(), "capsule");
   const int ball = geom_id(m.get(), "ball"), ball2 = geom_id(m.get(), "ball2");
-  ScopedInstall bridge;
+  ScopedInstall scope;
   RegistryConfig config;
   config.patterns = {{"ball", "cube"}, {"ball2", "capsule"}};
   Registry registry(m.get(), config);
@@ -423,7 +423,7 @@ TEST(ServedPrimitives, CapsuleAndCylinderRestOnAMeshSlab) {
 </mujoco>)",
                                 {{"slab", testing::make_box_mesh(0.1, 0.1, 0.01)}});
   ASSERT_TRUE(m);
-  ScopedInstall bridge;
+  ScopedInstall scope;
   RegistryConfig config;
   config.patterns = {{"slab", "cap"}, {"slab", "cyl"}};
   Registry registry(m.get(), config);
@@ -510,7 +510,7 @@ TEST(ServedPrimitives, BoxBoxPairsAreExactWithoutTriangles) {
   int with_contact = 0, proven_disjoint = 0;
   BridgeStats total;
   {
-    ScopedInstall bridge;
+    ScopedInstall scope;
     RegistryConfig config;
     config.patterns = {{"a", "b"}};
     Registry registry(m.get(), config);
@@ -588,7 +588,7 @@ TEST(BoxHand, ClosingTouchesWithoutTrianglesOrTrees) {
     return n;
   };
 
-  ScopedInstall bridge;
+  ScopedInstall scope;
   Registry registry(m.get(), load_registry_config(config_path), config_path);
   EXPECT_EQ(registry.pairs().size(), 36u);  // 12 segments x 3 object boxes
   for (const ServedPair& p : registry.pairs()) EXPECT_EQ(p.path, PairPath::kBoxBox);
@@ -622,7 +622,7 @@ TEST(BoxHand, ClosingTouchesWithoutTrianglesOrTrees) {
   EXPECT_EQ(registry.tree_count(), 0u);
 }
 
-// The grasp (grasp/grasp.h) on the box hand: with the bridge the box-box contacts are MuJoCo's
+// The grasp (grasp/grasp.h) on the box hand: with graspcd the box-box contacts are MuJoCo's
 // own, so the run is the native run: the same first-contact steps and the same object heights;
 // the object is lifted and held both ways, and every closing step ran box tests, no triangle.
 TEST(BoxHand, GraspLiftsAndHoldsLikeTheNativeRun) {

@@ -4,7 +4,7 @@
 // hand's are meshes of 100-5000 faces; every mesh is closed and consistently outward-oriented; the
 // non-convex objects are non-convex (a point of the convex hull lies outside the mesh); each
 // scene's pair config serves 12 segments x the object's geoms; and closing the fingers in grasp
-// steps of 0.003 rad makes them touch the object (through the bridge for the triangle hand).
+// steps of 0.003 rad makes them touch the object (through graspcd for the triangle hand).
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
@@ -426,7 +426,7 @@ TEST(SceneGrasp, ClosingTheBoxHandTouchesTheObject) {
 }
 
 TEST(SceneGrasp, ClosingTheTriangleHandTouchesTheObjectThroughTheBridge) {
-  mujoco::ScopedInstall bridge;
+  mujoco::ScopedInstall scope;
   for (const std::string& scene : kTriangleScenes) {
     SCOPED_TRACE(scene);
     const mujoco::ModelPtr m = load(scene);
@@ -438,13 +438,13 @@ TEST(SceneGrasp, ClosingTheTriangleHandTouchesTheObjectThroughTheBridge) {
     const int step = first_contact_step(m.get(), d.get());
     std::printf("%s: first finger-object contact at grasp step %d\n", scene.c_str(), step);
     EXPECT_GT(step, 5);
-    EXPECT_GT(registry.stats().contacts, 0u);  // the contacts came from the bridge
+    EXPECT_GT(registry.stats().contacts, 0u);  // the contacts came from graspcd
   }
 }
 
 // Example 3, where the convex hull is wrong: finger 2 closes into the C-block's slot. MuJoCo's
-// native (convex hull) collision has it touch the object when it reaches the slot's mouth; the
-// bridge, answering on the real surface, only when it reaches the slot's back wall, later.
+// native (convex hull) collision has it touch the object when it reaches the slot's mouth;
+// graspcd, answering on the real surface, only when it reaches the slot's back wall, later.
 TEST(SceneGrasp, InExample3TheBridgeLetsFinger2IntoTheSlotWhereTheHullIsSolid) {
   const mujoco::ModelPtr m = load("example3");
   ASSERT_TRUE(m);
@@ -452,13 +452,13 @@ TEST(SceneGrasp, InExample3TheBridgeLetsFinger2IntoTheSlotWhereTheHullIsSolid) {
   const int native = first_contact_step(m.get(), d.get(), "finger2_");
   int ours = -1;
   {
-    mujoco::ScopedInstall bridge;
+    mujoco::ScopedInstall scope;
     mujoco::Registry registry(m.get(),
                               mujoco::load_registry_config(kMjcf + "/example3.pairs.json"));
     const mujoco::Attachment attached = mujoco::attach(registry);
     ours = first_contact_step(m.get(), d.get(), "finger2_");
   }
-  std::printf("example3, finger 2: first contact at grasp step %d natively, %d with the bridge\n",
+  std::printf("example3, finger 2: first contact at grasp step %d natively, %d with graspcd\n",
               native, ours);
   EXPECT_GT(native, 5);
   EXPECT_GT(ours, native + 10);

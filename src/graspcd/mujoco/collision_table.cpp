@@ -134,7 +134,7 @@ Attachment attach(Registry& registry) {
   }
   if (free_slot < 0) {
     if (used == kMaxAttachedModels) {
-      throw std::runtime_error("graspcd bridge: more than " + std::to_string(kMaxAttachedModels) +
+      throw std::runtime_error("graspcd: more than " + std::to_string(kMaxAttachedModels) +
                                " models attached at once");
     }
     free_slot = used;

@@ -40,7 +40,7 @@ std::vector<Example> examples(const StudyOptions& o) {
 json recording_json(const Recording& r, const std::vector<int>* truth_first) {
   json j = {{"name", r.name},
             {"scene", r.scene},
-            {"recorded_with", r.native ? "native" : "bridge, " + r.grasp.method},
+            {"recorded_with", r.native ? "native" : "graspcd, " + r.grasp.method},
             {"grasp_steps", r.steps()},
             {"gripped", r.grasp.gripped},
             {"held", r.grasp.held},
@@ -85,7 +85,7 @@ Grasps record_examples(const StudyOptions& o, const std::vector<Example>& ex, co
     const Clock::time_point t = Clock::now();
     g.recs.push_back(record_grasp(e.name, e.scene, false, o.max_steps));
     const Recording& r = g.recs.back();
-    log("recorded " + e.name + " with the bridge (sat): " + std::to_string(r.steps()) +
+    log("recorded " + e.name + " with graspcd (sat): " + std::to_string(r.steps()) +
         " grasp steps, " + (r.grasp.held ? "held" : "NOT held") + ", rise " +
         fmt(100 * (r.grasp.object_z_final - r.grasp.object_z_initial), 1) + " cm (" +
         fmt(seconds_since(t), 1) + " s)");
@@ -137,7 +137,7 @@ void write_tables(const StudyOptions& o, const std::vector<Example>& ex, const G
   const std::string box_scene = (std::filesystem::path(o.mjcf_dir) / "hand_boxes.xml").string();
   const Clock::time_point t = Clock::now();
   const Recording box = record_grasp("hand_boxes", box_scene, false, o.max_steps);
-  log("recorded hand_boxes with the bridge (sat, exact box-box): " + std::to_string(box.steps()) +
+  log("recorded hand_boxes with graspcd (sat, exact box-box): " + std::to_string(box.steps()) +
       " grasp steps (" + fmt(seconds_since(t), 1) + " s)");
   study["box_hand"] = run_box_hand(o, box, log);
   study["box_hand"]["recording"] = recording_json(box, nullptr);

@@ -199,7 +199,7 @@ void write_trajectory(const std::string& path, const Recording& r, const MeshSce
   json out = {{"schema", 1},
               {"name", r.name},
               {"scene", r.scene},
-              {"recorded_with", r.native ? "native" : "bridge, " + r.grasp.method},
+              {"recorded_with", r.native ? "native" : "graspcd, " + r.grasp.method},
               {"grasp_steps", r.steps()},
               {"first_contact", r.grasp.first_contact},
               {"segment_names", grasp::finger_segment_names()},
