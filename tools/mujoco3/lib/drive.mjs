@@ -15,10 +15,11 @@ export const GRASP = {
   holdTime: 2.0,
 };
 
-// The six-direction test's parameters: the C++ side's named constants (docs/run-record.md, "The
+// The six-direction test's parameters: graspcd's named constants (src/graspcd/grasp/
+// six_directions.h, kSixDirectionsDuration and kSixDirectionsDistance; docs/run-record.md, "The
 // six-direction test"), written into the record's header; the judge refuses a record whose
 // parameters differ from its own.
-export const SIX_DIRECTIONS = { duration: 1.0, distance: 0.02, frame: "hand" };
+export const SIX_DIRECTIONS = { duration: 1.0, distance: 0.01, frame: "hand" };
 export const DIRECTIONS = ["dir+x", "dir-x", "dir+y", "dir-y", "dir+z", "dir-z"];
 
 class NonFinite extends Error {}
@@ -208,6 +209,9 @@ export class DrivenGrasp {
   run(maxSteps) {
     const { m, d } = this;
     this.heightStart = this.heightOf(this.object);
+    if (this.writer) {
+      this.writer.line({ t: d.time, phase: "start", qpos: Array.from(d.qpos), qvel: Array.from(d.qvel) });
+    }
     const stopped = this.close.map(() => false);
     let closing = "max_steps";
     for (let k = 1; k <= maxSteps; k++) {
@@ -283,8 +287,12 @@ export class DrivenGrasp {
     const weight = m.body_subtreemass[this.object] * Math.hypot(g[0], g[1], g[2]);
     const frame = Array.from(d.xmat.subarray(9 * this.hand, 9 * this.hand + 9));  // row-major
     for (let k = 0; k < 3; k++) g[k] = 0;
+    // The support taken away: every geom of its body tree (the world: the world body's own).
     for (let geom = 0; geom < m.ngeom; geom++) {
-      if (this.support > 0 && m.body_rootid[m.geom_bodyid[geom]] === m.body_rootid[this.support]) {
+      const body = m.geom_bodyid[geom];
+      const support =
+        this.support > 0 ? m.body_rootid[body] === m.body_rootid[this.support] : body === 0;
+      if (support) {
         m.geom_contype[geom] = 0;
         m.geom_conaffinity[geom] = 0;
       }
