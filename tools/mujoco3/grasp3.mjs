@@ -46,16 +46,23 @@ function fail(code, message) {
   process.exit(code);
 }
 
-async function loadModule() {
+// Imports a module of the runner or of its npm packages; a package that is not installed is one
+// line, exit code 2.
+async function need(specifier) {
   try {
-    const { default: loadMujoco } = await import("@mujoco/mujoco");
-    return await loadMujoco();
+    return await import(specifier);
   } catch (e) {
     if (e && e.code === "ERR_MODULE_NOT_FOUND") {
-      fail(2, `grasp3.mjs: the npm package @mujoco/mujoco is not installed in ${path.dirname(new URL(import.meta.url).pathname)} (run ./run build, or npm ci there)`);
+      const folder = path.dirname(new URL(import.meta.url).pathname);
+      fail(2, `grasp3.mjs: the npm packages of ${folder} (@mujoco/mujoco, fast-xml-parser) are not installed: run ./run build, or npm ci there (${e.message.split("\n")[0]})`);
     }
     throw e;
   }
+}
+
+async function loadModule() {
+  const { default: loadMujoco } = await need("@mujoco/mujoco");
+  return await loadMujoco();
 }
 
 function parse(argv) {
@@ -112,9 +119,9 @@ function parse(argv) {
 
 async function main(argv) {
   const args = parse(argv);
-  const scene = await import("./lib/scene.mjs");
-  const { DrivenGrasp, NonFinite, SIX_DIRECTIONS } = await import("./lib/drive.mjs");
-  const { RecordWriter } = await import("./lib/record.mjs");
+  const scene = await need("./lib/scene.mjs");
+  const { DrivenGrasp, NonFinite, SIX_DIRECTIONS } = await need("./lib/drive.mjs");
+  const { RecordWriter } = await need("./lib/record.mjs");
   if (!scene.CONFIGURATIONS.includes(args.configuration)) {
     throw new UsageError(`--configuration must be one of ${scene.CONFIGURATIONS.join(", ")}`);
   }
