@@ -273,14 +273,13 @@ async function main(argv) {
     contacts: args.contacts,
     config: configPath,
   });
-  let end = { closing: "max_steps", status: "ok" };
-  let code = 0;
+  let end;
   try {
-    end.closing = run.run(args.maxSteps);
+    end = { closing: run.run(args.maxSteps), status: "ok" };
     if (args.sixDirections) run.sixDirections();
   } catch (e) {
     if (!(e instanceof NonFinite)) throw e;
-    end = { closing: run.closingSteps ? end.closing : "max_steps", status: "nonfinite", message: e.message };
+    end = { status: "nonfinite", message: e.message };
   }
   if (args.summary) {
     process.stdout.write(JSON.stringify({
@@ -290,11 +289,11 @@ async function main(argv) {
       noslip_iterations: header.noslip_iterations,
       multiccd: header.multiccd,
       status: end.status,
-      closing: end.closing,
+      closing: end.closing ?? null,
       ...run.summary(),
     }) + "\n");
   }
-  return finish(end, code);
+  return finish(end, 0);
 }
 
 main(process.argv.slice(2)).then(
