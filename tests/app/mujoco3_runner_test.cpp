@@ -10,6 +10,7 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -207,8 +208,9 @@ TEST_F(Mujoco3Runner, DriveMatchesGraspcdOnAnOutsideGrasp) {
                 "' --native --json > '" + native.string() + "'; }")
                 .exit_code,
             0);
-  const Outcome r = node("'" + scene.string() + "' --configuration hull --multiccd off --out '" +
-                         record.string() + "'");
+  const Outcome r =
+      node("'" + scene.string() + "' --configuration hull --multiccd off --six-directions --out '" +
+           record.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json n = load(native);
   Scene22 s(scene);
@@ -243,6 +245,52 @@ TEST_F(Mujoco3Runner, DriveMatchesGraspcdOnAnOutsideGrasp) {
     EXPECT_EQ(verdict->at("gripped"), n.at("gripped"));
     EXPECT_EQ(verdict->at("held"), n.at("held"));
   }
+
+  // The six directions (docs/run-record.md): each from the hold's last state, its steps at the
+  // header's duration, the support out of every contact, and the object pulled along its axis of
+  // the hand's frame: a direction that moved it by more than 1 mm moved it along its pull.
+  const json& six = lines.front().at("six_directions");
+  const auto steps = static_cast<std::size_t>(
+      std::lround(six.at("duration").get<double>() / s.model->opt.timestep));
+  const json& held = phases["hold"].back();
+  s.height(held.at("qpos"), object, support);
+  const mjData* d = s.data.get();
+  const auto in_hand = [&] {
+    std::array<double, 3> p{};
+    for (int k = 0; k < 3; ++k) p[k] = d->xpos[3 * object + k] - d->xpos[3 * s.body("base") + k];
+    return p;
+  };
+  const std::array<double, 3> held_at = in_hand();
+  std::array<double, 9> frame{};
+  std::copy(d->xmat + 9 * s.body("base"), d->xmat + 9 * s.body("base") + 9, frame.begin());
+  int moved = 0;
+  const char* directions[] = {"dir+x", "dir-x", "dir+y", "dir-y", "dir+z", "dir-z"};
+  for (int i = 0; i < 6; ++i) {
+    SCOPED_TRACE(directions[i]);
+    const std::vector<json>& ls = phases[directions[i]];
+    ASSERT_EQ(ls.size(), steps);
+    EXPECT_DOUBLE_EQ(ls.front().at("t").get<double>(),
+                     held.at("t").get<double>() + s.model->opt.timestep);
+    for (const json& l : ls) {
+      for (const json& c : l.at("contacts")) {
+        EXPECT_NE(c.at("a").at("body"), "table");
+        EXPECT_NE(c.at("b").at("body"), "table");
+      }
+    }
+    s.height(ls.back().at("qpos"), object, support);
+    const std::array<double, 3> at = in_hand();
+    double along = 0, norm = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double pull = (i % 2 == 0 ? 1 : -1) * frame[3 * k + i / 2];
+      along += (at[k] - held_at[k]) * pull;
+      norm += (at[k] - held_at[k]) * (at[k] - held_at[k]);
+    }
+    if (std::sqrt(norm) > 0.001) {
+      ++moved;
+      EXPECT_GT(along, 0);
+    }
+  }
+  EXPECT_GT(moved, 0);  // the outside grasp of the mug loses it along the pads (hand x)
 }
 
 // The record's geom ids are those of the scene as given: for each configuration, the model 3.14
