@@ -425,10 +425,10 @@ TEST_F(Mujoco3Runner, HullCannotStartTheMugRim) {
   }
 }
 
-// Refusals: each one line on stderr. A scene without a "grasp" section and a missing scene are
-// bad input (exit 2, no record); a scene MuJoCo 3.14 does not load (an option 2.2 reads and 3.14
-// removed) is a record that cannot start (exit 3, the line naming the scene); the npm package
-// missing is exit 2 naming it.
+// Refusals: each one line on stderr. A scene without a "grasp" section, a missing scene and a
+// "grasp" section naming a body the scene lacks are bad input (exit 2); a scene MuJoCo 3.14 does
+// not load (an option 2.2 reads and 3.14 removed) is a record that cannot start (exit 3, the line
+// naming the scene); the npm package missing is exit 2 naming it.
 TEST_F(Mujoco3Runner, RefusalsAreOneLine) {
   SKIP_WITHOUT_RUNNER();
   const auto one_line = [](const std::string& err) {
@@ -469,6 +469,18 @@ TEST_F(Mujoco3Runner, RefusalsAreOneLine) {
   EXPECT_EQ(lines.back().at("end").at("status"), "cannot start");
   EXPECT_NE(lines.back().at("end").at("message").get<std::string>().find("collision"),
             std::string::npos);
+
+  // A pair config naming a body the scene does not have.
+  const std::string config = write("bad.pairs.json", R"({"grasp": {"hand": "no_such_hand",
+    "close": [{"actuator": "fingers_actuator", "step": 1, "touch": ["body:left_pad"]}],
+    "lift": {"actuator": "lift", "by": 0.06}}})");
+  r = node("'" + (kMjcf / "real_robotiq_mug.xml").string() + "' --config '" + config +
+           "' --configuration hull --out '" + out.string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(one_line(r.err)) << r.err;
+  EXPECT_NE(r.err.find("bad.pairs.json: 'grasp': the scene has no body named 'no_such_hand'"),
+            std::string::npos)
+      << r.err;
 
   // The runner without its package: a copy of the script and its modules, no node_modules.
   fs::create_directories(dir_ / "bare/lib");

@@ -11,7 +11,7 @@
 // "message": ...}}, and one line on stderr names the scene; 2 bad usage or input (a missing scene,
 // a pairs config without a "grasp" section, a missing npm package): one line on stderr, no
 // record; 1 anything else (a defect of the runner: its message on stderr).
-import { existsSync, renameSync, rmSync } from "node:fs";
+import { existsSync, renameSync } from "node:fs";
 import path from "node:path";
 import { parseArgs } from "node:util";
 
@@ -126,6 +126,7 @@ async function main(argv) {
     throw new UsageError(`--configuration must be one of ${scene.CONFIGURATIONS.join(", ")}`);
   }
   if (!args.out && !args.printModel) throw new UsageError("--out RECORD is required");
+  if (args.out && args.printModel) throw new UsageError("--print-model writes no record: no --out");
   const scenePath = path.resolve(args.scene);
   if (!existsSync(scenePath)) throw new scene.InputError(`${args.scene}: cannot open the scene`);
   const configPath = args.config ?? scenePath.replace(/\.xml$/, "") + ".pairs.json";
@@ -150,8 +151,6 @@ async function main(argv) {
     support: drive.support || "world",
     contacts: args.contacts,
     inflation: args.configuration === "flex" ? scene.FLEX_RADIUS : 0,
-    noslip_iterations: null,
-    multiccd: null,
     max_steps: args.maxSteps,
   };
   if (args.sixDirections) header.six_directions = { ...SIX_DIRECTIONS };
@@ -182,6 +181,18 @@ async function main(argv) {
   header.timestep = unmodified.m.opt.timestep;
   header.nq = unmodified.m.nq;
   header.nv = unmodified.m.nv;
+  // MuJoCo's options as the run sets them (as graspcd grasp --noslip does, on the compiled model).
+  const multiccdBit = mj.mjtDisableBit.mjDSBL_MULTICCD.value;
+  const setOptions = (model) => {
+    if (args.noslip !== undefined) model.opt.noslip_iterations = args.noslip;
+    if (args.multiccd !== undefined) {
+      const flags = model.opt.disableflags;
+      model.opt.disableflags = args.multiccd ? flags & ~multiccdBit : flags | multiccdBit;
+    }
+    header.noslip_iterations = model.opt.noslip_iterations;
+    header.multiccd = (model.opt.disableflags & multiccdBit) === 0;
+  };
+  setOptions(unmodified.m);
   const objectBody = names0.body.indexOf(drive.object);
   if (objectBody < 0) throw new scene.InputError(`${configPath}: 'grasp': the scene has no body named '${drive.object}'`);
   unmodified.objectMeshGeom = scene
@@ -244,23 +255,14 @@ async function main(argv) {
         body: m.geom_bodyid[g],
         type: geomTypes[m.geom_type[g]],
         id: geomMap[g],
-        body_mass: undefined,
       })),
       body_mass: Array.from(m.body_mass),
       flexes: objectFlexes.map((f) => ({ id: f, vertices: m.flex_vertnum[f], radius: m.flex_radius[f] })),
     }) + "\n");
-    if (writer) writer.close();
-    if (partial) rmSync(partial, { force: true });
     return 0;
   }
 
-  if (args.noslip !== undefined) m.opt.noslip_iterations = args.noslip;
-  if (args.multiccd !== undefined) {
-    const bit = mj.mjtDisableBit.mjDSBL_MULTICCD.value;
-    m.opt.disableflags = args.multiccd ? m.opt.disableflags & ~bit : m.opt.disableflags | bit;
-  }
-  header.noslip_iterations = m.opt.noslip_iterations;
-  header.multiccd = (m.opt.disableflags & mj.mjtDisableBit.mjDSBL_MULTICCD.value) === 0;
+  setOptions(m);
   if (writer) writer.line(header);
 
   const d = new mj.MjData(m);

@@ -2,7 +2,7 @@
 // grasp.h) in MuJoCo 3.14, each physics step written to the run record; then, when asked, the
 // six-direction test (docs/run-record.md). The one part of graspcd written twice: a change to the
 // C++ drive is a change here (tests/app/mujoco3_runner_test.cpp compares the two).
-import { matchGeoms, objectGeoms } from "./scene.mjs";
+import { InputError, matchGeoms, objectGeoms } from "./scene.mjs";
 
 // graspcd's GraspOptions (src/graspcd/grasp/grasp_result.h): physics steps per grasp step and the
 // phases' lengths in seconds.
@@ -39,12 +39,12 @@ export class DrivenGrasp {
     this.geomMap = geomMap;
     const body = (name) => {
       const id = names.body.indexOf(name);
-      if (id < 0) throw new Error(`${config}: 'grasp': the scene has no body named '${name}'`);
+      if (id < 0) throw new InputError(`${config}: 'grasp': the scene has no body named '${name}'`);
       return id;
     };
     const actuator = (name) => {
       const id = names.actuator.indexOf(name);
-      if (id < 0) throw new Error(`${config}: 'grasp': the scene has no actuator named '${name}'`);
+      if (id < 0) throw new InputError(`${config}: 'grasp': the scene has no actuator named '${name}'`);
       return id;
     };
     this.object = body(drive.object);
@@ -64,7 +64,7 @@ export class DrivenGrasp {
       const segments = c.touch.map((pattern) => {
         const geoms = matchGeoms(m, names, pattern);
         if (geoms.length === 0) {
-          throw new Error(`${config}: 'grasp': touch pattern '${pattern}' matches no collidable geom`);
+          throw new InputError(`${config}: 'grasp': touch pattern '${pattern}' matches no collidable geom`);
         }
         const s = this.segments.push(pattern) - 1;
         for (const geom of geoms) this.segmentsOfGeom[geom].push(s);
