@@ -21,15 +21,6 @@ export const CONFIGURATIONS = ["hull", "sdf", "sdf10", "flex"];
 export const FLEX_RADIUS = 0.0005;  // m
 export const SDF10_INITPOINTS = 10;
 
-export function describeConfiguration(name) {
-  return {
-    hull: "hull (the mesh geom as 3.14 collides it)",
-    sdf: "mesh sdf (sdf_initpoints 40, 3.14's default)",
-    sdf10: `mesh sdf (sdf_initpoints ${SDF10_INITPOINTS})`,
-    flex: `rigid flex (radius ${FLEX_RADIUS})`,
-  }[name];
-}
-
 // A bad input of the runner's (a missing file, a bad pairs config): one line, exit code 2.
 export class InputError extends Error {}
 // MuJoCo 3.14 refused the scene or its configuration: a record that cannot start, exit code 3.
@@ -210,7 +201,7 @@ export function editScene(sceneFile, configuration, objectBodyName, unmodified) 
     const p = [gp[0] - shift[0], gp[1] - shift[1], gp[2] - shift[2]];
     const scale = Array.from(u.m.mesh_scale.subarray(3 * mesh, 3 * mesh + 3));
     const file = bufferText(u.m.paths, u.m.mesh_pathadr[mesh]);
-    const at = (array, k, n) => Array.from(array.subarray(n * g, n * g + n)).map(num).join(" ");
+    const at = (array, n) => Array.from(array.subarray(n * g, n * g + n)).map(num).join(" ");
     geom.attributes.contype = "0";
     geom.attributes.conaffinity = "0";
     const contact = {
@@ -218,10 +209,10 @@ export function editScene(sceneFile, configuration, objectBodyName, unmodified) 
       conaffinity: num(u.m.geom_conaffinity[g]),
       condim: num(u.m.geom_condim[g]),
       priority: num(u.m.geom_priority[g]),
-      friction: at(u.m.geom_friction, g, 3),
+      friction: at(u.m.geom_friction, 3),
       solmix: num(u.m.geom_solmix[g]),
-      solref: at(u.m.geom_solref, g, 2),
-      solimp: at(u.m.geom_solimp, g, 5),
+      solref: at(u.m.geom_solref, 2),
+      solimp: at(u.m.geom_solimp, 5),
       margin: num(u.m.geom_margin[g]),
       gap: num(u.m.geom_gap[g]),
       selfcollide: "none",
