@@ -5,9 +5,8 @@
 import { InputError, matchGeoms, objectGeoms } from "./scene.mjs";
 
 // graspcd's GraspOptions (src/graspcd/grasp/grasp_result.h): physics steps per grasp step and the
-// phases' lengths in seconds.
+// phases' lengths in seconds (its max_steps, 400, is grasp3.mjs's --max-steps default).
 export const GRASP = {
-  maxSteps: 400,
   physicsStepsPerGraspStep: 5,
   squeezeTime: 0.1,
   settleTime: 0.3,

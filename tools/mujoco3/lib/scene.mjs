@@ -23,8 +23,6 @@ export const SDF10_INITPOINTS = 10;
 
 // A bad input of the runner's (a missing file, a bad pairs config): one line, exit code 2.
 export class InputError extends Error {}
-// MuJoCo 3.14 refused the scene or its configuration: a record that cannot start, exit code 3.
-export class CannotStart extends Error {}
 
 const XML_OPTIONS = {
   preserveOrder: true,
