@@ -38,6 +38,7 @@ struct GraspCliOptions {
   std::string manifold;  // --manifold support|moment|force[N]: the config's reduction overridden
   std::string object;    // --object FILE: a user's mesh in a template scene
   PlacementOptions placement;  // its placement (object_placement.h)
+  std::string drive;           // --drive FILE: --hand is a hand file, wrapped (hand_wrapper.h)
   std::string decomposed;      // --decomposed DIR: the object's collision by its convex pieces
   bool judge = false;          // --judge: every closing step's contacts against CGAL (the race)
   bool force = false;          // --force: --write-scene may replace files graspcd did not write
@@ -88,6 +89,9 @@ void check_usage(const GraspCliOptions& options, const CLI::App& app) {
   if (options.exact && app.count("--contact-reuse") > 0) {
     throw UsageError("grasp: --exact is --contact-reuse 0: give one of them");
   }
+  if (!options.drive.empty() && options.object.empty()) {
+    throw UsageError("grasp: --drive goes with --object and --hand HAND_FILE");
+  }
   if (options.force && options.placement.write_scene.empty()) {
     throw UsageError("grasp: --force goes with --write-scene");
   }
@@ -129,7 +133,9 @@ grasp::GraspOptions grasp_options(const GraspCliOptions& options, const CLI::App
 grasp::ObjectRunOptions object_run_options(const GraspCliOptions& options) {
   grasp::ObjectRunOptions run;
   run.file = options.object;
-  run.hand = hand_template(options.placement.hand, "grasp");
+  run.hand = options.drive.empty()
+                 ? hand_template(options.placement.hand, "grasp")
+                 : hand_with_drive(options.placement.hand, options.drive, "grasp");
   run.write_scene = options.placement.write_scene;
   run.force = options.force;
   return run;
@@ -211,7 +217,8 @@ Command add_grasp_command(CLI::App& parent) {
         "--object: scale the object to the template's room instead (said on the first line)"},
        {Placement::kHand,
         "--object: the template: project (the arm and 4-finger hand), robotiq (the Robotiq "
-        "2F-85), shadow (the Shadow hand), or a template scene file"},
+        "2F-85), shadow (the Shadow hand), allegro (the Allegro hand), or a template scene "
+        "file; with --drive, a hand file"},
        {Placement::kUp, "--object: the file axis that points up: x, y, z, -x, -y, -z"},
        {Placement::kYaw, "--object: then a turn about the up direction, degrees"},
        {Placement::kPose,
@@ -219,6 +226,11 @@ Command add_grasp_command(CLI::App& parent) {
        {Placement::kWriteScene,
         "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder and keep "
         "it (default: a temporary folder, removed)"}});
+  app->add_option("--drive", options->drive,
+                  "--object: --hand is a hand file (a Menagerie-style MJCF of the hand alone), "
+                  "this its drive (JSON: the \"grasp\" section of a pair config and a \"mount\" "
+                  "saying where the object goes; docs/hands.md): graspcd writes the scene around "
+                  "the hand, unchanged");
   app->add_flag("--force", options->force,
                 "--write-scene: replace files in DIR that graspcd did not write (never the "
                 "template or the object the run reads)");

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "command.h"
+#include "graspcd/grasp/hand_wrapper.h"
 
 namespace graspcd::cli {
 
@@ -125,6 +126,15 @@ grasp::HandTemplate hand_template(const std::string& hand, const std::string& co
     return grasp::hand_template(hand);
   } catch (const grasp::HandModelsNotFound& e) {
     throw UsageError(e.what());
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(command + ": " + e.what());
+  }
+}
+
+grasp::HandTemplate hand_with_drive(const std::string& hand, const std::string& drive,
+                                    const std::string& command) {
+  try {
+    return grasp::hand_with_drive(hand, drive);
   } catch (const std::invalid_argument& e) {
     throw UsageError(command + ": " + e.what());
   }

@@ -55,5 +55,9 @@ grasp::ObjectPlacement object_placement(const PlacementOptions& options, const s
 // The template of --hand (grasp/hand_templates.h). Throws UsageError "COMMAND: --hand must be
 // ..." for a name that is no template, and the library's words when a real hand is not found.
 grasp::HandTemplate hand_template(const std::string& hand, const std::string& command);
+// The hand file `hand` with its drive file (grasp/hand_wrapper.h). Throws UsageError "COMMAND:
+// --drive goes with a hand file ..." for a built-in template's name.
+grasp::HandTemplate hand_with_drive(const std::string& hand, const std::string& drive,
+                                    const std::string& command);
 
 }  // namespace graspcd::cli

@@ -7,7 +7,10 @@
 Each TRAJECTORY is a trajectory file (`graspcd trajectory SCENE --out FILE.json`, any name) or a
 folder whose *.json files are all trajectories. Writes into FIGURES_DIR what the files hold:
   fig18_<name>.png         each grasp at its first contact and at its last closing grasp step (the
-                           grip), as the paper's Figure 18 (every trajectory but a box hand's)
+                           grip), as the paper's Figure 18 (every trajectory but a box hand's); at
+                           its start and its grip when the first contact is the grip (a gripper's
+                           pads touch together). Gravity points down (the file's "gravity"), and
+                           the frame is the object and the hand geoms touching it (frame_box)
   fig17_obb_depths.png     the first finger segment with OBB levels: its boxes at tree depths 0 to
                            3 (Figure 17), on one scale
   contacts_native.png      where graspcd's contacts and MuJoCo's native convex-hull ones differ
@@ -31,11 +34,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection  # noqa: E402
 
-COLORS = {"segment": "#c8a878", "object": "#7090c0", "hand": "#999999"}
+COLORS = {"segment": "#c8a878", "object": "#7090c0", "hand": "#999999", "support": "#d8d8d8"}
 TOUCHING = "#e03030"
-DRAWN_TYPES = ("mesh", "box")  # the arm's capsules and cylinders are left out of the pictures
 BOX_EDGES = [(0, 1), (2, 3), (4, 5), (6, 7), (0, 2), (1, 3), (4, 6), (5, 7), (0, 4), (1, 5),
              (2, 6), (3, 7)]
+# The grasp pictures' frame: the object and the hand geoms touching it, reaching at most this many
+# of the object's largest extents beyond it on each side, plus a margin of this share of the frame.
+FRAME_REACH = 1.0
+FRAME_MARGIN = 0.08
 
 
 class InputError(Exception):
@@ -72,6 +78,47 @@ def box_faces(corners):
     return [corners[list(q)] for q in quads]
 
 
+def grid_triangles(points):
+    """The triangles of a (rows, columns, 3) grid of points, the columns closing around."""
+    rows, cols = points.shape[:2]
+    tris = []
+    for i in range(rows - 1):
+        for j in range(cols):
+            a, b = points[i, j], points[i, (j + 1) % cols]
+            c, d = points[i + 1, j], points[i + 1, (j + 1) % cols]
+            tris += [(a, b, d), (a, d, c)]
+    return np.array(tris)
+
+
+def primitive_triangles(geom, sides=16):
+    """A sphere, capsule, cylinder or ellipsoid as triangles in its geom frame (MuJoCo's sizes:
+    radius and half-length along z; an ellipsoid's three radii)."""
+    size = geom["size"]
+    turn = np.linspace(0, 2 * np.pi, sides, endpoint=False)
+    ring = np.stack([np.cos(turn), np.sin(turn), np.zeros(sides)], axis=1)
+    if geom["type"] == "cylinder":
+        r, h = size[0], size[1]
+        side = np.stack([r * ring + [0, 0, -h], r * ring + [0, 0, h]])
+        caps = [np.stack([np.tile([0.0, 0.0, z], (sides, 1)), r * ring + [0, 0, z],
+                          np.roll(r * ring, -1, axis=0) + [0, 0, z]], axis=1) for z in (-h, h)]
+        return np.concatenate([grid_triangles(side)] + caps)
+    # Latitude rings from the bottom pole to the top; a capsule's halves apart by its length.
+    lat = np.linspace(-np.pi / 2, np.pi / 2, sides // 2 + 1)
+    radii = np.array([size[0]] * 3) if geom["type"] != "ellipsoid" else np.array(size[:3])
+    rows = []
+    for a in lat:
+        p = np.stack([np.cos(a) * ring[:, 0], np.cos(a) * ring[:, 1],
+                      np.full(sides, np.sin(a))], axis=1) * radii
+        if geom["type"] == "capsule":
+            shift = size[1] if a > 0 else -size[1] if a < 0 else 0.0
+            if a == 0:  # the cylinder between the halves: the equator twice
+                rows += [p + [0, 0, -size[1]], p + [0, 0, size[1]]]
+                continue
+            p = p + [0, 0, shift]
+        rows.append(p)
+    return grid_triangles(np.array(rows))
+
+
 def geom_polygons(traj, step, g):
     """The triangles (or box faces) of geom g at `step`, in world coordinates."""
     geom = traj["geoms"][g]
@@ -80,7 +127,18 @@ def geom_polygons(traj, step, g):
         mesh = traj["meshes"][geom["mesh"]]
         v = np.array(mesh["vertices"]).reshape(-1, 3) @ rot.T + pos
         return v[np.array(mesh["faces"]).reshape(-1, 3)]
-    return np.array(box_faces(box_corners(pos, rot, geom["size"])))
+    if geom["type"] == "box":
+        return np.array(box_faces(box_corners(pos, rot, geom["size"])))
+    return primitive_triangles(geom) @ rot.T + pos
+
+
+ALL_TYPES = ("mesh", "box", "capsule", "cylinder", "sphere", "ellipsoid")
+
+
+def drawn(geom, types=ALL_TYPES):
+    """Whether a geom is drawn: one of `types`, and colliding (a hand's visual meshes double its
+    collision geoms; in files before the "collides" key, every geom)."""
+    return geom["type"] in types and geom.get("collides", True)
 
 
 LIGHT = np.array([-0.4, -0.6, 0.7]) / np.linalg.norm([-0.4, -0.6, 0.7])
@@ -100,38 +158,132 @@ def shaded(polys, color, alpha):
     return rgba
 
 
+def axis_name(row):
+    """A drawn axis by the world axis it is ("x", "-y"), or None when it is none of them."""
+    k = int(np.argmax(np.abs(row)))
+    if abs(abs(row[k]) - 1) > 1e-9:
+        return None
+    return ("" if row[k] > 0 else "\u2212") + "xyz"[k]
+
+
+def drawn_frame(traj):
+    """The rotation Q (rows: the drawn x, y, z in world coordinates) that puts gravity down, and
+    the axes' labels. Drawn z is against gravity (the trajectory's "gravity", MuJoCo's default
+    -z in files without it); gravity along a world axis keeps the other axes as world axes, named
+    with their sign ("x", "-y", "-z" for gravity along +z)."""
+    g = np.array(traj.get("gravity", [0, 0, -9.81]), float)
+    up = -g / np.linalg.norm(g) if np.linalg.norm(g) > 0 else np.array([0.0, 0.0, 1.0])
+    k = int(np.argmax(np.abs(up)))
+    if abs(abs(up[k]) - 1) <= 1e-9:
+        up = np.sign(up[k]) * np.eye(3)[k]
+        across = np.eye(3)[0 if k != 0 else 1]
+    else:
+        across = np.eye(3)[0] if abs(up[0]) < 0.9 else np.eye(3)[1]
+        across = across - (across @ up) * up
+        across /= np.linalg.norm(across)
+    q = np.array([across, np.cross(up, across), up])
+    names = [axis_name(r) for r in q]
+    labels = [names[i] if names[i] else ("across 1", "across 2", "up")[i] for i in range(3)]
+    return q, labels
+
+
+def object_geoms(traj):
+    return {g for g, geom in enumerate(traj["geoms"]) if geom["role"] == "object"}
+
+
 def touching_geoms(traj, step):
-    return {g for c in traj["steps"][step]["contacts"] for g in c["geoms"]}
+    """The hand geoms (finger segments and other hand parts, not the support) that touch the
+    object at `step`, by our contacts."""
+    objects = object_geoms(traj)
+    out = set()
+    for c in traj["steps"][step]["contacts"]:
+        a, b = c["geoms"]
+        for mine, other in ((a, b), (b, a)):
+            if mine in objects and traj["geoms"][other]["role"] in ("segment", "hand"):
+                out.add(other)
+    return out
 
 
-def set_equal(ax, points, margin=0.05, unit="m"):
-    lo, hi = points.min(axis=0), points.max(axis=0)
-    span = hi - lo
-    lo, hi = lo - margin * span.max(), hi + margin * span.max()
-    ax.set_xlim(lo[0], hi[0])
-    ax.set_ylim(lo[1], hi[1])
-    ax.set_zlim(lo[2], hi[2])
-    ax.set_box_aspect(hi - lo)
-    ax.set_xlabel(f"x ({unit})", fontsize=7)
-    ax.set_ylabel(f"y ({unit})", fontsize=7)
-    ax.set_zlabel(f"z ({unit})", fontsize=7)
-    ax.tick_params(labelsize=6)
+def frame_box(traj, steps, q):
+    """The drawn box (lo, hi, in the drawn frame of q) of a grasp picture over `steps`: the object
+    and the hand geoms touching it at any of them, each at every step (the fingers that will touch
+    also before they do), these reaching at most FRAME_REACH of the object's largest extent beyond
+    it, centred on the object across gravity (a gripper's other pad shows as far out as the one
+    touching), with a margin of FRAME_MARGIN of the box."""
+    objects = object_geoms(traj)
+    obj = np.concatenate([geom_polygons(traj, s, g).reshape(-1, 3) for s in steps
+                          for g in objects]) @ q.T
+    olo, ohi = obj.min(axis=0), obj.max(axis=0)
+    reach = FRAME_REACH * (ohi - olo).max()
+    touching = set().union(*(touching_geoms(traj, s) for s in steps))
+    pts = np.concatenate([obj] + [geom_polygons(traj, s, g).reshape(-1, 3) @ q.T for s in steps
+                                  for g in touching])
+    lo = np.maximum(pts.min(axis=0), olo - reach)
+    hi = np.minimum(pts.max(axis=0), ohi + reach)
+    centre = 0.5 * (olo + ohi)
+    half = np.maximum(centre - lo, hi - centre)
+    lo[:2], hi[:2] = centre[:2] - half[:2], centre[:2] + half[:2]
+    margin = FRAME_MARGIN * (hi - lo).max()
+    return lo - margin, hi + margin
 
 
-def draw_scene(ax, traj, step, roles=("segment", "object", "hand"), alpha=None):
-    """Draws the geoms of `roles` at `step`; returns every drawn point (for the limits)."""
+def clip_polygon(poly, lo, hi):
+    """Sutherland-Hodgman: the part of a convex polygon (K, 3) inside the box [lo, hi]."""
+    for axis in range(3):
+        for bound, inside in ((lo[axis], lambda v: v >= lo[axis]), (hi[axis],
+                                                                    lambda v: v <= hi[axis])):
+            out = []
+            for i in range(len(poly)):
+                a, b = poly[i - 1], poly[i]
+                ia, ib = inside(a[axis]), inside(b[axis])
+                if ia != ib:
+                    t = (bound - a[axis]) / (b[axis] - a[axis])
+                    out.append(a + t * (b - a))
+                if ib:
+                    out.append(b)
+            poly = np.array(out)
+            if len(poly) < 3:
+                return None
+    return poly
+
+
+def clipped(polys, colors, lo, hi):
+    """The polygons (N, K, 3) cut to the box [lo, hi], with their colours: those wholly outside
+    dropped, those across its faces cut (matplotlib's 3D axes do not clip)."""
+    below = (polys < lo).all(axis=1).any(axis=1)
+    above = (polys > hi).all(axis=1).any(axis=1)
+    inside = ((polys >= lo) & (polys <= hi)).all(axis=(1, 2))
+    out = list(polys[inside])
+    rgba = list(colors[inside])
+    for i in np.flatnonzero(~inside & ~below & ~above):
+        p = clip_polygon(polys[i], lo, hi)
+        if p is not None:
+            out.append(p)
+            rgba.append(colors[i])
+    return out, rgba
+
+
+def draw_scene(ax, traj, step, q, box=None, roles=("segment", "object", "hand", "support"),
+               alpha=None, types=ALL_TYPES):
+    """Draws the geoms of `roles` and `types` at `step` in the drawn frame of q, cut to `box`
+    (lo, hi) when given; returns every drawn point (for the limits). Hand geoms touching the
+    object are red."""
     touched = touching_geoms(traj, step)
     points = []
     for g, geom in enumerate(traj["geoms"]):
-        if geom["type"] not in DRAWN_TYPES or geom["role"] not in roles:
+        if not drawn(geom, types) or geom["role"] not in roles:
             continue
-        polys = geom_polygons(traj, step, g)
-        color = TOUCHING if g in touched and geom["role"] == "segment" else COLORS[geom["role"]]
-        a = alpha if alpha is not None else (0.45 if geom["role"] == "object" else 1.0)
-        ax.add_collection3d(Poly3DCollection(polys, facecolors=shaded(polys, color, a),
-                                             edgecolor="none"))
-        points.append(polys.reshape(-1, 3))
-    return np.concatenate(points)
+        polys = geom_polygons(traj, step, g) @ q.T
+        color = TOUCHING if g in touched else COLORS[geom["role"]]
+        a = alpha if alpha is not None else {"object": 0.45, "support": 0.3}.get(geom["role"], 1.0)
+        colors = shaded(polys, color, a)
+        if box is not None:
+            polys, colors = clipped(polys, colors, *box)
+            if not polys:
+                continue
+        ax.add_collection3d(Poly3DCollection(polys, facecolors=colors, edgecolor="none"))
+        points.append(np.concatenate(polys).reshape(-1, 3))
+    return np.concatenate(points) if points else np.zeros((0, 3))
 
 
 def first_contact_step(traj):
@@ -139,19 +291,62 @@ def first_contact_step(traj):
     return (min(steps) if steps else 1) - 1  # 0-based
 
 
-def fig18(traj, out):
-    fig = plt.figure(figsize=(10, 5))
+def shown_steps(traj):
+    """The two grasp steps of a grasp picture (0-based) and their names: the first contact and
+    the grip (the last closing step); the start and the grip when the first contact is the grip
+    (a gripper whose pads touch together) or when nothing touched. One step: that one."""
     last = len(traj["steps"]) - 1
-    for k, (step, title) in enumerate([(first_contact_step(traj), "first contact"),
-                                       (last, "grip (last closing step)")]):
-        ax = fig.add_subplot(1, 2, k + 1, projection="3d")
-        points = draw_scene(ax, traj, step)
-        set_equal(ax, points)
+    touched = any(s > 0 for s in traj["first_contact"])
+    first = first_contact_step(traj)
+    if last == 0:
+        return [(0, "the only closing step")]
+    if touched and first < last:
+        return [(first, "first contact"), (last, "grip (last closing step)")]
+    return [(0, "start"), (last, "first contact and grip (last closing step)" if touched
+                           else "last closing step")]
+
+
+def set_equal(ax, points, margin=0.05, unit="m", labels=("x", "y", "z"), box=None):
+    """Equal scales on the three axes over `points` (with a margin of their span), or over `box`
+    (lo, hi) as given."""
+    if box is None:
+        lo, hi = points.min(axis=0), points.max(axis=0)
+        span = hi - lo
+        lo, hi = lo - margin * span.max(), hi + margin * span.max()
+    else:
+        lo, hi = box
+    ax.set_xlim(lo[0], hi[0])
+    ax.set_ylim(lo[1], hi[1])
+    ax.set_zlim(lo[2], hi[2])
+    ax.set_box_aspect(hi - lo)
+    ax.set_xlabel(f"{labels[0]} ({unit})", fontsize=7)
+    ax.set_ylabel(f"{labels[1]} ({unit})", fontsize=7)
+    ax.set_zlabel(f"{labels[2]} ({unit})", fontsize=7)
+    ax.tick_params(labelsize=6)
+
+
+def fig18(traj, out):
+    """A grasp at two steps (shown_steps), gravity down, framed on the object and the hand geoms
+    touching it (frame_box), one frame for both panels."""
+    q, labels = drawn_frame(traj)
+    shown = shown_steps(traj)
+    box = frame_box(traj, [step for step, _ in shown], q)
+    fig = plt.figure(figsize=(5 * len(shown), 5.3))
+    for k, (step, title) in enumerate(shown):
+        ax = fig.add_subplot(1, len(shown), k + 1, projection="3d")
+        draw_scene(ax, traj, step, q, box)
+        set_equal(ax, None, labels=labels, box=box)
+        ax.set_box_aspect(box[1] - box[0], zoom=0.9)  # room for the axis labels
+        for axis in (ax.xaxis, ax.yaxis, ax.zaxis):  # four ticks: a few centimetres' frame
+            axis.set_major_locator(matplotlib.ticker.MaxNLocator(4))
         ax.view_init(elev=20, azim=-60)
         n = len(traj["steps"][step]["contacts"])
         ax.set_title(f"{traj['name']}: {title}, grasp step {step + 1}\n{n} contacts "
-                     "(segments in contact red)", fontsize=9)
-    fig.tight_layout()
+                     "(hand geoms touching the object red)", fontsize=9)
+    fig.text(0.5, 0.012, "Gravity points down; axes are the world's (a minus sign: reversed). "
+             "Framed on the object and the hand geoms touching it, cut at the frame.",
+             ha="center", fontsize=8, style="italic")
+    fig.tight_layout(rect=(0, 0.06, 1, 0.96))
     fig.savefig(out, dpi=110)
     plt.close(fig)
 
@@ -238,25 +433,26 @@ def most_different(trajs):
 def contacts_figure(traj, out, step=None):
     step = len(traj["steps"]) - 1 if step is None else step
     data = traj["steps"][step]
+    q, labels = drawn_frame(traj)
     fig = plt.figure(figsize=(10, 5))
     # The normal drawn with a length of a fifth of the object's size.
-    object_points = draw_scene(plt.figure().add_subplot(projection="3d"), traj, step, ("object",))
-    plt.close(plt.gcf())
+    objects = object_geoms(traj)
+    object_points = np.concatenate([geom_polygons(traj, step, g).reshape(-1, 3) for g in objects])
     scale = 0.2 * np.ptp(object_points, axis=0).max()
     for k, (key, title, color) in enumerate([
             ("contacts", "ours (graspcd, triangle meshes)", "#d00000"),
             ("native_contacts", "MuJoCo native (convex hulls)", "#0030d0")]):
         ax = fig.add_subplot(1, 2, k + 1, projection="3d")
-        points = draw_scene(ax, traj, step, ("object",), alpha=0.25)
+        points = draw_scene(ax, traj, step, q, roles=("object",), alpha=0.25)
         contacts = data[key]
         if contacts:
-            p = np.array([c["pos"] for c in contacts])
-            n = np.array([c["normal"] for c in contacts])
+            p = np.array([c["pos"] for c in contacts]) @ q.T
+            n = np.array([c["normal"] for c in contacts]) @ q.T
             ax.scatter(p[:, 0], p[:, 1], p[:, 2], color=color, s=8, depthshade=False)
             ax.quiver(p[:, 0], p[:, 1], p[:, 2], n[:, 0], n[:, 1], n[:, 2], length=scale,
                       color=color, linewidth=0.7)
             points = np.concatenate([points, p])
-        set_equal(ax, points)
+        set_equal(ax, points, labels=labels)
         ax.view_init(elev=25, azim=-60)
         ax.set_title(f"{title}\n{len(contacts)} contacts", fontsize=9)
     fig.suptitle(f"{traj['name']}, grasp step {step + 1}: contact points and normals on the object; "
@@ -271,7 +467,8 @@ def fig12(traj, out):
     fig = plt.figure(figsize=(6, 6))
     ax = fig.add_subplot(projection="3d")
     ax.computed_zorder = False  # the labels stay on top of the boxes
-    points = draw_scene(ax, traj, 0)
+    q, labels = drawn_frame(traj)
+    points = draw_scene(ax, traj, 0, q, types=("mesh", "box"))  # the arm's cylinders left out
     elev, azim = 15, -70
     ax.view_init(elev=elev, azim=azim)
     toward_camera = np.array([np.cos(np.radians(azim)), np.sin(np.radians(azim)), 0.0])
@@ -280,11 +477,11 @@ def fig12(traj, out):
     for g, geom in enumerate(traj["geoms"]):
         if geom["segment"]:
             fingers.setdefault(geom["name"].split("_")[0], []).append(g)
-    near = max(fingers, key=lambda f: np.mean([pose(traj, 0, g)[1] @ toward_camera
+    near = max(fingers, key=lambda f: np.mean([q @ pose(traj, 0, g)[1] @ toward_camera
                                                 for g in fingers[f]]))
     centre = points.mean(axis=0)
     for g in fingers[near]:
-        _, pos = pose(traj, 0, g)
+        pos = q @ pose(traj, 0, g)[1]
         side = pos - centre
         side[2] = 0
         side = side / (np.linalg.norm(side) or 1) * 0.035
@@ -292,7 +489,7 @@ def fig12(traj, out):
         ax.plot(*zip(pos, p), color="#b00000", linewidth=1.0, zorder=10)
         ax.text(p[0], p[1], p[2], " " + traj["geoms"][g]["segment"], fontsize=15, color="#b00000",
                 fontweight="bold", zorder=11)
-    set_equal(ax, points)
+    set_equal(ax, points, labels=labels)
     ax.set_title(f"The box hand ({traj['name']}): segments A, B, C of {near}", fontsize=10)
     fig.tight_layout()
     fig.savefig(out, dpi=110)

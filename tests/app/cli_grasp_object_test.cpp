@@ -216,11 +216,11 @@ TEST_F(CliTest, GraspObjectTemplateFilesAreCheckedAndNamed) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, bare + ":2: template scene: no <body name=\"object\"> in <worldbody>\n");
   // Neither a built-in hand nor a file; and a bad --up.
-  r = run("grasp --object " + box + " --hand allegro");
+  r = run("grasp --object " + box + " --hand barrett");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err,
-            "graspcd: grasp: --hand must be project, robotiq, shadow or a template scene file "
-            "(allegro is none)\n");
+            "graspcd: grasp: --hand must be project, robotiq, shadow, allegro or a template scene "
+            "file (barrett is none)\n");
   r = run("grasp --object " + box + " --up w");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "graspcd: grasp: --up must be one of x, y, z, -x, -y, -z (not 'w')\n");

@@ -118,10 +118,14 @@ function buildScene(g) {
   scene.add(root);
   const slider = $('step');
   slider.max = String(grasp.steps.length - 1);
-  // Frame the object and the hand at step 0.
+  // Frame the object and the finger segments at step 0 (not the rest of the hand or the support).
   setStep(0);
   const bounds = new THREE.Box3();
-  geomObjects.forEach((o) => { if (o.userData.geom.role !== 'hand') bounds.expandByObject(o); });
+  geomObjects.forEach((o) => {
+    if (o.userData.geom.role !== 'hand' && o.userData.geom.role !== 'support') {
+      bounds.expandByObject(o);
+    }
+  });
   const center = bounds.getCenter(new THREE.Vector3());
   const size = bounds.getSize(new THREE.Vector3()).length();
   camera.position.copy(center).add(new THREE.Vector3(0.8 * size, -1.1 * size, 0.6 * size));

@@ -24,15 +24,12 @@ HandTemplate real_hand(const std::string& name, const std::string& file, const s
     throw HandModelsNotFound("the " + who + "'s models are not found at " + models +
                              ": set GRASPCD_MODELS_DIR to the folder that holds " + model);
   }
-  return {name,
-          (fs::path(mjcf_dir()) / file).string(),
-          std::nullopt,
-          fit_fraction,
-          {{kModelsInTemplates, models}}};
+  return {name,         (fs::path(mjcf_dir()) / file).string(), std::nullopt,
+          fit_fraction, {{kModelsInTemplates, models}},         {}};
 }
 
 bool built_in(const std::string& name) {
-  return name == "project" || name == "robotiq" || name == "shadow";
+  return name == "project" || name == "robotiq" || name == "shadow" || name == "allegro";
 }
 
 }  // namespace
@@ -52,6 +49,7 @@ HandTemplate hand_template(const std::string& hand) {
             (fs::path(mjcf_dir()) / "example1.xml").string(),
             std::array<double, 2>{0.07, 0.08},
             1,
+            {},
             {}};
   }
   if (hand == "robotiq") {
@@ -62,12 +60,18 @@ HandTemplate hand_template(const std::string& hand) {
     return real_hand(hand, "real_shadow_glass.xml", "Shadow hand",
                      "hands/shadow_hand/right_hand.xml", kShadowFitFraction);
   }
+  if (hand == "allegro") {
+    return real_hand(hand, "real_allegro_brick.xml", "Allegro hand",
+                     "hands/wonik_allegro/right_hand.xml", kAllegroFitFraction);
+  }
   std::error_code ec;
   if (!fs::is_regular_file(hand, ec)) {
     throw std::invalid_argument(
-        "--hand must be project, robotiq, shadow or a template scene file (" + hand + " is none)");
+        "--hand must be project, robotiq, shadow, allegro or a template "
+        "scene file (" +
+        hand + " is none)");
   }
-  return {hand, hand, std::nullopt, 1, {}};
+  return {hand, hand, std::nullopt, 1, {}, {}};
 }
 
 }  // namespace graspcd::grasp

@@ -24,14 +24,18 @@ struct TemplatePath {
 // hand and a template file of the user's: 1.
 inline constexpr double kRobotiqFitFraction = 0.9;
 inline constexpr double kShadowFitFraction = 0.9;
+inline constexpr double kAllegroFitFraction = 0.9;
 
 struct HandTemplate {
-  std::string name;   // project, robotiq, shadow, or the template file the user gave
+  std::string name;   // project, robotiq, shadow, allegro, or the template file the user gave
   std::string scene;  // the template scene (its pair config beside it)
   std::optional<std::array<double, 2>> fit;  // width, height of its room, when the scene has no
                                              // graspcd_fit
   double fit_fraction = 1;
   std::vector<TemplatePath> moved;
+  // --drive FILE: `scene` is a hand file, which an object run wraps into a template
+  // (hand_wrapper.h), and messages name FILE for the template's pair config.
+  std::string drive;
 
   // SCENE.pairs.json.
   std::string pairs() const;
@@ -46,10 +50,11 @@ class HandModelsNotFound : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// project (mjcf/example1.xml), robotiq (mjcf/real_robotiq_mug.xml) or shadow
-// (mjcf/real_shadow_glass.xml), found in graspcd::mjcf_dir(), or a template scene file. Throws
-// std::invalid_argument "--hand must be ..." for anything else, HandModelsNotFound when the
-// robotiq or shadow hand is not under graspcd::models_dir().
+// project (mjcf/example1.xml), robotiq (mjcf/real_robotiq_mug.xml), shadow
+// (mjcf/real_shadow_glass.xml) or allegro (mjcf/real_allegro_brick.xml), found in
+// graspcd::mjcf_dir(), or a template scene file. Throws std::invalid_argument "--hand must be
+// ..." for anything else, HandModelsNotFound when a real hand is not under
+// graspcd::models_dir().
 HandTemplate hand_template(const std::string& hand);
 
 }  // namespace graspcd::grasp

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <system_error>
 
+#include "graspcd/grasp/hand_wrapper.h"
 #include "graspcd/io/input_error.h"
 
 namespace graspcd::grasp {
@@ -46,7 +47,8 @@ void check_scene_targets(const SceneTargets& t, const HandTemplate& hand,
   std::error_code ec;
   const bool ours = generated_by_graspcd(t.scene());
   for (const fs::path& target : {t.scene(), t.pairs(), t.meshes()}) {
-    if (same_file(target, hand.scene) || same_file(target, hand.pairs())) {
+    if (same_file(target, hand.scene) || same_file(target, hand.pairs()) ||
+        same_file(target, hand.drive)) {
       throw io::InputError(target.string(), 0,
                            "is the template this run reads: not overwritten (write the scene "
                            "into another folder)");
@@ -109,7 +111,12 @@ ObjectRun::ObjectRun(const ObjectRunOptions& options) : options_(options) {
 }
 
 const ObjectScene& ObjectRun::write(const ObjectPlacement& placement) {
-  description_.scene = write_object_scene(placement, options_.hand, folder_.path().string());
+  // A hand file with a drive: its template written first, in the run's folder (removed with it).
+  const HandTemplate hand =
+      options_.hand.drive.empty()
+          ? options_.hand
+          : write_hand_wrapper(options_.hand, (folder_.path() / "wrapped_hand").string());
+  description_.scene = write_object_scene(placement, hand, folder_.path().string());
   // A kept scene's pair config is the user's file from now on: messages name it there.
   if (!options_.write_scene.empty()) {
     for (auto& [written, known] : description_.scene.names.files) {

@@ -119,23 +119,40 @@ struct TemplateParts {
   tinyxml2::XMLElement* asset = nullptr;  // that geom's <mesh>
 };
 
-// The template read into `doc` by tinyxml2 and its parts found; an error names what is missing.
-TemplateParts read_template(tinyxml2::XMLDocument& doc, const std::string& template_path) {
-  if (doc.LoadFile(template_path.c_str()) != tinyxml2::XML_SUCCESS) {
-    throw io::InputError(template_path, static_cast<std::size_t>(std::max(0, doc.ErrorLineNum())),
-                         std::string("cannot read the template scene: ") + doc.ErrorName());
+int line_of(const tinyxml2::XMLElement* e) { return e ? e->GetLineNum() : 0; }
+
+// Whether the body has a free joint (<freejoint/> or <joint type="free"/>).
+bool has_free_joint(const tinyxml2::XMLElement* body) {
+  if (body->FirstChildElement("freejoint")) return true;
+  for (const tinyxml2::XMLElement* j = body->FirstChildElement("joint"); j;
+       j = j->NextSiblingElement("joint")) {
+    if (j->Attribute("type", "free")) return true;
   }
+  return false;
+}
+
+// The parts of a template read into `doc`, each piece of the contract it lacks added to
+// `problems` (in the order they are met; a part that cannot be found stops the search below it).
+TemplateParts find_template_parts(tinyxml2::XMLDocument& doc,
+                                  std::vector<TemplateProblem>& problems) {
+  const auto lacks = [&](const tinyxml2::XMLElement* at, const std::string& what,
+                         const std::string& how) {
+    problems.push_back({static_cast<std::size_t>(std::max(0, line_of(at))), what, how});
+  };
   TemplateParts t;
   t.root = doc.RootElement();
   if (t.root == nullptr || std::string(t.root->Name()) != "mujoco") {
-    throw template_error(template_path, t.root, "no <mujoco>");
+    lacks(t.root, "no <mujoco>", "a template is an MJCF scene: <mujoco> ... </mujoco>");
+    return t;
   }
   // A keyframe is the grasp's start (grasp.h) and holds the template object's pose, which the new
   // object's placement would not replace.
   if (tinyxml2::XMLElement* key = t.root->FirstChildElement("keyframe")) {
-    throw template_error(template_path, key,
-                         "a template with a <keyframe> cannot take a new object (the keyframe "
-                         "starts the grasp with the template object's pose)");
+    lacks(key,
+          "a template with a <keyframe> cannot take a new object (the keyframe starts the grasp "
+          "with the template object's pose)",
+          "remove the <keyframe>: the grasp starts from qpos0 and the drive's closing shapes the "
+          "hand");
   }
   tinyxml2::XMLElement* world = t.root->FirstChildElement("worldbody");
   for (tinyxml2::XMLElement* world_element = world; world_element;
@@ -146,26 +163,61 @@ TemplateParts read_template(tinyxml2::XMLDocument& doc, const std::string& templ
     }
   }
   if (t.body == nullptr) {
-    throw template_error(template_path, world, "no <body name=\"object\"> in <worldbody>");
+    lacks(world, "no <body name=\"object\"> in <worldbody>",
+          "add <body name=\"object\" pos=\"X Y Z\"><freejoint/><geom type=\"mesh\" "
+          "mesh=\"object_mesh\"/></body> to <worldbody> and <mesh name=\"object_mesh\" "
+          "file=\"ANY.obj\"/> to <asset> (the user's mesh takes its place; X Y Z: where it "
+          "stands, or a graspcd_support numeric)");
+    return t;
+  }
+  if (!has_free_joint(t.body)) {
+    lacks(t.body, "the object body has no free joint",
+          "add <freejoint/> to the object body: the object settles on the support and is lifted "
+          "by the hand");
   }
   for (tinyxml2::XMLElement* g = t.body->FirstChildElement("geom"); g;
        g = g->NextSiblingElement("geom")) {
     if (g->Attribute("type", "mesh") && g->Attribute("mesh")) {
       if (t.geom != nullptr) {
-        throw template_error(template_path, g, "the object body has more than one mesh geom");
+        lacks(g, "the object body has more than one mesh geom",
+              "keep one mesh geom in the object body: the user's mesh replaces that one");
+        return t;
       }
       t.geom = g;
     }
   }
-  if (t.geom == nullptr)
-    throw template_error(template_path, t.body, "the object body has no mesh geom");
+  if (t.geom == nullptr) {
+    lacks(t.body, "the object body has no mesh geom",
+          "give the object body one <geom type=\"mesh\" mesh=\"object_mesh\"/> (with its "
+          "mass or density, friction and contype) and <mesh name=\"object_mesh\" "
+          "file=\"ANY.obj\"/> in <asset>: the user's mesh takes its place");
+    return t;
+  }
   std::vector<tinyxml2::XMLElement*> meshes;
   collect(t.root, "mesh", meshes);
   for (tinyxml2::XMLElement* m : meshes) {
     if (m->Attribute("name", t.geom->Attribute("mesh"))) t.asset = m;
   }
   if (t.asset == nullptr) {
-    throw template_error(template_path, t.geom, "no <mesh> asset for the object's geom");
+    lacks(t.geom, "no <mesh> asset for the object's geom",
+          std::string("add <mesh name=\"") + t.geom->Attribute("mesh") +
+              "\" file=\"ANY.obj\"/> to <asset>");
+  }
+  return t;
+}
+
+// The template read into `doc` by tinyxml2 and its parts found; an error names what is missing
+// (the first piece of the contract it lacks).
+TemplateParts read_template(tinyxml2::XMLDocument& doc, const std::string& template_path) {
+  if (doc.LoadFile(template_path.c_str()) != tinyxml2::XML_SUCCESS) {
+    throw io::InputError(template_path, static_cast<std::size_t>(std::max(0, doc.ErrorLineNum())),
+                         std::string("cannot read the template scene: ") + doc.ErrorName());
+  }
+  std::vector<TemplateProblem> problems;
+  const TemplateParts t = find_template_parts(doc, problems);
+  if (!problems.empty()) {
+    throw io::InputError(template_path, problems.front().line,
+                         "template scene: " + problems.front().what);
   }
   return t;
 }
@@ -433,13 +485,18 @@ void raise_size(tinyxml2::XMLDocument& doc, tinyxml2::XMLElement* root) {
 }
 
 // The header of the new scene: what it is and how it was made.
-std::string scene_header(const std::string& template_path, const std::string& hand,
-                         const ObjectPlacement& placement, const ObjectScene& out,
-                         const Vec3& support, const std::string& stem) {
+std::string scene_header(const HandTemplate& hand, const ObjectPlacement& placement,
+                         const ObjectScene& out, const Vec3& support, const std::string& stem) {
   std::ostringstream header;
-  header << "\n  Generated by graspcd (the grasp command given an object file) from the template "
-         << fs::absolute(template_path).lexically_normal().string() << " (hand: " << hand
-         << ").\n  Object: " << fs::absolute(placement.file).lexically_normal().string()
+  header << "\n  Generated by graspcd (the grasp command given an object file) from ";
+  if (hand.drive.empty()) {
+    header << "the template " << fs::absolute(hand.scene).lexically_normal().string()
+           << " (hand: " << hand.name << ")";
+  } else {  // a hand file wrapped with its drive (hand_wrapper.h)
+    header << "the hand file " << fs::absolute(hand.name).lexically_normal().string()
+           << "\n  with the drive " << fs::absolute(hand.drive).lexically_normal().string();
+  }
+  header << ".\n  Object: " << fs::absolute(placement.file).lexically_normal().string()
          << "\n    scale " << short_number(out.scale)
          << (out.fitted ? " (fitted to the hand's room)" : " (given)") << "; size "
          << short_number(out.size[0]) << " x " << short_number(out.size[1]) << " m across, "
@@ -496,6 +553,25 @@ void save_scene(tinyxml2::XMLDocument& doc, const std::string& template_path,
 
 }  // namespace
 
+std::vector<TemplateProblem> template_problems(const std::string& template_path) {
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(template_path.c_str()) != tinyxml2::XML_SUCCESS) {
+    throw io::InputError(template_path, static_cast<std::size_t>(std::max(0, doc.ErrorLineNum())),
+                         std::string("cannot read the template scene: ") + doc.ErrorName());
+  }
+  std::vector<TemplateProblem> problems;
+  const TemplateParts t = find_template_parts(doc, problems);
+  if (t.root == nullptr || std::string(t.root->Name()) != "mujoco") return problems;
+  try {
+    gravity_frame(t.root, template_path);
+  } catch (const io::InputError& e) {
+    problems.push_back({e.line(), e.message(),
+                        "give <option gravity=\"GX GY GZ\"/> pointing from the hand to the "
+                        "support (along it the object hangs from the hand)"});
+  }
+  return problems;
+}
+
 ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTemplate& hand,
                                const std::string& dir) {
   const std::string& template_path = hand.scene;
@@ -546,8 +622,7 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTempl
   }
   set_object(t, object_file.string(), mesh_folder, out);
   raise_size(doc, t.root);
-  replace_comments(doc, t.root,
-                   scene_header(template_path, hand.name, placement, out, room.support, stem));
+  replace_comments(doc, t.root, scene_header(hand, placement, out, room.support, stem));
 
   out.scene = (target / (stem + ".xml")).string();
   out.pairs = (target / (stem + ".pairs.json")).string();
@@ -557,7 +632,8 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTempl
                placement.file,
                "in the template scene: ",
                out.units_hint.empty() ? "" : "; " + out.units_hint,
-               {{out.pairs, hand.pairs()}, {object_file.string(), placement.file}},
+               {{out.pairs, hand.drive.empty() ? hand.pairs() : hand.drive},
+                {object_file.string(), placement.file}},
                hand.mesh_owner(),
                "object_mesh"};
   return out;

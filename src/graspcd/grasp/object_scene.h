@@ -16,8 +16,10 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "graspcd/grasp/hand_templates.h"
 #include "graspcd/mujoco/scene_names.h"
@@ -59,6 +61,20 @@ struct ObjectScene {
   // the hand's (mujoco/scene_names.h).
   mujoco::SceneNames names;
 };
+
+// A piece of the template contract (docs/design.md, "Object scenes") that a scene lacks: its line
+// (0: the file), what is missing and how to add it.
+struct TemplateProblem {
+  std::size_t line = 0;
+  std::string what;
+  std::string how;
+};
+
+// The pieces of the contract the scene `template_path` lacks, in the order write_object_scene
+// meets them (it refuses the first): <mujoco>, no <keyframe>, the object body, its free joint,
+// its one mesh geom and that geom's asset, then a non-zero gravity. Throws io::InputError naming
+// the file when tinyxml2 cannot read it.
+std::vector<TemplateProblem> template_problems(const std::string& template_path);
 
 // Writes the scene of `placement` in `hand` into `dir` (created). Throws io::InputError naming
 // the mesh file for a bad mesh, naming the template (and its line) for a template that breaks

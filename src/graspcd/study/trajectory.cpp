@@ -5,8 +5,11 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
+#include <system_error>
 
+#include "graspcd/grasp/drive_config.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/io/input_error.h"
 #include "graspcd/mujoco/model_loading.h"
@@ -81,6 +84,24 @@ json contacts_json(const std::vector<RecordedContact>& contacts, const std::vect
   return out;
 }
 
+// The support body of the scene's "grasp" section (drive_config.h), -1 when it names none (the
+// examples stand on a floor plane, which is not drawn).
+int support_body(const mjModel* m, const std::string& scene) {
+  const std::string config = mujoco::pair_config_path(scene);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(config, ec)) return -1;
+  const std::optional<grasp::DriveConfig> drive = grasp::load_drive_config(config);
+  if (!drive || drive->support.empty()) return -1;
+  return mj_name2id(m, mjOBJ_BODY, drive->support.c_str());
+}
+
+// Whether body b is `root` (not the world) or below it.
+bool in_subtree(const mjModel* m, int b, int root) {
+  for (; b > 0; b = m->body_parentid[b])
+    if (b == root) return true;
+  return false;
+}
+
 }  // namespace
 
 std::vector<Obb> boxes_at_depth(const ObbTree& tree, int depth) {
@@ -127,19 +148,23 @@ void write_trajectory(const std::string& path, const Recording& r, const MeshSce
   json meshes = json::array();
   json geoms = json::array();
   const int object_body = mj_name2id(m, mjOBJ_BODY, "object");
+  const int support = support_body(m, r.scene);
   for (int g = 0; g < m->ngeom; ++g) {
     const std::string type = geom_type_name(m->geom_type[g]);
     if (type.empty()) continue;
     const char* raw_name = mj_id2name(m, mjOBJ_GEOM, g);
     const std::string name = raw_name ? raw_name : "geom" + std::to_string(g);
     const std::string letter = segment_letter(name);
+    const int body = m->geom_bodyid[g];
     json j = {{"name", name},
               {"type", type},
               {"size", rounded_array(m->geom_size + 3 * g, m->geom_size + 3 * g + 3)},
-              {"role", !letter.empty()                    ? "segment"
-                       : m->geom_bodyid[g] == object_body ? "object"
-                                                          : "hand"},
-              {"segment", letter}};
+              {"role", !letter.empty()                ? "segment"
+                       : body == object_body          ? "object"
+                       : in_subtree(m, body, support) ? "support"
+                                                      : "hand"},
+              {"segment", letter},
+              {"collides", m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0}};
     const int mesh = m->geom_dataid[g];
     if (m->geom_type[g] == mjGEOM_MESH && mesh >= 0) {
       auto& index = mesh_index[static_cast<std::size_t>(mesh)];
@@ -204,6 +229,7 @@ void write_trajectory(const std::string& path, const Recording& r, const MeshSce
               {"first_contact", r.grasp.first_contact},
               {"segment_names", grasp::finger_segment_names()},
               {"held", r.grasp.held},
+              {"gravity", rounded_array(m->opt.gravity, m->opt.gravity + 3)},
               {"meshes", meshes},
               {"geoms", geoms},
               {"steps", steps},

@@ -3,7 +3,10 @@
 //
 //   meshes    once, in their geom frames (MuJoCo's recentred vertices, its faces)
 //   geoms     every geom but planes: name, type (mesh, box, capsule, cylinder, sphere), mesh id,
-//             MuJoCo's size, role (segment, object or hand) and its finger segment letter
+//             MuJoCo's size, role (segment, object, support: the body below the pair config's
+//             "grasp" support, or hand), its finger segment letter and whether it collides
+//             (contype or conaffinity non-zero; a visual geom does not)
+//   gravity   the scene's gravity (m/s^2), which the figures draw pointing down
 //   steps     per closing grasp step: every listed geom's position (3) and rotation (9, row-major,
 //             MuJoCo's geom_xmat), graspcd's contacts (the recording's) and MuJoCo's
 //             native convex-hull contacts at the same joint positions (mj_forward without graspcd)
