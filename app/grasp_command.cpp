@@ -44,6 +44,7 @@ struct GraspCliOptions {
   bool force = false;          // --force: --write-scene may replace files graspcd did not write
   int noslip = 0;              // --noslip N: MuJoCo's noslip iterations (default: the scene's)
   bool multiccd = false;       // --multiccd: MuJoCo's multi-point convex collision for the run
+  double load_timeout = grasp::kDefaultLoadTimeout;  // --load-timeout: --object's wait, s
 };
 
 // --judge: per closing grasp step, phantom and missed contacts (contact_judge.h).
@@ -92,6 +93,9 @@ void check_usage(const GraspCliOptions& options, const CLI::App& app) {
   if (!options.drive.empty() && options.object.empty()) {
     throw UsageError("grasp: --drive goes with --object and --hand HAND_FILE");
   }
+  if (app.count("--load-timeout") > 0 && options.object.empty()) {
+    throw UsageError("grasp: --load-timeout goes with --object");
+  }
   if (options.force && options.placement.write_scene.empty()) {
     throw UsageError("grasp: --force goes with --write-scene");
   }
@@ -138,6 +142,7 @@ grasp::ObjectRunOptions object_run_options(const GraspCliOptions& options) {
                  : hand_with_drive(options.placement.hand, options.drive, "grasp");
   run.write_scene = options.placement.write_scene;
   run.force = options.force;
+  run.load_timeout = options.load_timeout;
   return run;
 }
 
@@ -155,7 +160,13 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   check_usage(options, app);
   grasp::GraspOptions grasp = grasp_options(options, app);
   std::optional<grasp::ObjectRun> object;
-  if (!options.object.empty()) write_object(options, object.emplace(object_run_options(options)));
+  if (!options.object.empty()) {
+    write_object(options, object.emplace(object_run_options(options)));
+    // A large object: the wait is announced before it starts (nothing is printed during it).
+    if (const std::string notice = object->wait_notice(); !notice.empty()) {
+      std::cerr << "[grasp] " << notice << std::endl;
+    }
+  }
   // --judge: built on the first closing step's model, with the object and support bodies of the
   // drive config the grasp reads (--config, else SCENE.pairs.json: for --decomposed the original
   // scene's, for --object the written template's); the grasp has already checked that config.
@@ -234,6 +245,14 @@ Command add_grasp_command(CLI::App& parent) {
   app->add_flag("--force", options->force,
                 "--write-scene: replace files in DIR that graspcd did not write (never the "
                 "template or the object the run reads)");
+  app->add_option(
+         "--load-timeout", options->load_timeout,
+         "--object: the most seconds before the first grasp step (MuJoCo compiling the "
+         "object's mesh, graspcd's trees, the start check); past it the run stops, exit "
+         "code 2. A mesh of 100,000 triangles or more is announced before the wait: MuJoCo "
+         "takes about 20 s of CPU to compile one of 200,000")
+      ->check(positive_number())
+      ->capture_default_str();
   app->add_flag("--require-held", options->require_held,
                 "Exit with code 1 when the object was not held");
   add_method_options(*app, options->method, MethodDefaults::kSceneConfig);

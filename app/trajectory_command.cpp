@@ -21,6 +21,7 @@ struct TrajectoryCliOptions {
   std::string scene;
   std::string out;
   std::vector<std::string> methods = {"sat", "sat-cached", "neurosat"};
+  bool force = false;  // --force: replace an existing --out that is no trajectory
   study::TrajectoryOptions options;
 };
 
@@ -31,8 +32,10 @@ void run_trajectory_command(TrajectoryCliOptions& o) {
     if (!m) throw UsageError("--methods: unknown method '" + name + "'");
     o.options.methods.push_back(*m);
   }
-  // --out: a file that cannot be written is found before the simulation; the trajectory goes to
-  // a hidden file beside it, renamed over it at the end (io/output_files.h).
+  // --out: never a file the run reads nor, without --force, a file that is no trajectory; a file
+  // that cannot be written is found before the simulation; the trajectory goes to a hidden file
+  // beside it, renamed over it at the end (io/output_files.h).
+  study::check_trajectory_target(o.out, o.scene, o.force);
   io::AtomicFile out(o.out);
   const auto started = std::chrono::steady_clock::now();
   Progress progress("trajectory");
@@ -55,6 +58,9 @@ Command add_trajectory_command(CLI::App& parent) {
       "trajectory", "One grasp as a trajectory file for the viewer (report/viewer-src)");
   app->add_option("scene", o->scene, "The MJCF scene (with its SCENE.pairs.json)")->required();
   app->add_option("--out", o->out, "The trajectory file to write (JSON)")->required();
+  app->add_flag("--force", o->force,
+                "Replace an existing --out that is not a trajectory graspcd wrote (never the "
+                "scene, a file it includes or names, or its pair config)");
   app->add_option("--methods", o->methods, "Methods timed per grasp step")
       ->delimiter(',')
       ->capture_default_str();
@@ -72,7 +78,10 @@ Command add_trajectory_command(CLI::App& parent) {
       "of each step per method, and the OBB trees' boxes at depths 0-3. graspcd study writes one "
       "per example into OUT/trajectories/; report/viewer-src/build.mjs bundles such files into "
       "one HTML page, report/draw_figures.py draws the report's pictures from them.\n"
-      "The file is written whole or not at all: a hidden file beside it (.NAME.graspcd-XXXXXX), "
+      "The file never replaces a file the run reads (the scene, its includes, its meshes, its "
+      "pair config) and, without --force, no existing file but a trajectory graspcd wrote "
+      "('FILE: exists and is not a trajectory graspcd wrote', exit code 2, at once). "
+      "It is written whole or not at all: a hidden file beside it (.NAME.graspcd-XXXXXX), "
       "created before the simulation (an --out that cannot be written is one line 'FILE: "
       "message', exit code 2, at once), renamed to FILE at the end, removed on an error or on "
       "INT, TERM and HUP. Progress: on a terminal, one line on stderr rewritten as the work "

@@ -271,6 +271,38 @@ TEST_F(CliTest, GraspObjectWithTheRealHands) {
   EXPECT_TRUE(doc["reason"].is_null());
 }
 
+// The README's block (60 x 30 x 30 mm) lying flat, --fit into the Robotiq: fitted to the pads'
+// opening it is 3.4 cm tall, below the open pads (4 cm above the table), so the table is raised
+// under it to the template's reach (graspcd_reach, 5.5 cm) and the pads close on it: gripped and
+// held. The first line and the JSON say by how much.
+TEST_F(CliTest, GraspObjectFitIntoTheRobotiqLeavesThePadsSomethingToReach) {
+  const fs::path models = fs::path(GRASPCD_MODELS_DIR);
+  if (!fs::exists(models / "hands" / "robotiq_2f85" / "2f85.xml")) {
+    GTEST_SKIP() << "real hands not found in " << models;
+  }
+  if (sanitizer_pass()) {
+    GTEST_SKIP() << "real-hand grasps skipped at GRASPCD_TEST_SCALE < 1 (sanitizer pass)";
+  }
+  const std::string block = write("block.obj",
+                                  "v -30 -15 -15\nv 30 -15 -15\nv -30 15 -15\nv 30 15 -15\n"
+                                  "v -30 -15 15\nv 30 -15 15\nv -30 15 15\nv 30 15 15\n"
+                                  "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\n"
+                                  "f 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n");
+  const Result r = run("grasp --object " + block + " --fit --hand robotiq --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  const double height = doc["object"]["size"][2].get<double>();
+  EXPECT_NEAR(height, 0.9 * 0.075 / 2, 1e-9);  // width-bound: 0.9 of the 7.5 cm opening
+  EXPECT_NEAR(doc["object"]["support_raised"].get<double>(), 0.055 - height, 1e-9);
+  EXPECT_TRUE(doc["gripped"]) << doc["reason"];
+  EXPECT_TRUE(doc["held"]) << doc["reason"];
+  const Result text = run("grasp --object " + block + " --fit --hand robotiq --max-steps 1");
+  const std::vector<std::string> out = lines(text.out);
+  ASSERT_FALSE(out.empty()) << text.err;
+  EXPECT_NE(out[0].find(", on its support raised 21."), std::string::npos) << out[0];
+  EXPECT_NE(out[0].find(" mm to the hand's reach"), std::string::npos) << out[0];
+}
+
 // Qhull inside MuJoCo (a mesh fitted to about 1e-21 m has no 3D hull) used to end the
 // process with exit 41 through libqhullcpp's print hook, naming nothing, leaving the temporary
 // folder. Now: the user's file named, exit 2, the folder removed.

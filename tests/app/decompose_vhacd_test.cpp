@@ -5,10 +5,12 @@
 // with exit code 2 (checked with PATH lacking node and with a missing script, which needs neither);
 // the tests that run V-HACD are skipped there, saying so.
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -20,6 +22,7 @@
 #include "helpers/command_test.h"
 #include "helpers/convex_check.h"
 #include "helpers/envelope_check.h"
+#include "helpers/processes.h"
 #include "helpers/ring_mesh.h"
 
 namespace graspcd::testing {
@@ -161,6 +164,115 @@ TEST_F(DecomposeVhacd, OptionsOfTheOtherEngineAreRefused) {
     EXPECT_NE(r.err.find(option), std::string::npos) << args << ": " << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "o" / decompose::kManifestFile)) << args;
   }
+}
+
+// INT, TERM and HUP while node runs V-HACD: node dies with graspcd (it is not left running,
+// orphaned), the temporary folder and the private output folder are removed, exit 128 + signal.
+TEST_F(DecomposeVhacd, ASignalStopsNodeAndRemovesItsFolders) {
+  SKIP_WITHOUT_VHACD();
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    const fs::path tmp = dir_ / ("tmp" + std::to_string(sig));
+    fs::create_directories(tmp);
+    const fs::path out = dir_ / ("v" + std::to_string(sig));
+    const pid_t pid =
+        spawn(GRASPCD_EXE, {"decompose", ring_, "--out", out.string(), "--engine", "vhacd"},
+              {"TMPDIR=" + tmp.string()}, (dir_ / "out.txt").string(), (dir_ / "err.txt").string());
+    pid_t node = 0;
+    const bool started = wait_for(
+        [&] {
+          for (const auto& [child, name] : children_of(pid)) {
+            if (name == "node") node = child;
+          }
+          return node != 0;
+        },
+        60);
+    kill(pid, sig);
+    EXPECT_EQ(finish(pid, 60), 128 + sig) << read_file(dir_ / "err.txt");
+    ASSERT_TRUE(started) << "node never started: " << read_file(dir_ / "err.txt");
+    EXPECT_TRUE(wait_for([&] { return !process_runs(node); }, 10)) << "node runs on, orphaned";
+    if (process_runs(node)) kill(node, SIGKILL);
+    EXPECT_TRUE(fs::is_empty(tmp)) << sig;
+    EXPECT_FALSE(fs::exists(out)) << sig;
+    for (const auto& e : fs::directory_iterator(dir_)) {
+      EXPECT_EQ(e.path().filename().string().rfind(".v", 0), std::string::npos) << e.path();
+    }
+  }
+}
+
+class FakeVhacd : public DecomposeVhacd {
+ protected:
+  // tools/vhacd/vhacd.mjs beside a stand-in for the vhacd-js package whose module is `module`,
+  // named by GRASPCD_VHACD_SCRIPT; runs `decompose RING --engine vhacd` with it.
+  Outcome run_with(const std::string& module, const std::string& extra = "") {
+    const fs::path fake = dir_ / "fake";
+    const fs::path lib = fake / "node_modules" / "vhacd-js" / "lib";
+    fs::create_directories(lib);
+    fs::copy_file(decompose::default_vhacd_script(), fake / "vhacd.mjs",
+                  fs::copy_options::overwrite_existing);
+    std::ofstream(fake / "node_modules" / "vhacd-js" / "package.json") << R"({"type": "module"})";
+    std::ofstream(lib / "vhacd.js") << module;
+    return run("{ GRASPCD_VHACD_SCRIPT='" + (fake / "vhacd.mjs").string() + "' '" + GRASPCD_EXE +
+               "' decompose '" + ring_ + "' --out '" + (dir_ / "out").string() +
+               "' --engine vhacd" + extra + "; }");
+  }
+  // A vhacd-js whose decomposer answers with `hulls` (JavaScript) or throws.
+  static std::string module_answering(const std::string& hulls) {
+    return "export const ConvexMeshDecomposition = { create: async () => ({ computeConvexHulls: "
+           "() => " +
+           hulls + " }) };\n";
+  }
+  static void expect_said(const Outcome& r, const std::string& mesh, const std::string& words) {
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind(mesh + ": V-HACD", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    for (const char* jargon : {"Node.js v", "json.exception", "    at "}) {
+      EXPECT_EQ(r.err.find(jargon), std::string::npos) << r.err;
+    }
+  }
+};
+
+#define SKIP_WITHOUT_NODE()                                                                      \
+  if (const std::string why = missing(); why.find("node is not on PATH") != std::string::npos) { \
+    GTEST_SKIP() << "node is not on PATH";                                                       \
+  }
+
+// node's failures in words: a package that fails at import, V-HACD's WebAssembly out of memory, an
+// answer that is not hulls. Never node's version banner, a stack frame or the JSON library's tag.
+TEST_F(FakeVhacd, NodeErrorsAreSaidPlainly) {
+  SKIP_WITHOUT_NODE();
+  expect_said(run_with("throw new Error(\"half installed\");\n"), ring_,
+              "V-HACD failed: node could not load the vhacd-js package (Error: half installed): "
+              "run ./run build");
+  expect_said(
+      run_with(module_answering("{ throw new WebAssembly.RuntimeError(\"Aborted(OOM)\"); }")),
+      ring_, "V-HACD failed: V-HACD ran out of memory");
+  expect_said(run_with(module_answering("[{ positions: [\"a\", \"b\", \"c\"], indices: [0, 1, "
+                                        "2] }]")),
+              ring_, "V-HACD: node's answer is not hulls graspcd can read");
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+// Hulls 100 m from the ring (an engine's wrong answer) are warned about: no piece of a
+// decomposition lies farther from the mesh than its bounding box diagonal.
+TEST_F(FakeVhacd, PiecesFarFromTheMeshAreWarnedAbout) {
+  SKIP_WITHOUT_NODE();
+  const std::string cube =
+      "[{ positions: [100,100,100, 100.03,100,100, 100,100.03,100, 100.03,100.03,100, "
+      "100,100,100.03, 100.03,100,100.03, 100,100.03,100.03, 100.03,100.03,100.03], indices: "
+      "[0,2,1, 1,2,3, 4,5,6, 5,7,6, 0,1,4, 1,5,4, 2,6,3, 3,6,7, 0,4,2, 2,4,6, 1,3,5, 3,7,5] }]";
+  const fs::path json = dir_ / "far.json";
+  const Outcome r = run_with(module_answering(cube), " --json > '" + json.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: " + ring_ + ": V-HACD's pieces lie up to 17"), std::string::npos)
+      << r.err;
+  const nlohmann::json doc = load(json);
+  bool warned = false;
+  for (const nlohmann::json& w : doc["warnings"]) {
+    warned = warned || w["code"] == "decompose_far_pieces";
+  }
+  EXPECT_TRUE(warned);
+  // The real engine's pieces of the ring lie close: no such warning (RingPiecesAreConvex...).
 }
 
 }  // namespace

@@ -137,6 +137,7 @@ std::string write_manifest(const std::string& dir, const Manifest& manifest) {
 
 Manifest read_manifest(const std::string& dir) {
   const fs::path path = fs::path(dir) / kManifestFile;
+  io::require_regular_file(path.string());  // a FIFO is refused, never opened
   std::ifstream in(path);
   if (!in) {
     throw io::InputError(dir, 0,

@@ -1,8 +1,12 @@
 #include "graspcd/decompose/mesh_decomposition.h"
 
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -125,6 +129,8 @@ Decomposition run_engine(const DecomposeOptions& o, const TriangleMesh& mesh, bo
     }
   } catch (const VhacdUnavailable&) {
     throw;
+  } catch (const io::InputError&) {
+    throw;  // (the temporary folder) names its own file
   } catch (const std::runtime_error& e) {
     throw io::InputError(o.mesh, 0, e.what());
   }
@@ -161,35 +167,98 @@ std::optional<Manifest::Volume> added_volume(const std::vector<TriangleMesh>& hu
 }
 
 // The output folder, written whole or not at all: the pieces go to a private folder beside it
-// (.NAME.graspcd-XXXXXX, removed on errors and on INT, TERM and HUP), renamed to it at the end; a
-// folder that holds an earlier decomposition (decomposition.json) or nothing is replaced whole,
-// so no stale piece stays; one that holds anything else is refused before the work.
+// (.NAME.graspcd-XXXXXX, removed on errors and on INT, TERM and HUP), renamed to it at the end. A
+// folder that holds nothing, or only the files of an earlier decomposition (decomposition.json
+// and the fragment and pieces it lists), is replaced whole, so no stale piece stays; one that
+// holds the mesh the run reads or any other file, or that is read-only, is refused before the
+// work.
 struct OutputFolder {
   fs::path target;
+  std::optional<fs::perms> mode;  // the replaced folder's
   std::optional<io::RemoveIfEmpty> created_parent;
   io::CleanupGuard work;
 };
 
-void prepare_out(const std::string& out, OutputFolder& f) {
+// Whether `inner` lies under the folder `outer` (both existing; links resolved).
+bool lies_under(const fs::path& inner, const fs::path& outer) {
+  std::error_code ec;
+  const fs::path a = fs::canonical(inner, ec);
+  if (ec) return false;
+  const fs::path b = fs::canonical(outer, ec);
+  if (ec) return false;
+  const auto [o, i] = std::mismatch(b.begin(), b.end(), a.begin(), a.end());
+  return o == b.end() && i != a.end();
+}
+
+// An existing --out: refused unless graspcd decompose wrote everything in it (nothing, or an
+// earlier decomposition's files as its manifest lists them) and it can be written into.
+void check_existing_out(const DecomposeOptions& o, const fs::path& target) {
+  std::error_code ec;
+  if (!fs::is_directory(target, ec)) throw io::InputError(o.out, 0, "not a folder");
+  const std::string keep = ": not replaced; give a new or empty folder";
+  if (lies_under(o.mesh, target)) {
+    throw io::InputError(
+        o.out, 0,
+        "holds the mesh this run reads (" +
+            fs::relative(fs::canonical(o.mesh, ec), fs::canonical(target, ec)).string() + ")" +
+            keep);
+  }
+  if (fs::is_empty(target, ec)) {
+    io::writable_folder(o.out);
+    return;
+  }
+  if (!fs::exists(fs::symlink_status(target / kManifestFile, ec))) {
+    throw io::InputError(o.out, 0,
+                         "holds files graspcd decompose did not write (no decomposition.json): "
+                         "give a new or empty folder");
+  }
+  Manifest earlier;
+  try {
+    earlier = read_manifest(target.string());
+  } catch (const io::InputError& e) {
+    throw io::InputError(
+        o.out, 0,
+        "holds a decomposition.json graspcd decompose did not write (" + e.message() + ")" + keep);
+  }
+  std::set<std::string> written = {kManifestFile, earlier.fragment};
+  for (const Manifest::Piece& p : earlier.pieces) written.insert(p.file);
+  for (const fs::directory_entry& e : fs::directory_iterator(target, ec)) {
+    const std::string name = e.path().filename().string();
+    if (io::same_file(e.path(), o.mesh)) {
+      throw io::InputError(o.out, 0, "holds the mesh this run reads (" + name + ")" + keep);
+    }
+    if (written.count(name) == 0) {
+      throw io::InputError(o.out, 0,
+                           "holds " + name + ", which graspcd decompose did not write (" +
+                               kManifestFile + " does not list it)" + keep);
+    }
+  }
+  if (ec) throw io::InputError(o.out, 0, "cannot read the folder: " + ec.message());
+  io::writable_folder(o.out);
+}
+
+void prepare_out(const DecomposeOptions& o, OutputFolder& f) {
+  const std::string& out = o.out;
   f.target = fs::absolute(out).lexically_normal();
   if (f.target.filename().empty()) f.target = f.target.parent_path();
   std::error_code ec;
   if (fs::exists(f.target, ec)) {
-    if (!fs::is_directory(f.target, ec)) throw io::InputError(out, 0, "not a folder");
-    if (!fs::is_empty(f.target, ec) && !fs::exists(f.target / "decomposition.json", ec)) {
-      throw io::InputError(out, 0,
-                           "holds files graspcd decompose did not write (no decomposition.json): "
-                           "give a new or empty folder");
-    }
+    check_existing_out(o, f.target);
+    f.mode = fs::status(f.target, ec).permissions();
   }
   const fs::path parent = f.target.parent_path();
   if (io::prepare_output_folder(parent.string())) f.created_parent.emplace(parent);
   f.work = io::make_private_folder(parent, "." + f.target.filename().string() + ".graspcd", out);
 }
 
-// The written folder renamed to `out` (an earlier one moved aside and removed).
+// The written folder renamed to `out` (an earlier one moved aside and removed); it gets the mode
+// of the folder it replaces, or a new folder's (0777 less the umask) rather than the private
+// folder's 0700.
 void commit_out(OutputFolder& f, const std::string& out) {
   std::error_code ec;
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  fs::permissions(f.work.path(), f.mode.value_or(static_cast<fs::perms>(0777 & ~mask)), ec);
   if (fs::exists(f.target, ec)) {
     const io::CleanupGuard old = io::make_private_folder(
         f.target.parent_path(), "." + f.target.filename().string() + ".graspcd-old", out);
@@ -251,6 +320,15 @@ DecomposeRun decompose_into(const DecomposeOptions& o, const std::string& work) 
   const Clock::time_point h_start = Clock::now();
   const exact::BoundedHausdorff h = exact::one_sided_hausdorff(hulls, mesh, bound);
   m.hausdorff = {h.distance, h.error_bound, seconds_since(h_start)};
+  const double diagonal = bounding_diagonal(mesh);
+  if (h.distance - h.error_bound > kFarPiecesDiagonals * diagonal) {
+    std::ostringstream w;
+    w << std::setprecision(4) << o.mesh << ": " << (o.engine == Engine::kVhacd ? "V-HACD" : "HACD")
+      << "'s pieces lie up to " << h.distance << " m from the mesh, farther than "
+      << kFarPiecesDiagonals << " x its bounding box diagonal (" << diagonal
+      << " m), which no piece of it can: the engine's answer does not fit the mesh";
+    warnings().add("decompose_far_pieces", w.str());
+  }
   if (stats.closedness.closed()) m.volume = added_volume(hulls, mesh, o.mesh);
   if (m.volume && m.volume->added_fraction < -kMaxVolumeLoss) {
     std::ostringstream w;
@@ -326,7 +404,7 @@ std::string decomposition_text(const Manifest& m, const DecomposeOptions& o) {
 
 DecomposeRun decompose_mesh(const DecomposeOptions& o) {
   OutputFolder folder;
-  prepare_out(o.out, folder);
+  prepare_out(o, folder);
   DecomposeRun run = decompose_into(o, folder.work.path().string());
   commit_out(folder, o.out);
   return run;

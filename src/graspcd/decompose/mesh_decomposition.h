@@ -52,6 +52,12 @@ class BoundError : public std::invalid_argument {
 // A gain is reported, not warned: pieces that close a cavity (a cup's) gain by design.
 inline constexpr double kMaxVolumeLoss = 0.1;
 
+// Every piece lies in the mesh's bounding box (a hull of its points; V-HACD's shrink-wrapped onto
+// it), so no point of a piece is farther from the surface than the box's diagonal: a Hausdorff
+// distance beyond this many diagonals (by more than its error bound) is an engine's answer that
+// does not fit the mesh, warned about ("decompose_far_pieces").
+inline constexpr double kFarPiecesDiagonals = 1.0;
+
 struct DecomposeRun {
   Manifest manifest;
   std::string document;  // decomposition.json as written (with graspcd's envelope), no final '\n'
@@ -59,9 +65,11 @@ struct DecomposeRun {
 
 // Decomposes `options.mesh` into `options.out` and writes the manifest there. The folder is
 // written whole or not at all: in a private folder beside it (.NAME.graspcd-XXXXXX, removed on
-// errors and on INT, TERM and HUP), renamed to it at the end; a folder holding an earlier
-// decomposition (decomposition.json) or nothing is replaced whole, one holding anything else is
-// refused before the work. Warnings (the mesh's hygiene, flat clusters left out, a volume CGAL
+// errors and on INT, TERM and HUP), renamed to it at the end. A folder that holds nothing, or
+// only an earlier decomposition (decomposition.json and the files it lists), is replaced whole
+// and keeps its mode; one that holds the mesh the run reads or any file the earlier
+// decomposition did not write, or that is read-only (io::writable_folder), is refused before the
+// work. Warnings (the mesh's hygiene, flat clusters left out, a volume CGAL
 // cannot measure) go to the process's sink. Throws io::InputError naming the mesh for a missing
 // or bad mesh or a failed decomposition, naming `options.out` when it cannot be used or written;
 // VhacdUnavailable (vhacd.h) for Engine::kVhacd where node or the vhacd-js package is missing;

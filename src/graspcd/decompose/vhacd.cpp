@@ -4,8 +4,6 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
-#include <stdlib.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -22,6 +21,7 @@
 #include <vector>
 
 #include "graspcd/core/clock.h"
+#include "graspcd/io/output_files.h"
 
 extern char** environ;
 
@@ -52,70 +52,77 @@ std::string script_of(const VhacdOptions& o) {
   return o.script.empty() ? default_vhacd_script() : o.script;
 }
 
-// A temporary folder, removed with everything in it when the object goes.
-class TempFolder {
- public:
-  TempFolder() {
-    std::string pattern = (fs::temp_directory_path() / "graspcd_vhacd_XXXXXX").string();
-    if (::mkdtemp(pattern.data()) == nullptr) {
-      throw std::runtime_error("V-HACD: cannot create a temporary folder in " +
-                               fs::temp_directory_path().string());
-    }
-    path_ = pattern;
-  }
-  ~TempFolder() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempFolder(const TempFolder&) = delete;
-  TempFolder& operator=(const TempFolder&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-std::string last_line(const fs::path& file) {
+// The lines of `file`, blank ones left out.
+std::vector<std::string> lines_of(const fs::path& file) {
   std::ifstream in(file);
-  std::string line, last;
-  while (std::getline(in, line)) {
-    if (!line.empty()) last = line;
+  std::vector<std::string> out;
+  for (std::string line; std::getline(in, line);) {
+    if (line.find_first_not_of(" \t\r") != std::string::npos) out.push_back(line);
   }
-  return last;
+  return out;
 }
 
-// Runs `node script in out` with stdin from /dev/null and stdout, stderr into files of `tmp`;
-// kills it after `timeout` s. Throws std::runtime_error when it cannot start, is killed or exits
-// other than 0.
+// What went wrong, from node's stderr: the line vhacd.mjs wrote ("vhacd.mjs: ..."), else the
+// error line of an exception node reports itself ("SyntaxError: ...", "Error [ERR_...]: ..."),
+// never its version banner ("Node.js v20...") or a stack frame; empty when there is none.
+std::string node_error(const std::vector<std::string>& lines) {
+  static const std::regex script_line(R"(^vhacd\.mjs: (.*)$)");
+  static const std::regex error_line(R"(^([A-Za-z]*Error|Error)( \[[A-Z0-9_]+\])?: .*$)");
+  static const std::regex noise(R"(^(Node\.js v[0-9].*|\s+at .*|\s*\^+\s*|\s*\}\s*)$)");
+  std::smatch m;
+  for (const std::string& line : lines) {
+    if (std::regex_match(line, m, script_line)) return m[1].str();
+  }
+  for (const std::string& line : lines) {
+    if (std::regex_match(line, error_line))
+      return "node could not run the V-HACD script (" + line + ")";
+  }
+  for (auto it = lines.rbegin(); it != lines.rend(); ++it) {
+    if (!std::regex_match(*it, noise)) return *it;
+  }
+  return {};
+}
+
+// nlohmann's message without its "[json.exception.parse_error.101] " tag.
+std::string json_reason(const nlohmann::json::exception& e) {
+  const std::string what = e.what();
+  const std::size_t end = what.find("] ");
+  return what.rfind("[json.exception.", 0) == 0 && end != std::string::npos ? what.substr(end + 2)
+                                                                            : what;
+}
+
+// Runs `node script in out` with stdin from /dev/null and stdout, stderr into files of `tmp`, as a
+// child tied to the run (io::ChildProcess: killed with graspcd on INT, TERM and HUP, and by the
+// kernel when graspcd dies); kills it after `timeout` s. Throws std::runtime_error when it cannot
+// start, is killed or exits other than 0.
 void run_node(const std::string& node, const std::string& script, const fs::path& in,
               const fs::path& out, const fs::path& tmp, double timeout) {
   const std::string out_file = (tmp / "stdout.txt").string();
   const std::string err_file = (tmp / "stderr.txt").string();
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0600);
-  posix_spawn_file_actions_addopen(&actions, 2, err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0600);
   std::vector<std::string> args = {node, script, in.string(), out.string()};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, node.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) throw std::runtime_error("V-HACD: cannot start " + node);
+  io::ChildProcess child;
+  if (child.pid() == 0) {
+    // The child: only async-signal-safe calls until execve.
+    const int null = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+    const int o = ::open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    const int e = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    if (null < 0 || o < 0 || e < 0 || ::dup2(null, 0) < 0 || ::dup2(o, 1) < 0 || ::dup2(e, 2) < 0) {
+      ::_exit(126);
+    }
+    ::execve(node.c_str(), argv.data(), environ);
+    ::_exit(127);
+  }
+  if (child.pid() < 0) throw std::runtime_error("V-HACD: cannot start " + node);
 
   const Clock::time_point start = Clock::now();
   int status = 0;
-  for (;;) {
-    const pid_t done = ::waitpid(pid, &status, WNOHANG);
-    if (done == pid) break;
-    if (done < 0) throw std::runtime_error("V-HACD: lost the node process");
+  while (!child.wait(&status, false)) {
     if (seconds_since(start) > timeout) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
+      child.kill();
+      child.wait(&status, true);
       std::ostringstream msg;
       msg << "V-HACD: node ran past the timeout of " << timeout << " s and was stopped";
       throw std::runtime_error(msg.str());
@@ -123,10 +130,13 @@ void run_node(const std::string& node, const std::string& script, const fs::path
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::string why = last_line(err_file);
+    std::string why = node_error(lines_of(err_file));
+    if (why.empty() && WIFEXITED(status) && WEXITSTATUS(status) == 127) {
+      why = "node could not be started (" + node + ")";
+    }
     if (why.empty()) {
-      why = WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))
-                              : "killed by signal " + std::to_string(WTERMSIG(status));
+      why = WIFEXITED(status) ? "node ended with exit code " + std::to_string(WEXITSTATUS(status))
+                              : "node was killed by signal " + std::to_string(WTERMSIG(status));
     }
     throw std::runtime_error("V-HACD failed: " + why);
   }
@@ -159,7 +169,10 @@ Decomposition vhacd_decompose(const TriangleMesh& mesh, const VhacdOptions& opti
   if (const std::string missing = vhacd_missing(options); !missing.empty()) {
     throw VhacdUnavailable(missing);
   }
-  const TempFolder tmp;
+  // The mesh and the hulls cross through a folder of the run (removed on INT, TERM and HUP too).
+  const fs::path temporary = io::temporary_folder();
+  const io::CleanupGuard tmp =
+      io::make_private_folder(temporary, "graspcd-vhacd", temporary.string());
   const fs::path in = tmp.path() / "mesh.json";
   const fs::path out = tmp.path() / "hulls.json";
   {
@@ -185,12 +198,13 @@ Decomposition vhacd_decompose(const TriangleMesh& mesh, const VhacdOptions& opti
   }
   run_node(find_node(), script_of(options), in, out, tmp.path(), options.timeout_seconds);
 
+  const std::string unreadable = "V-HACD: node's answer is not hulls graspcd can read (";
   nlohmann::json result;
   try {
     std::ifstream file(out);
     result = nlohmann::json::parse(file);
   } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(std::string("V-HACD: unreadable hulls: ") + e.what());
+    throw std::runtime_error(unreadable + "not JSON: " + json_reason(e) + ")");
   }
   Decomposition d;
   try {
@@ -208,7 +222,7 @@ Decomposition vhacd_decompose(const TriangleMesh& mesh, const VhacdOptions& opti
       d.pieces.push_back(ConvexPiece{std::move(hull)});
     }
   } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(std::string("V-HACD: unreadable hulls: ") + e.what());
+    throw std::runtime_error(unreadable + json_reason(e) + ")");
   }
   if (d.pieces.empty()) throw std::runtime_error("V-HACD: no hull has a volume (a flat mesh?)");
   return d;

@@ -42,9 +42,12 @@ std::string vhacd_missing(const VhacdOptions& options);
 
 // V-HACD's hulls of `mesh` (at least one face), each made again by qhull from the hull's points
 // (convex_hull: faces outward, as HACD's pieces); a hull without volume is left out and counted in
-// flat_clusters; no slabs. At most options.max_hulls pieces. Throws VhacdUnavailable (see above),
-// std::runtime_error when node fails (the last line of its stderr), runs past the timeout (it is
-// killed) or gives no hull with a volume.
+// flat_clusters; no slabs. At most options.max_hulls pieces. node runs as a child tied to the run
+// and the files cross through a temporary folder guarded as the run's (io/output_files.h: both
+// go on INT, TERM and HUP). Throws VhacdUnavailable (see above), io::InputError for a missing
+// TMPDIR, std::runtime_error when node fails (the error vhacd.mjs or node reports, never node's
+// version banner or a stack frame), runs past the timeout (it is killed), answers with something
+// that is not hulls, or gives no hull with a volume.
 Decomposition vhacd_decompose(const TriangleMesh& mesh, const VhacdOptions& options);
 
 }  // namespace graspcd::decompose

@@ -26,6 +26,10 @@ std::string object_line(const ObjectRunDescription& o) {
       << (o.scene.fitted ? " (fitted)" : " (given)") << ", " << std::setprecision(3)
       << o.scene.size[0] << " x " << o.scene.size[1] << " x " << o.scene.size[2] << " m, in the "
       << o.hand << " template";
+  if (o.scene.support_raised > 0) {
+    out << ", on its support raised " << std::setprecision(3) << 1000 * o.scene.support_raised
+        << " mm to the hand's reach";
+  }
   return out.str();
 }
 
@@ -155,10 +159,15 @@ json run_json(const GraspResult& r) {
 
 json object_json(const ObjectRunDescription& object) {
   const ObjectScene& o = object.scene;
-  return {{"file", object.file}, {"hand", object.hand},
-          {"scale", o.scale},    {"fitted", o.fitted},
-          {"size", o.size},      {"pos", o.pos},
-          {"quat", o.quat},      {"scene", object.kept ? json(o.scene) : json()}};
+  return {{"file", object.file},
+          {"hand", object.hand},
+          {"scale", o.scale},
+          {"fitted", o.fitted},
+          {"size", o.size},
+          {"pos", o.pos},
+          {"quat", o.quat},
+          {"support_raised", o.support_raised},
+          {"scene", object.kept ? json(o.scene) : json()}};
 }
 
 }  // namespace

@@ -6,7 +6,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <sstream>
 #include <system_error>
+#include <utility>
 
 #include "graspcd/grasp/hand_wrapper.h"
 #include "graspcd/io/input_error.h"
@@ -126,8 +129,37 @@ const ObjectScene& ObjectRun::write(const ObjectPlacement& placement) {
   return description_.scene;
 }
 
+std::string ObjectRun::wait_notice() const {
+  const std::size_t faces = description_.scene.faces;
+  if (faces < kLargeObjectFaces) return "";
+  std::ostringstream out;
+  out << description_.file << ": " << faces
+      << " triangles: MuJoCo compiles a mesh this large slowly (about 20 s of CPU at 200,000 "
+         "triangles, more on a loaded machine), and the grasp starts after it";
+  if (options_.load_timeout > 0) {
+    out << "; stopped if it has not started in " << options_.load_timeout << " s (--load-timeout)";
+  }
+  return out.str();
+}
+
 GraspResult ObjectRun::grasp(GraspOptions options) {
   options.names = names();
+  // MuJoCo's compiler cannot be stopped from inside: a deadline ends the run, as an error does,
+  // unless the first closing step comes first.
+  std::optional<io::Deadline> deadline;
+  if (options_.load_timeout > 0) {
+    std::ostringstream message;
+    message << description_.file << ": the grasp did not start within " << options_.load_timeout
+            << " s (MuJoCo compiling the scene with the object's " << description_.scene.faces
+            << " triangles, then graspcd's trees and the start check): --load-timeout raises "
+               "the limit, a coarser mesh shortens the wait";
+    deadline.emplace(options_.load_timeout, message.str());
+    options.on_grasp_step = [&deadline, step = std::move(options.on_grasp_step)](
+                                const mjModel* m, const mjData* d, int k) {
+      if (deadline) deadline->cancel();
+      if (step) step(m, d, k);
+    };
+  }
   GraspResult result;
   try {
     result = run_grasp(scene(), options);

@@ -14,6 +14,7 @@
 // the run made is removed on errors and on INT, TERM and HUP (io/output_files.h).
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -24,11 +25,24 @@
 
 namespace graspcd::grasp {
 
+// An object of this many triangles or more makes the grasp wait long before its first step:
+// MuJoCo 2.2 compiles a mesh (inside mj_loadXML) in a time that grows faster than its faces
+// (docs/objects.md, "Large meshes": a run takes 8 s of CPU at 100,000 faces, 21 s at
+// 200,000), and nothing can be printed meanwhile. wait_notice() says so before it starts.
+inline constexpr std::size_t kLargeObjectFaces = 100000;
+
+// The default of ObjectRunOptions::load_timeout (`grasp --load-timeout`), s.
+inline constexpr double kDefaultLoadTimeout = 300;
+
 struct ObjectRunOptions {
   std::string file;  // the user's mesh
   HandTemplate hand;
   std::string write_scene;  // DIR: keep the scene there; empty: a temporary folder
   bool force = false;       // write_scene may replace files graspcd did not write
+  // The most seconds grasp() may take before the first closing step (MuJoCo compiling the
+  // scene, graspcd's trees, the start check): past it the run ends as on an error, exit code 2,
+  // its folders removed (io::Deadline). 0: no limit.
+  double load_timeout = 0;
 };
 
 // What ran, as the output describes it.
@@ -54,9 +68,13 @@ class ObjectRun {
   const mujoco::SceneNames& names() const { return description_.scene.names; }
   const ObjectRunDescription& description() const { return description_; }
 
-  // run_grasp on the written scene with its names; then the scene is kept (with `write_scene`),
-  // also when the grasp refuses it (so that it can be edited). The result's scene is the kept
-  // scene, or the user's mesh.
+  // For an object of kLargeObjectFaces or more: one line saying that the grasp will wait (and
+  // for how long at most, with load_timeout), to print before grasp(); else "".
+  std::string wait_notice() const;
+
+  // run_grasp on the written scene with its names, under load_timeout until the first closing
+  // step; then the scene is kept (with `write_scene`), also when the grasp refuses it (so that
+  // it can be edited). The result's scene is the kept scene, or the user's mesh.
   GraspResult grasp(GraspOptions options);
 
  private:

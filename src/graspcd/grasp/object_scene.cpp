@@ -10,12 +10,14 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
 #include <vector>
 
 #include "graspcd/core/geometry.h"
+#include "graspcd/grasp/drive_config.h"
 #include "graspcd/io/mesh_io.h"
 #include "graspcd/io/output_files.h"
 #include "graspcd/io/text_input.h"
@@ -251,10 +253,13 @@ GravityFrame gravity_frame(tinyxml2::XMLElement* root, const std::string& templa
   return f;
 }
 
-// The template's support point and room for the object (graspcd_support, graspcd_fit).
+// The template's support point and room for the object (graspcd_support, graspcd_fit), and how
+// far above the support the hand reaches down (graspcd_reach, with its element for messages).
 struct TemplateRoom {
   Vec3 support = Vec3::Zero();
   std::optional<std::array<double, 2>> fit;
+  std::optional<double> reach;
+  const tinyxml2::XMLElement* reach_at = nullptr;
 };
 
 TemplateRoom template_room(const TemplateParts& t,
@@ -275,6 +280,11 @@ TemplateRoom template_room(const TemplateParts& t,
     } else if (n->Attribute("name", "graspcd_fit")) {
       const std::vector<double> p = read_numbers(n, "data", 2, template_path);
       room.fit = std::array<double, 2>{p[0], p[1]};
+    } else if (n->Attribute("name", "graspcd_reach")) {
+      const std::vector<double> p = read_numbers(n, "data", 1, template_path);
+      if (!(p[0] > 0)) throw template_error(template_path, n, "graspcd_reach must be > 0");
+      room.reach = p[0];
+      room.reach_at = n;
     }
   }
   return room;
@@ -364,6 +374,46 @@ ObjectScene place_object(const TriangleMesh& mesh, const ObjectPlacement& placem
   out.pos = {pos.x(), pos.y(), pos.z()};
   out.quat = {q.w(), q.x(), q.y(), q.z()};
   return out;
+}
+
+// graspcd_reach: an object shorter than the reach (along gravity) would stand below what the hand
+// reaches, so its support, the body the pair config's grasp section names "support" (one of
+// <worldbody>'s), is raised by the difference, and the object with it. `support` is the support
+// point, raised too.
+void raise_to_reach(const TemplateParts& t, const TemplateRoom& room, const GravityFrame& f,
+                    const HandTemplate& hand, const std::string& template_path, ObjectScene& out,
+                    Vec3& support) {
+  if (!room.reach || !(out.size[2] < *room.reach)) return;
+  std::optional<DriveConfig> drive;
+  try {
+    drive = load_drive_config(hand.pairs());
+  } catch (const std::runtime_error&) {
+    drive.reset();  // the grasp names the pair config's fault
+  }
+  tinyxml2::XMLElement* body = nullptr;
+  for (tinyxml2::XMLElement* w = t.root->FirstChildElement("worldbody"); w && drive;
+       w = w->NextSiblingElement("worldbody")) {
+    for (tinyxml2::XMLElement* b = w->FirstChildElement("body"); b;
+         b = b->NextSiblingElement("body")) {
+      if (!drive->support.empty() && b->Attribute("name", drive->support.c_str())) body = b;
+    }
+  }
+  if (body == nullptr) {
+    throw template_error(template_path, room.reach_at,
+                         "graspcd_reach raises the support body, the \"support\" of the pair "
+                         "config's \"grasp\" section, which must be a body of <worldbody>");
+  }
+  const double raise = *room.reach - out.size[2];
+  Vec3 pos = Vec3::Zero();
+  if (body->Attribute("pos")) {
+    const std::vector<double> p = read_numbers(body, "pos", 3, template_path);
+    pos = Vec3(p[0], p[1], p[2]);
+  }
+  pos += raise * f.up;
+  body->SetAttribute("pos", numbers(pos.data(), 3).c_str());
+  for (std::size_t i = 0; i < 3; ++i) out.pos[i] += raise * f.up[static_cast<Eigen::Index>(i)];
+  support += raise * f.up;
+  out.support_raised = raise;
 }
 
 // Every file path of the template made absolute (the hand stays where it is installed or shared):
@@ -509,7 +559,12 @@ std::string scene_header(const HandTemplate& hand, const ObjectPlacement& placem
   }
   header << ";\n    its lowest point " << short_number(kSupportGap)
          << " m above the support point (" << numbers(support.data(), 3)
-         << "), centred on it across gravity.\n"
+         << "), centred on it across gravity";
+  if (out.support_raised > 0) {
+    header << ";\n    the support raised " << short_number(out.support_raised)
+           << " m toward the hand, whose reach (graspcd_reach) the object is shorter than";
+  }
+  header << ".\n"
          << "  The object's mesh is in " << stem
          << ".meshes/ beside this file (with links to the hand's meshes when the hand has a mesh\n"
             "  folder); the hand's files are named by absolute paths. The folder can be moved or "
@@ -583,6 +638,9 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTempl
   const TemplateRoom room = template_room(t, hand.fit, template_path);
   ObjectScene out =
       place_object(mesh, placement, hand.fit_fraction, frame, room, t, template_path, stats);
+  out.faces = mesh.faces.size();
+  Vec3 support = room.support;
+  raise_to_reach(t, room, frame, hand, template_path, out, support);
 
   const fs::path target = fs::path(dir);
   fs::create_directories(target);
@@ -622,7 +680,7 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTempl
   }
   set_object(t, object_file.string(), mesh_folder, out);
   raise_size(doc, t.root);
-  replace_comments(doc, t.root, scene_header(hand, placement, out, room.support, stem));
+  replace_comments(doc, t.root, scene_header(hand, placement, out, support, stem));
 
   out.scene = (target / (stem + ".xml")).string();
   out.pairs = (target / (stem + ".pairs.json")).string();

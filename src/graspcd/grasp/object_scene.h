@@ -52,6 +52,10 @@ struct ObjectScene {
   std::array<double, 3> size{};  // the placed object's extent: across gravity (2), along it, m
   std::array<double, 3> pos{};   // the object body's position
   std::array<double, 4> quat{};  // and rotation (w x y z)
+  std::size_t faces = 0;         // the object's triangles, as read (before MuJoCo compiles them)
+  // How far the support (and the object on it) was raised toward the hand: the template's
+  // graspcd_reach less the object's height, for an object shorter than the reach; 0 otherwise.
+  double support_raised = 0;
   // When the placed object is larger than 1 m (and not fitted): what that says about the file's
   // units, e.g. "the object is 60 m across at --scale 1: is the file in millimetres? try --scale
   // 0.001"; also the warning "mesh_units". A refusal of the scene adds it to its line.

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "graspcd/io/input_error.h"
+#include "graspcd/io/output_files.h"
 
 namespace graspcd::io {
 
@@ -189,7 +190,9 @@ ImportedMesh import_in_child(const std::string& path, const std::string& format,
     out.error = std::string("cannot start the reader: ") + std::strerror(errno);
     return out;
   }
-  const pid_t child = ::fork();
+  // A child tied to the run (output_files.h): killed with graspcd, never left looping.
+  ChildProcess process;
+  const pid_t child = process.pid();
   if (child < 0) {
     ::close(fds[0]);
     ::close(fds[1]);
@@ -252,10 +255,9 @@ ImportedMesh import_in_child(const std::string& path, const std::string& format,
     bytes.append(buffer, static_cast<std::size_t>(n));
   }
   ::close(fds[0]);
-  if (timed_out) ::kill(child, SIGKILL);
+  if (timed_out) process.kill();
   int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
-  }
+  process.wait(&status, true);
   if (timed_out) {
     out.error = "the import library did not finish reading it in " +
                 std::to_string(static_cast<long>(timeout_seconds)) + " s";

@@ -186,10 +186,21 @@ std::vector<std::string> find_object_files(const std::string& dir) {
     fs::directory_iterator it(folder, ec);
     if (ec) throw io::InputError(folder.string(), 0, "cannot read the folder: " + ec.message());
     for (const fs::directory_entry& e : it) {
-      if (e.is_symlink(ec) && !inside(e.path())) continue;
+      if (e.is_symlink(ec) && !inside(e.path())) {
+        // Not followed; a mesh's name is not left out without a word.
+        if (is_object_file(e.path())) {
+          warnings().add("object_skipped",
+                         e.path().string() +
+                             ": a link that leads out of the folder of objects (or nowhere): "
+                             "skipped",
+                         "scene");
+        }
+        continue;
+      }
       if (e.is_directory(ec)) {
         if (first_visit(e.path())) folders.push_back(e.path());
-      } else if (e.is_regular_file(ec) && is_object_file(e.path())) {
+      } else if (is_object_file(e.path())) {
+        // A regular file, or a FIFO or device of a mesh's name: its row says why it is refused.
         files.push_back(fs::relative(e.path(), dir).generic_string());
       }
     }

@@ -44,10 +44,13 @@ struct ObjectSetOptions {
   std::function<void(const std::string&)> log;  // progress, one line per object
 };
 
-// The OBJ and STL files under `dir`, relative to it ('/' separated), sorted. Symbolic links are
-// followed only where they lead to a place under `dir`, and each folder is read once (by device
-// and inode), so that a link loop (`up -> ..`) or a link out of `dir` adds nothing. Throws
-// io::InputError naming `dir` when it is not a folder or holds no such file.
+// The mesh files under `dir` (every extension io::load_mesh reads), relative to it ('/'
+// separated), sorted: every entry of such a name that is not a folder, so that a FIFO or a device
+// gets its row, refused. Symbolic links are followed only where they lead to a place under
+// `dir`, and each folder is read once (by device and inode), so that a link loop (`up -> ..`) or
+// a link out of `dir` adds nothing; a link of a mesh's name that is not followed is named in the
+// warning `object_skipped`. Throws io::InputError naming `dir` when it is not a folder or holds
+// no such file.
 std::vector<std::string> find_object_files(const std::string& dir);
 
 // Validates the objects of the set (of the shard) with every tester. The document: objects_dir,

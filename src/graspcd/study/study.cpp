@@ -4,10 +4,12 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
 #include "graspcd/core/clock.h"
+#include "graspcd/io/output_files.h"
 #include "graspcd/study/box_hand.h"
 #include "graspcd/study/experiment.h"
 #include "graspcd/study/recording.h"
@@ -54,8 +56,8 @@ json recording_json(const Recording& r, const std::vector<int>* truth_first) {
 
 // The viewer's and the figures' data (trajectory.h): each example with the per-step detection
 // times of Table 1's replays, and the box hand.
-void write_trajectories(const std::filesystem::path& dir, const std::vector<Example>& ex,
-                        const std::vector<Recording>& recs,
+void write_trajectories(const std::filesystem::path& dir, const std::filesystem::path& shown,
+                        const std::vector<Example>& ex, const std::vector<Recording>& recs,
                         const std::vector<std::unique_ptr<MeshScene>>& scenes,
                         const ReplayCache& cache, const Recording& box, const Log& log) {
   std::error_code ec;
@@ -68,7 +70,7 @@ void write_trajectories(const std::filesystem::path& dir, const std::vector<Exam
     write_trajectory((dir / (ex[e].name + ".json")).string(), recs[e], scenes[e].get(), times);
   }
   write_trajectory((dir / "hand_boxes.json").string(), box, nullptr, {});
-  log("wrote " + std::to_string(ex.size() + 1) + " trajectories into " + dir.string());
+  log("wrote " + std::to_string(ex.size() + 1) + " trajectories into " + shown.string());
 }
 
 // The examples' grasps, recorded once served by graspcd (SAT), each with its scene and CGAL's
@@ -116,10 +118,11 @@ json recordings_json(const std::vector<Example>& ex, const Grasps& g) {
 }
 
 // Table 1, the box hand of Figures 13-15 and the trajectories: study.json, table1.csv,
-// box_hand.csv and trajectories/ in `out`. Fills `cache` with Table 1's replays.
+// box_hand.csv and trajectories/ in `out` (named `shown` in the log). Fills `cache` with Table 1's
+// replays.
 void write_tables(const StudyOptions& o, const std::vector<Example>& ex, const Grasps& g,
-                  const std::filesystem::path& out, const Clock::time_point start,
-                  ReplayCache& cache, const Log& log) {
+                  const std::filesystem::path& out, const std::filesystem::path& shown,
+                  const Clock::time_point start, ReplayCache& cache, const Log& log) {
   json study = {{"schema", kSchema},
                 {"created", now_utc()},
                 {"quick", o.quick},
@@ -142,16 +145,19 @@ void write_tables(const StudyOptions& o, const std::vector<Example>& ex, const G
   study["box_hand"] = run_box_hand(o, box, log);
   study["box_hand"]["recording"] = recording_json(box, nullptr);
   write_file(out / "box_hand.csv", box_csv(study["box_hand"]));
-  write_trajectories(out / "trajectories", ex, g.recs, g.scenes, cache, box, log);
+  write_trajectories(out / "trajectories", shown / "trajectories", ex, g.recs, g.scenes, cache, box,
+                     log);
   study["seconds"] = seconds_since(start);
   add_envelope(study);
   write_file(out / "study.json", study.dump(1) + "\n");
-  log("wrote " + (out / "study.json").string() + ", table1.csv, box_hand.csv");
+  log("wrote " + (shown / "study.json").string() + ", table1.csv, box_hand.csv");
 }
 
-// The sweep (or its shard) into sweep.json and sweep.csv (sweep.shard-i-of-n.* for a shard).
+// The sweep (or its shard) into sweep.json and sweep.csv (sweep.shard-i-of-n.* for a shard) in
+// `out` (named `shown` in the log).
 void write_sweep(const StudyOptions& o, const std::vector<Example>& ex, const Grasps& g,
-                 const std::filesystem::path& out, const ReplayCache& cache, const Log& log) {
+                 const std::filesystem::path& out, const std::filesystem::path& shown,
+                 const ReplayCache& cache, const Log& log) {
   json sweep = run_sweep(o, ex, g.recs, g.truths, cache, log);
   add_envelope(sweep);
   const std::string base = o.shard ? "sweep.shard-" + std::to_string(o.shard->index) + "-of-" +
@@ -159,7 +165,7 @@ void write_sweep(const StudyOptions& o, const std::vector<Example>& ex, const Gr
                                    : std::string("sweep");
   write_file(out / (base + ".json"), sweep.dump(1) + "\n");
   write_file(out / (base + ".csv"), sweep_csv(sweep));
-  log("wrote " + (out / (base + ".json")).string() + " and .csv");
+  log("wrote " + (shown / (base + ".json")).string() + " and .csv");
 }
 
 }  // namespace
@@ -172,17 +178,19 @@ void run_study(const StudyOptions& options, const Log& log) {
   if (o.jobs < 1) o.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (o.shard) o.table = false;
   const Clock::time_point start = Clock::now();
+  // The study is written whole or not at all: into a private folder in OUT (removed on errors and
+  // on INT, TERM and HUP), whose files are moved into OUT together at the end.
   const std::filesystem::path out(o.out_dir);
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (ec)
-    throw std::runtime_error(o.out_dir + ": cannot create the output folder: " + ec.message());
+  std::optional<io::RemoveIfEmpty> created;
+  if (io::prepare_output_folder(o.out_dir)) created.emplace(out);
+  const io::CleanupGuard work = io::make_private_folder(out, ".graspcd-study", o.out_dir);
 
   const std::vector<Example> ex = examples(o);
   const Grasps g = record_examples(o, ex, log);
   ReplayCache cache;
-  if (o.table) write_tables(o, ex, g, out, start, cache, log);
-  if (o.sweep) write_sweep(o, ex, g, out, cache, log);
+  if (o.table) write_tables(o, ex, g, work.path(), out, start, cache, log);
+  if (o.sweep) write_sweep(o, ex, g, work.path(), out, cache, log);
+  io::move_entries(work.path(), out, o.out_dir);
   log("done in " + fmt(seconds_since(start), 1) + " s");
 }
 

@@ -5,7 +5,10 @@
 //    (mjcf/hand_boxes.xml) through graspcd's exact box-box path.
 // 2. Table 1 (table1.h), 3. Figures 13-15 (box_hand.h), 4. the error sweep and its shards
 //    (sweep.h), each replaying the recordings against CGAL's answers.
-// Writes JSON (the data) and CSV (the tables) into `out_dir`, from which the report is drawn.
+// Writes JSON (the data) and CSV (the tables) into `out_dir`, from which the report is drawn:
+// whole or not at all (a private folder OUT/.graspcd-study-XXXXXX, removed on errors and on INT,
+// TERM and HUP, its files moved into OUT together at the end; io/output_files.h), so an
+// interrupted study leaves OUT as it was.
 #pragma once
 
 #include <functional>

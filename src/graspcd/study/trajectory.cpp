@@ -12,8 +12,12 @@
 #include "graspcd/grasp/drive_config.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/io/input_error.h"
+#include "graspcd/io/output_files.h"
+#include "graspcd/io/text_input.h"
 #include "graspcd/mujoco/model_loading.h"
 #include "graspcd/mujoco/mujoco_messages.h"
+#include "graspcd/mujoco/pair_config.h"
+#include "graspcd/mujoco/scene_check.h"
 #include "graspcd/study/replay.h"
 #include "graspcd/version/envelope.h"
 
@@ -241,6 +245,42 @@ void write_trajectory(const std::string& path, const Recording& r, const MeshSce
   std::ofstream file(path);
   file << out.dump() << "\n";
   if (!file) throw io::InputError(named.empty() ? path : named, 0, "cannot write");
+}
+
+bool is_trajectory_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return false;
+  std::ifstream in(path, std::ios::binary);
+  const json doc = json::parse(in, nullptr, false);
+  if (!doc.is_object()) return false;
+  const auto graspcd = doc.find("graspcd");
+  return graspcd != doc.end() && graspcd->is_object() && graspcd->contains("version") &&
+         doc.contains("schema") && doc.contains("meshes") && doc.contains("geoms") &&
+         doc.contains("steps") && doc["steps"].is_array();
+}
+
+void check_trajectory_target(const std::string& out, const std::string& scene, bool force) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(out, ec)) return;
+  const std::string config = mujoco::pair_config_path(scene);
+  const auto refuse = [&out](const std::string& what) {
+    return io::InputError(out, 0,
+                          "is " + what +
+                              " this run reads: not overwritten (write the trajectory "
+                              "elsewhere)");
+  };
+  if (io::same_file(out, scene)) throw refuse("the scene");
+  if (io::same_file(out, config)) throw refuse("the pair config");
+  for (const std::string& input : mujoco::scene_files(scene)) {
+    if (io::same_file(out, input)) throw refuse("a file the scene names (" + input + "), which");
+  }
+  if (!fs::is_regular_file(out, ec)) return;  // a device (/dev/stdout) is written directly
+  if (!force && !is_trajectory_file(out)) {
+    throw io::InputError(out, 0,
+                         "exists and is not a trajectory graspcd wrote: not overwritten; --force "
+                         "replaces it");
+  }
 }
 
 void export_grasp(const std::string& scene, const std::string& path,

@@ -50,6 +50,17 @@ struct TrajectoryOptions {
   std::string out_name;  // how messages name the written file (default: its path)
 };
 
+// Whether `path` is a trajectory file graspcd wrote (a JSON object with graspcd's envelope and
+// the keys write_trajectory writes: schema, meshes, geoms, steps).
+bool is_trajectory_file(const std::string& path);
+
+// The rules of an output (io/output_files.h) for the trajectory file `out` of a run on `scene`,
+// before the work: it never replaces a file the run reads (the scene, the files it includes and
+// its assets name, its pair config), and replaces an existing regular file only when it is a
+// trajectory graspcd wrote, or with `force`. A device (/dev/stdout) passes. Throws io::InputError
+// naming `out`.
+void check_trajectory_target(const std::string& out, const std::string& scene, bool force);
+
 // `graspcd trajectory`: records the grasp of `scene` served by graspcd (SAT), replays it with each
 // method for its per-step detection times (all contacts, as Table 1) and writes the trajectory to
 // `path`. A scene whose finger segments are not meshes (the box hand) gets neither times nor OBB
