@@ -1,12 +1,12 @@
 // graspcd decompose MESH --out DIR [--engine hacd|vhacd] [--pieces N] [--simplify F]
-// [--resolution R] [--timeout S] [--hausdorff-bound B] [--json]: an approximate convex
-// decomposition with HACD (Mamou and Ghorbel, ICIP 2009) or V-HACD 4 (Mamou, Game Engine Gems 3,
-// 2016; run by node from the npm package vhacd-js), written as one OBJ per convex piece and an
-// MJCF fragment, with how far the pieces' hulls lie from the original
-// surface (CGAL's bounded-error one-sided Hausdorff distance) and, for a closed mesh, the volume
-// they add. --simplify F: HACD partitions a copy decimated to at most F faces (CGAL's edge
-// collapse), each original face joins the cluster of its nearest decimated face, and the pieces
-// are the hulls of the original vertices.
+// [--resolution R] [--timeout S] [--hausdorff-bound B] [--describe PIECES] [--json]: an
+// approximate convex decomposition with HACD (Mamou and Ghorbel, ICIP 2009) or V-HACD 4 (Mamou,
+// Game Engine Gems 3, 2016; run by node from the npm package vhacd-js), or the pieces of PIECES
+// (--describe), written as one OBJ per convex piece and an MJCF fragment, with how far the
+// pieces' hulls lie from the original surface (CGAL's bounded-error one-sided Hausdorff
+// distance) and, for a closed mesh, the volume they add. --simplify F: HACD partitions a copy
+// decimated to at most F faces (CGAL's edge collapse), each original face joins the cluster of its
+// nearest decimated face, and the pieces are the hulls of the original vertices.
 #include <chrono>
 #include <iomanip>
 #include <iostream>
@@ -33,6 +33,16 @@ struct DecomposeOptions {
 void run_decompose(DecomposeOptions& o, const CLI::App& app) {
   const bool vhacd = o.engine == "vhacd";
   o.run.engine = vhacd ? decompose::Engine::kVhacd : decompose::Engine::kHacd;
+  o.run.scale_given = app.count("--scale") > 0;
+  if (!o.run.describe.empty()) {
+    for (const char* option : {"--engine", "--pieces", "--simplify", "--resolution", "--timeout"}) {
+      if (app.count(option) > 0) {
+        throw UsageError(std::string("decompose: ") + option +
+                         " runs an engine; --describe takes the pieces as they are");
+      }
+    }
+    o.run.engine = decompose::Engine::kGiven;
+  }
   if (vhacd && app.count("--simplify") > 0) {
     throw UsageError("decompose: --simplify is for --engine hacd (V-HACD voxelizes the mesh)");
   }
@@ -43,9 +53,9 @@ void run_decompose(DecomposeOptions& o, const CLI::App& app) {
   }
   const auto started = std::chrono::steady_clock::now();
   Progress progress("decompose");
-  progress.update(o.run.mesh + ": at most " + std::to_string(o.run.pieces) + " convex pieces (" +
-                  (o.run.engine == decompose::Engine::kVhacd ? "V-HACD" : "HACD") +
-                  "), then the Hausdorff distance (CGAL) ...");
+  o.run.progress = [&progress, &o](const std::string& stage, double share) {
+    progress.update(o.run.mesh + ": " + stage, share);
+  };
   const decompose::DecomposeRun run = [&] {
     try {
       return decompose::decompose_mesh(o.run);
@@ -60,8 +70,9 @@ void run_decompose(DecomposeOptions& o, const CLI::App& app) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::ostringstream done;
-  done << "wrote " << run.manifest.piece_count << " pieces of " << o.run.mesh << " to " << o.run.out
-       << " in " << std::setprecision(3) << seconds << " s";
+  done << (o.run.engine == decompose::Engine::kGiven ? "described " : "wrote ")
+       << run.manifest.piece_count << " pieces of " << o.run.mesh << " to " << o.run.out << " in "
+       << std::setprecision(3) << seconds << " s";
   progress.done(done.str());
   if (o.json) {
     std::cout << run.document << '\n';
@@ -87,6 +98,11 @@ Command add_decompose_command(CLI::App& parent) {
       ->check(number_in_range(kMinScale, kMaxScale));
   app->add_option("--out", options->run.out, "The folder for the pieces and the fragment")
       ->required();
+  app->add_option("--describe", options->run.describe,
+                  "No engine: take the convex pieces in this folder (mesh files in MESH's "
+                  "coordinates and units, e.g. a model set's published decomposition) as "
+                  "MESH's decomposition")
+      ->type_name("PIECES");
   app->add_option("--engine", options->engine,
                   "hacd: HACD (Debian's libHACD); vhacd: V-HACD 4 (node and the npm package "
                   "vhacd-js, installed by ./run build)")
@@ -144,11 +160,23 @@ Command add_decompose_command(CLI::App& parent) {
       "--resolution and --timeout for vhacd. Choose vhacd for a large or scanned mesh (its "
       "time grows with the voxels, not the faces; no --simplify needed) and for hulls close to "
       "the solid; hacd needs no node and follows the mesh's own faces.\n"
+      "--describe PIECES: no engine. The convex pieces someone else made (e.g. the contactK.stl "
+      "beside each YCB object of ../shared/models, in the object's coordinates and metres) are "
+      "read from the folder PIECES (every mesh file, in the order of their names with numbers "
+      "by value), each rebuilt as its convex hull (qhull: what MuJoCo collides), scaled by "
+      "--scale as MESH is, and written, measured and described as a decomposition of MESH "
+      "(engine 'given'), so that graspcd grasp --decomposed DIR runs on them. Pieces whose "
+      "bounding box is not MESH's (its diagonal off by more than a factor 1.5, or its centre "
+      "more than a quarter of the diagonal away) are refused: they are in other units or "
+      "another frame.\n"
       "Written into DIR: STEM_piece_K.obj (K = 0, 1, ...; in MESH's own coordinates, times "
       "--scale when given), "
       "STEM.xml (an MJCF fragment MuJoCo 2.2 includes: <mujocoinclude> with the <mesh> assets, "
       "files relative to DIR, and a <body name=\"STEM\"> with one <geom> per piece) and "
-      "decomposition.json (the JSON document below; graspcd grasp --decomposed DIR reads it).\n"
+      "decomposition.json (the JSON document below; graspcd grasp --decomposed DIR reads it). "
+      "It records the scale: the pieces are MESH's coordinates times --scale (1 without it), "
+      "and grasp --decomposed gives each piece the scale of the scene's <mesh> divided by it, "
+      "so that a scale is never applied twice.\n"
       "Reported: the pieces' count, the engine's time in s (for vhacd with node's start), the "
       "one-sided Hausdorff distance from the "
       "pieces' surfaces to MESH's surface with its error bound (CGAL 5.5's "
@@ -163,7 +191,9 @@ Command add_decompose_command(CLI::App& parent) {
       "most F) in S s' or 'simplify_faces F0 (at most F: not decimated)', 'seconds S' (the engine "
       "and the hulls; with --simplify after the decimation), 'hausdorff_m D +- B', "
       "'volume_added_m3 V (P% of V0)' or '- (open mesh)', 'fragment PATH'. --json: one "
-      "document: source, engine (hacd or vhacd), engine_parameters (hacd: max_clusters; vhacd: "
+      "document: source, engine (hacd, vhacd or given), scale, units (m: the pieces are in "
+      "metres, --scale was given or MESH is glTF or COLLADA; source: in MESH's own units), "
+      "pieces_from (given: the folder PIECES), engine_parameters (hacd: max_clusters; vhacd: "
       "max_hulls, voxel_resolution, max_vertices_per_hull, min_volume_percent_error, "
       "max_recursion_depth), source_faces, closed, max_pieces, simplify (max_faces, faces_before, "
       "faces_after, decimated, seconds; null without --simplify), piece_count, slabs, "
@@ -177,8 +207,11 @@ Command add_decompose_command(CLI::App& parent) {
       "TERM and HUP (exit code 128 + the signal). A DIR that holds an earlier decomposition "
       "(decomposition.json) or nothing is replaced whole (no stale piece stays); a DIR that "
       "holds other files is refused before the work.\n"
-      "Progress: on a terminal, one line on stderr rewritten as the work goes; otherwise one "
-      "final line '[decompose] wrote N pieces of MESH to DIR in S s'.\n"
+      "Progress on stderr: the stage (reading, HACD's merges with their share done and an "
+      "estimate of the time left, V-HACD, CGAL's Hausdorff distance, the volumes) and the time "
+      "so far, on a terminal one line rewritten as the work goes, otherwise one line every 5 s "
+      "(GRASPCD_PROGRESS_SECONDS); then one final line '[decompose] wrote N pieces of MESH to DIR "
+      "in S s'.\n"
       "Errors: a missing or bad mesh (docs/bad-input.md), a DIR that is a file, lies under a file, "
       "cannot be written or holds other files is one line 'FILE: message' on stderr, exit code "
       "2.\n"
@@ -188,7 +221,9 @@ Command add_decompose_command(CLI::App& parent) {
       "  graspcd decompose ../shared/models/objects/mujoco/mug.obj --out /tmp/mug16 --pieces 16 "
       "--simplify 3000\n"
       "  graspcd decompose ../shared/models/objects/mujoco/mug.obj --out /tmp/mug32v --pieces 32 "
-      "--engine vhacd"));
+      "--engine vhacd\n"
+      "  graspcd decompose ../shared/models/objects/ycb/005_tomato_soup_can/textured.obj "
+      "--describe ../shared/models/objects/ycb/005_tomato_soup_can/pieces --out /tmp/can"));
   return Command{app, [options, app] { run_decompose(*options, *app); }};
 }
 

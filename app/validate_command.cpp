@@ -189,7 +189,10 @@ int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
   int checked = 0;
   options.on_step = [&](int step) {
     checked = step;
-    progress.update(o.scene + ": grasp step " + std::to_string(step) + " checked");
+    // The closing may end before --max-steps: the share is a lower bound.
+    progress.update(o.scene + ": closing grasp step " + std::to_string(step) + " of at most " +
+                        std::to_string(o.steps) + " checked",
+                    static_cast<double>(step) / std::max(1, o.steps), true);
   };
   const study::ValidationReport report = study::validate_scene(o.scene, testers, options);
   progress.done("checked " + o.scene + ": " + std::to_string(checked) + " grasp steps");
@@ -275,9 +278,14 @@ Command add_validate_command(CLI::App& parent) {
       "method's options prints the method's answer again (add --exact for CGAL's); box pairs "
       "write one boxbox line. A line '# contacts: N of M grasp steps had a contact to check' "
       "counts the steps at which CGAL found some pair intersecting; with none, the result says "
-      "so and a warning says that 'no missed collision' means nothing there. Progress goes to "
-      "stderr every 50 steps.\n"
-      "--json: one document: scene, config, grasp_method, steps, steps_with_contact, gripped, "
+      "so and a warning says that 'no missed collision' means nothing there. A line '# checked: "
+      "...' "
+      "says which phases were checked (the closing), how many grasp steps, and whether "
+      "--max-steps cut the closing short. Progress on stderr: the grasp step checked, the time "
+      "so far and at most how long is left, on a terminal one line rewritten, otherwise one "
+      "line every 5 s (GRASPCD_PROGRESS_SECONDS).\n"
+      "--json: one document: scene, config, grasp_method, steps, steps_with_contact, phases "
+      "([\"closing\"]), max_steps, cut_short, gripped, "
       "cgal, exact_seconds, "
       "tester_seconds, nonfinite_skips (pair checks skipped on a placement with NaN, inf or a "
       "number beyond 1e10), missed_any, methods (method, missed_any, seconds, pairs: pair, geom1, "

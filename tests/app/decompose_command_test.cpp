@@ -6,10 +6,14 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "graspcd/core/geometry.h"
@@ -486,6 +490,183 @@ TEST_F(DecomposeCommand, ValidateDecomposedChecksTheTrueMeshes) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
   EXPECT_EQ(bad.err.rfind((dir_ / "empty").string() + ":", 0), 0u) << bad.err;
+}
+
+// The box, in the body frame of geom `g`'s body, of the vertices of every geom of that body that
+// `take` accepts, as MuJoCo compiled them (mesh vertices about the mesh's centre, placed by the
+// geom's pos and quat).
+std::pair<Vec3, Vec3> body_box(const mjModel* m, int body, const std::function<bool(int)>& take) {
+  Vec3 lo = Vec3::Constant(1e9), hi = Vec3::Constant(-1e9);
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_bodyid[g] != body || m->geom_type[g] != mjGEOM_MESH || !take(g)) continue;
+    const int mesh = m->geom_dataid[g];
+    for (int v = 0; v < m->mesh_vertnum[mesh]; ++v) {
+      const float* p = m->mesh_vert + 3 * (m->mesh_vertadr[mesh] + v);
+      mjtNum local[3] = {p[0], p[1], p[2]}, out[3];
+      mju_rotVecQuat(out, local, m->geom_quat + 4 * g);
+      const Vec3 q(out[0] + m->geom_pos[3 * g], out[1] + m->geom_pos[3 * g + 1],
+                   out[2] + m->geom_pos[3 * g + 2]);
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+  }
+  return {lo, hi};
+}
+
+// A scale is applied once: a 30 mm cube in millimetres grasped at --scale 0.001 and decomposed at
+// --scale 0.001 (its pieces in metres, decomposition.json "scale": 0.001) is collided by pieces
+// that stand where the cube stands, not 1000 times smaller (before 0.5.0 the scene's asset scale
+// was applied to the pieces again). A manifest without a scale, as graspcd 0.4 wrote it, is read
+// as scale 1 with a warning, and its pieces, 1000 times smaller than the cube at scale 1, are
+// refused in one line naming the manifest; pieces written at the file's own units (scale 1) are
+// scaled by the scene as the mesh is.
+TEST_F(DecomposeCommand, DecomposedScaleIsAppliedOnce) {
+  std::string cube;
+  for (const char* v : {"-15 -15 -15", "15 -15 -15", "-15 15 -15", "15 15 -15", "-15 -15 15",
+                        "15 -15 15", "-15 15 15", "15 15 15"}) {
+    cube += std::string("v ") + v + "\n";
+  }
+  cube +=
+      "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\n"
+      "f 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
+  const std::string mesh = write("cube_mm.obj", cube);
+  const Outcome w = graspcd("grasp --object '" + mesh + "' --scale 0.001 --write-scene '" +
+                            (dir_ / "scene").string() + "' --max-steps 1");
+  ASSERT_EQ(w.exit_code, 0) << w.err;
+  const std::string scene = (dir_ / "scene/cube_mm.xml").string();
+  for (const char* scale : {"0.001", "1"}) {
+    const std::string out = std::string("cube_at_") + scale;
+    const nlohmann::json d = decompose(mesh, 1, out, std::string("--scale ") + scale);
+    EXPECT_EQ(d.at("scale").get<double>(), std::stod(scale));
+    EXPECT_EQ(d.at("units").get<std::string>(), "m");
+    const grasp::DecomposedScene written =
+        grasp::write_decomposed_scene(scene, (dir_ / out).string());
+    char error[1000] = "";
+    const mujoco::ModelPtr m(mj_loadXML(written.scene.c_str(), nullptr, error, sizeof(error)));
+    fs::remove(written.scene);
+    ASSERT_NE(m, nullptr) << error;
+    const int body = mj_name2id(m.get(), mjOBJ_BODY, "object");
+    ASSERT_GE(body, 0);
+    const auto [cube_lo, cube_hi] =
+        body_box(m.get(), body, [&](int g) { return !grasp::is_piece(m.get(), g); });
+    const auto [lo, hi] =
+        body_box(m.get(), body, [&](int g) { return grasp::is_piece(m.get(), g); });
+    EXPECT_NEAR((cube_hi - cube_lo).norm(), std::sqrt(3.0) * 0.03, 1e-6);
+    EXPECT_LT((lo - cube_lo).norm(), 1e-6) << scale << ": " << lo.transpose();
+    EXPECT_LT((hi - cube_hi).norm(), 1e-6) << scale << ": " << hi.transpose();
+  }
+  // decomposition.json as graspcd 0.4 wrote it: no scale, pieces in metres.
+  nlohmann::json old = load(dir_ / "cube_at_0.001/decomposition.json");
+  old.erase("scale");
+  old.erase("units");
+  std::ofstream(dir_ / "cube_at_0.001/decomposition.json") << old.dump(2);
+  const Outcome r = graspcd("grasp '" + scene + "' --decomposed '" +
+                            (dir_ / "cube_at_0.001").string() + "' --max-steps 1");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  const std::vector<std::string> err_lines = [&] {
+    std::vector<std::string> out;
+    std::istringstream in(r.err);
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+  }();
+  ASSERT_FALSE(err_lines.empty());
+  const std::string manifest = (dir_ / "cube_at_0.001/decomposition.json").string();
+  EXPECT_EQ(err_lines[0].rfind(manifest + ": not a decomposition of ", 0), 0u) << r.err;
+  EXPECT_NE(err_lines[0].find(": no \"scale\" (written before graspcd 0.5), read as 1: its "
+                              "pieces are 0.001 times the size of the mesh at scale 1"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(err_lines.size(), 1u) << r.err;
+  // Pieces written in the file's own units (scale 1) without a scale: read as 1, with a warning.
+  nlohmann::json old1 = load(dir_ / "cube_at_1/decomposition.json");
+  old1.erase("scale");
+  old1.erase("units");
+  std::ofstream(dir_ / "cube_at_1/decomposition.json") << old1.dump(2);
+  const Outcome ok = graspcd("grasp '" + scene + "' --decomposed '" +
+                             (dir_ / "cube_at_1").string() + "' --max-steps 1");
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.err.find("warning: " + (dir_ / "cube_at_1/decomposition.json").string() +
+                        ": no \"scale\" (written before graspcd 0.5): read as 1"),
+            std::string::npos)
+      << ok.err;
+}
+
+// A published decomposition (a folder of convex pieces in the mesh's coordinates) described as a
+// decomposition: two halves of a 30 mm box in millimetres, described at --scale 0.001, are the
+// manifest's pieces in metres (engine "given", in the order of their names), and the same halves
+// in metres are refused against the box in millimetres (another unit). With the real models, the
+// YCB can's published pieces are described as they are (metres, scale 1).
+TEST_F(DecomposeCommand, DescribeTakesPublishedPieces) {
+  const auto box = [](double x0, double x1, double s) {
+    std::ostringstream out;
+    for (double x : {x0, x1}) {
+      for (double y : {-15.0, 15.0}) {
+        for (double z : {-15.0, 15.0}) out << "v " << s * x << ' ' << s * y << ' ' << s * z << '\n';
+      }
+    }
+    out << "f 1 2 4\nf 1 4 3\nf 5 7 8\nf 5 8 6\nf 1 5 6\nf 1 6 2\nf 3 4 8\nf 3 8 7\n"
+           "f 1 3 7\nf 1 7 5\nf 2 6 8\nf 2 8 4\n";
+    return out.str();
+  };
+  const std::string mesh = write("block.obj", box(-15, 15, 1));
+  fs::create_directories(dir_ / "mm");
+  fs::create_directories(dir_ / "m");
+  write("mm/contact10.obj", box(0, 15, 1));  // named so that a plain sort would put it first
+  write("mm/contact2.obj", box(-15, 0, 1));
+  write("m/contact0.obj", box(-15, 0, 0.001));
+  write("m/contact1.obj", box(0, 15, 0.001));
+  const fs::path json = dir_ / "described.json";
+  const Outcome r = run(std::string("{ '") + GRASPCD_EXE + "' decompose '" + mesh + "' --out '" +
+                        (dir_ / "described").string() + "' --describe '" + (dir_ / "mm").string() +
+                        "' --scale 0.001 --json > '" + json.string() + "'; }");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json g = load(json);
+  EXPECT_EQ(g.at("engine").get<std::string>(), "given");
+  EXPECT_EQ(g.at("scale").get<double>(), 0.001);
+  EXPECT_EQ(g.at("units").get<std::string>(), "m");
+  EXPECT_EQ(g.at("pieces_from").get<std::string>(), fs::absolute(dir_ / "mm").string());
+  ASSERT_EQ(g.at("piece_count").get<int>(), 2);
+  // contact2 (x < 0) before contact10, each in metres.
+  const TriangleMesh first = io::load_mesh(
+      (dir_ / "described" / g.at("pieces")[0].at("file").get<std::string>()).string());
+  for (const Vec3& v : first.vertices) {
+    EXPECT_LE(v.x(), 1e-12);
+    EXPECT_LE(std::abs(v.y()), 0.015 + 1e-12);
+  }
+  // The pieces' surfaces lie on the block's but for the face they share, 15 mm inside at its
+  // centre.
+  EXPECT_NEAR(g.at("hausdorff").at("distance").get<double>(), 0.015,
+              g.at("hausdorff").at("error_bound").get<double>() + 1e-9);
+  // Pieces in metres against the block in millimetres: refused, one line naming the pieces.
+  const Outcome bad = graspcd("decompose '" + mesh + "' --out '" + (dir_ / "wrong").string() +
+                              "' --describe '" + (dir_ / "m").string() + "'");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_EQ(bad.err.rfind((dir_ / "m").string() + ": not pieces of " + mesh, 0), 0u) << bad.err;
+  EXPECT_NE(bad.err.find("its pieces are 0.001 times the size of the mesh"), std::string::npos)
+      << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ / "wrong"));
+  // An engine's option with --describe is a usage error.
+  EXPECT_EQ(graspcd("decompose '" + mesh + "' --out '" + (dir_ / "wrong").string() +
+                    "' --describe '" + (dir_ / "mm").string() + "' --pieces 4")
+                .exit_code,
+            2);
+
+  const fs::path can = kModels / "objects/ycb/005_tomato_soup_can";
+  if (!fs::exists(can / "pieces")) GTEST_SKIP() << "real models not found at " << kModels;
+  // CGAL's Hausdorff distance on the can's 16,000 faces: the Release pass only.
+  if (test_scale() < 1) GTEST_SKIP() << "the YCB can skipped at GRASPCD_TEST_SCALE < 1";
+  const Outcome y =
+      run(std::string("{ '") + GRASPCD_EXE + "' decompose '" + (can / "textured.obj").string() +
+          "' --out '" + (dir_ / "can").string() + "' --describe '" + (can / "pieces").string() +
+          "' --json > '" + (dir_ / "can.json").string() + "'; }");
+  ASSERT_EQ(y.exit_code, 0) << y.err;
+  const nlohmann::json c = load(dir_ / "can.json");
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(can / "pieces"))
+    files += e.path().extension() == ".stl";
+  EXPECT_EQ(c.at("piece_count").get<std::size_t>(), files);
+  EXPECT_EQ(c.at("scale").get<double>(), 1.0);
 }
 
 TEST_F(DecomposeCommand, DecomposedGraspBadInput) {

@@ -384,7 +384,9 @@ TEST(RegistryHygiene, ZeroAreaFacesAreLeftOutOfTheTreeWithAWarning) {
 }
 
 // A scene graspcd wrote (scene_names.h): the registry's messages name the config the user knows
-// and call a mesh of the hand the hand's, the object's mesh not.
+// and call a mesh of the hand the hand's; the object's mesh is the user's file, whose reader
+// (io::load_mesh) already reported its zero-area faces in the file's own face numbers, so the
+// registry does not report them again.
 TEST(RegistryHygiene, AWrittenScenesWarningsNameTheUsersFilesAndTheHandsMeshes) {
   TempDir dir;
   const testing::ModelPtr m = load_scene(dir, kTetWithAPointFace, {});
@@ -404,9 +406,7 @@ TEST(RegistryHygiene, AWrittenScenesWarningsNameTheUsersFilesAndTheHandsMeshes) 
       << hand.warnings()[0];
   names.object_mesh = "tet";
   const Registry object(m.get(), c, "/tmp/written/hyg.pairs.json", names);
-  ASSERT_EQ(object.warnings().size(), 1u);
-  EXPECT_EQ(object.warnings()[0].rfind("template.pairs.json: mesh 0 'tet': dropped", 0), 0u)
-      << object.warnings()[0];
+  EXPECT_TRUE(object.warnings().empty()) << object.warnings()[0];
   try {
     c.patterns = {{"geom:tip", "geom:none*"}};
     const Registry refused(m.get(), c, "/tmp/written/hyg.pairs.json", names);

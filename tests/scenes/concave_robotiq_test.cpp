@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,8 @@ class ConcaveRobotiq : public testing::CommandTest {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json v = load(json);
     EXPECT_GT(v.at("steps_with_contact").get<int>(), 0);
+    EXPECT_FALSE(v.at("cut_short").get<bool>());
+    EXPECT_LT(v.at("steps").get<int>(), v.at("max_steps").get<int>());
     EXPECT_FALSE(v.at("missed_any").get<bool>());
     int pairs = 0;
     for (const nlohmann::json& method : v.at("methods")) {
@@ -178,6 +181,71 @@ TEST_F(ConcaveRobotiq, MugHandlePinchIsHeldAndTheHullCannotStart) {
   EXPECT_LE(std::abs(g.left - g.right), kPadLagSteps) << g.left << " " << g.right;
   expect_validated(path);
   expect_native_refused(path, "mug");
+}
+
+// The bowl in 16 HACD pieces cannot start either: a piece fills the cavity the follower starts in.
+// The refusal names that piece and its file, not the bowl's convex hull (which MuJoCo no longer
+// collides here).
+TEST_F(ConcaveRobotiq, ADecomposedBowlsRefusalNamesThePiece) {
+  const std::string path = scene("concave_robotiq_bowl_rim");
+  SKIP_WITHOUT_MODELS(path);
+  const fs::path bowl = fs::path(GRASPCD_MODELS_DIR) / "objects/prl_assets/plastic_bowl_visual.obj";
+  const std::string pieces = (dir_ / "bowl16").string();
+  // With stderr to a file (not a terminal), progress lines all the same (here at every update):
+  // HACD's merges with the share done and the time left.
+  const testing::Outcome d =
+      run("GRASPCD_PROGRESS_SECONDS=0 '" + std::string(GRASPCD_EXE) + "' decompose '" +
+          bowl.string() + "' --out '" + pieces + "' --pieces 16");
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_TRUE(std::regex_search(
+      d.err,
+      std::regex("\\[decompose\\] [^\\n]*: HACD: merging the faces' clusters down to 16 "
+                 "\\(the share merged\\); \\d+ s so far, about \\d+ (s|min)[^\\n]* left\\n")))
+      << d.err;
+  EXPECT_NE(d.err.find("[decompose] wrote "), std::string::npos) << d.err;
+  const testing::Outcome r = graspcd("grasp '" + path + "' --decomposed '" + pieces + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  const std::regex named(
+      "cannot start with --decomposed: the hull of geom \\d+ \\(mesh 'follower' "
+      "of body '\\w+'\\) lies \\d+\\.\\d mm inside piece (\\d+) of mesh 'bowl' \\(" +
+      pieces + "/plastic_bowl_visual_piece_(\\d+)\\.obj\\) at the start");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.err, m, named)) << r.err;
+  EXPECT_EQ(m[1].str(), m[2].str()) << r.err;
+  EXPECT_EQ(r.err.find("convex hull"), std::string::npos) << r.err;
+}
+
+// What validate checked, said in its header and its JSON: the closing, how many grasp steps, and
+// whether --max-steps cut it short; and progress lines on stderr when it is a file.
+TEST_F(ConcaveRobotiq, ValidateSaysWhatItCheckedAndShowsProgress) {
+  const std::string path = scene("concave_robotiq_mug_rim");
+  SKIP_WITHOUT_MODELS(path);
+  const fs::path json = dir_ / "cut.json";
+  const testing::Outcome r =
+      run("{ GRASPCD_PROGRESS_SECONDS=0 '" + std::string(GRASPCD_EXE) + "' validate '" + path +
+          "' --max-steps 5 --json > '" + json.string() + "'; }");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json v = load(json);
+  EXPECT_EQ(v.at("steps").get<int>(), 5);
+  EXPECT_EQ(v.at("max_steps").get<int>(), 5);
+  EXPECT_TRUE(v.at("cut_short").get<bool>());
+  EXPECT_EQ(v.at("phases"), nlohmann::json::array({"closing"}));
+  EXPECT_NE(r.err.find("[validate] " + path + ": closing grasp step 5 of at most 5 checked; "),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(
+      std::regex_search(r.err, std::regex("checked; \\d+ s so far, at most \\d+ s left\\n")))
+      << r.err;
+  // The text says it too.
+  const testing::Outcome text = run("{ '" + std::string(GRASPCD_EXE) + "' validate '" + path +
+                                    "' --max-steps 5 > '" + (dir_ / "cut.txt").string() + "'; }");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(testing::read_file(dir_ / "cut.txt")
+                .find("# checked: the closing, 5 grasp steps, each after its last physics step; "
+                      "--max-steps 5 cut the closing short"),
+            std::string::npos)
+      << testing::read_file(dir_ / "cut.txt");
 }
 
 // A scene that starts from a keyframe is no template for a new object: the keyframe holds the

@@ -82,6 +82,23 @@ TriangleMesh qhull_hull(const std::vector<Vec3>& points) {
   return hull;
 }
 
+// HACD's call-back is a plain function (no user pointer): the merges' progress reaches the
+// options' callback through the calling thread's slot. HACD reports the percentage
+// 100 (1 - clusters / faces), which ends at 100 (1 - max_pieces / faces).
+struct HacdProgress {
+  const std::function<void(double)>* callback = nullptr;
+  double end_percent = 100;
+};
+thread_local HacdProgress hacd_progress;
+
+bool hacd_callback(const char* message, double percent, double, std::size_t) {
+  const HacdProgress& p = hacd_progress;
+  // Stage messages start with "+" and carry no percentage.
+  if (p.callback == nullptr || message == nullptr || message[0] == '+') return true;
+  (*p.callback)(std::clamp(percent / p.end_percent, 0.0, 1.0));
+  return true;
+}
+
 }  // namespace
 
 Partition hacd_partition(const TriangleMesh& mesh, const HacdOptions& options) {
@@ -114,6 +131,17 @@ Partition hacd_partition(const TriangleMesh& mesh, const HacdOptions& options) {
   hacd.SetAddFacesPoints(true);
   hacd.SetAddExtraDistPoints(false);
   hacd.SetAddNeighboursDistPoints(false);
+  struct Slot {  // the thread's progress slot, cleared on every return
+    explicit Slot(const HacdOptions& o, std::size_t faces) {
+      hacd_progress.callback = o.progress ? &o.progress : nullptr;
+      hacd_progress.end_percent = std::max(
+          1e-9, 100.0 * (1.0 - static_cast<double>(o.max_pieces) / static_cast<double>(faces)));
+    }
+    ~Slot() { hacd_progress = HacdProgress{}; }
+    Slot(const Slot&) = delete;
+    Slot& operator=(const Slot&) = delete;
+  } slot(options, mesh.faces.size());
+  if (options.progress) hacd.SetCallBack(&hacd_callback);
   if (!hacd.Compute(/*fullCH=*/false, /*exportDistPoints=*/false)) {
     throw std::runtime_error("HACD: the decomposition failed");
   }

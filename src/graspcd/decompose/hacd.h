@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "graspcd/core/geometry.h"
@@ -20,6 +21,9 @@ namespace graspcd::decompose {
 // across a gap, so every component gives at least one piece.
 struct HacdOptions {
   std::size_t max_pieces = 16;  // HACD's "number of clusters", >= 1
+  // Called as HACD merges (its call-back): the share of the merges done, 0 to 1. HACD's first
+  // stage, the cost of every edge of the dual graph, reports nothing.
+  std::function<void(double)> progress;
 };
 
 // One convex piece: the convex hull of a cluster of the input's faces (of their vertices, by

@@ -4,10 +4,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <utility>
 
+#include "graspcd/io/mesh_io.h"
 #include "graspcd/io/text_input.h"
 #include "graspcd/version/envelope.h"
 
@@ -45,24 +48,28 @@ nlohmann::json to_json(const Manifest& m) {
       parameters[name] = value;
     }
   }
-  return {{"source", m.source},
-          {"engine", m.engine},
-          {"engine_parameters", parameters},
-          {"source_faces", m.source_faces},
-          {"closed", m.closed},
-          {"max_pieces", m.max_pieces},
-          {"simplify", simplify},
-          {"piece_count", m.piece_count},
-          {"slabs", m.slabs},
-          {"flat_clusters", m.flat_clusters},
-          {"seconds", m.seconds},
-          {"hausdorff",
-           {{"distance", m.hausdorff.distance},
-            {"error_bound", m.hausdorff.error_bound},
-            {"seconds", m.hausdorff.seconds}}},
-          {"volume", volume},
-          {"fragment", m.fragment},
-          {"pieces", pieces}};
+  nlohmann::json doc = {{"source", m.source},
+                        {"engine", m.engine},
+                        {"scale", m.scale},
+                        {"units", m.units},
+                        {"engine_parameters", parameters},
+                        {"source_faces", m.source_faces},
+                        {"closed", m.closed},
+                        {"max_pieces", m.max_pieces},
+                        {"simplify", simplify},
+                        {"piece_count", m.piece_count},
+                        {"slabs", m.slabs},
+                        {"flat_clusters", m.flat_clusters},
+                        {"seconds", m.seconds},
+                        {"hausdorff",
+                         {{"distance", m.hausdorff.distance},
+                          {"error_bound", m.hausdorff.error_bound},
+                          {"seconds", m.hausdorff.seconds}}},
+                        {"volume", volume},
+                        {"fragment", m.fragment},
+                        {"pieces", pieces}};
+  if (!m.pieces_from.empty()) doc["pieces_from"] = m.pieces_from;
+  return doc;
 }
 
 // A field of a manifest that is read when present: `fallback` when it is missing or of another
@@ -91,6 +98,13 @@ Manifest from_json(const nlohmann::json& doc) {
     m.pieces.push_back(std::move(piece));
   }
   m.engine = field(doc, "engine", std::string("hacd"));
+  if (const auto it = doc.find("scale"); it != doc.end()) {
+    m.scale = it->is_number() ? it->get<double>() : 0.0;
+  } else {
+    m.scale_recorded = false;
+  }
+  m.units = field(doc, "units", std::string("source"));
+  m.pieces_from = field(doc, "pieces_from", std::string());
   if (const auto it = doc.find("engine_parameters"); it != doc.end() && it->is_object()) {
     for (const auto& [name, value] : it->items()) {
       if (value.is_number()) m.engine_parameters.emplace_back(name, value.get<double>());
@@ -150,7 +164,58 @@ Manifest read_manifest(const std::string& dir) {
     throw io::InputError(path.string(), 0, std::string("not a decomposition: ") + e.what());
   }
   if (m.pieces.empty()) throw io::InputError(path.string(), 0, "a decomposition without pieces");
+  if (!(std::isfinite(m.scale) && m.scale > 0)) {
+    throw io::InputError(path.string(), 0,
+                         "\"scale\" must be a number > 0 (the pieces' coordinates are the "
+                         "source's times it)");
+  }
   return m;
+}
+
+Box bounding_box(const TriangleMesh& mesh) {
+  Box b{mesh.vertices.front(), mesh.vertices.front()};
+  for (const Vec3& v : mesh.vertices) {
+    b.lo = b.lo.cwiseMin(v);
+    b.hi = b.hi.cwiseMax(v);
+  }
+  return b;
+}
+
+Box pieces_box(const std::string& dir, const Manifest& manifest) {
+  std::optional<Box> out;
+  for (const Manifest::Piece& p : manifest.pieces) {
+    const std::string file = (fs::path(dir) / p.file).lexically_normal().string();
+    const TriangleMesh piece = io::load_mesh(file);
+    const Box b = bounding_box(piece);
+    if (!out) {
+      out = b;
+    } else {
+      out->lo = out->lo.cwiseMin(b.lo);
+      out->hi = out->hi.cwiseMax(b.hi);
+    }
+  }
+  return out.value_or(Box{});
+}
+
+std::string placement_mismatch(const Box& source, double scale, const Box& pieces) {
+  const double expected = source.diagonal() * scale;
+  const double ratio = pieces.diagonal() / expected;
+  const Vec3 offset = 0.5 * (pieces.lo + pieces.hi) - 0.5 * scale * (source.lo + source.hi);
+  std::ostringstream out;
+  out << std::setprecision(3);
+  if (!(ratio <= kPlacementRatio && ratio >= 1 / kPlacementRatio)) {
+    out << "its pieces are " << ratio << " times the size of the mesh at scale " << scale << " ("
+        << pieces.diagonal() << " against " << expected << " across): written at scale "
+        << ratio * scale << "?";
+    return out.str();
+  }
+  if (!(offset.norm() <= kPlacementOffset * expected)) {
+    out << "its pieces lie " << offset.norm() << " from the mesh at scale " << scale
+        << " (their boxes' centres; the mesh is " << expected
+        << " across): not in the mesh's coordinates";
+    return out.str();
+  }
+  return "";
 }
 
 }  // namespace graspcd::decompose

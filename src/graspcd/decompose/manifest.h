@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "graspcd/core/geometry.h"
+
 namespace graspcd::decompose {
 
 // The manifest's file name in the decomposition's folder.
@@ -41,7 +43,19 @@ struct Manifest {
     std::size_t faces = 0;
   };
   std::string source;           // the mesh, absolute
-  std::string engine = "hacd";  // "hacd" or "vhacd"; a manifest without it is HACD's
+  std::string engine = "hacd";  // "hacd", "vhacd" or "given"; a manifest without it is HACD's
+  // "scale": the pieces' coordinates are the source file's times this (decompose --scale), so a
+  // scene whose <mesh> of the source has the scale A collides piece files scaled by A / scale
+  // (grasp/decomposed_scene.h). A manifest without it (written before graspcd 0.5) is read as 1,
+  // with `scale_recorded` false.
+  double scale = 1;
+  bool scale_recorded = true;
+  // "units": "m" when the pieces are in metres (a --scale was given, or the source's format is in
+  // metres: glTF, COLLADA), "source" when they are in the source file's own units.
+  std::string units = "source";
+  // "pieces_from": for engine "given" (decompose --describe), the folder the pieces were read
+  // from, absolute; empty otherwise.
+  std::string pieces_from;
   // "engine_parameters": the engine's settings, each under its name (an object of numbers; an
   // integral value is written as an integer).
   std::vector<std::pair<std::string, double>> engine_parameters;
@@ -65,8 +79,37 @@ struct Manifest {
 std::string write_manifest(const std::string& dir, const Manifest& manifest);
 
 // Reads DIR/decomposition.json: "source" and "pieces" (each with "file") are required, the rest is
-// read when present. Throws io::InputError naming DIR when the manifest is missing, naming the
-// manifest when it is not a decomposition or has no pieces.
+// read when present; a missing "scale" is 1, with Manifest::scale_recorded false (the caller
+// warns), and one that is not a finite number > 0 is refused. Throws io::InputError naming DIR when
+// the manifest is missing, naming the manifest when it is not a decomposition or has no pieces.
 Manifest read_manifest(const std::string& dir);
+
+// An axis-aligned bounding box.
+struct Box {
+  Vec3 lo = Vec3::Zero();
+  Vec3 hi = Vec3::Zero();
+  double diagonal() const { return (hi - lo).norm(); }
+};
+
+// The bounding box of a mesh's vertices (at least one).
+Box bounding_box(const TriangleMesh& mesh);
+
+// The bounding box of every piece of `manifest` (the files under `dir`, read by io::load_mesh), in
+// their own coordinates. Throws io::InputError naming a piece that cannot be read.
+Box pieces_box(const std::string& dir, const Manifest& manifest);
+
+// Pieces belong to a mesh at a scale when their box matches the mesh's box times that scale: its
+// diagonal within this factor either way, its centre within kPlacementOffset of that diagonal.
+// Pieces approximate the surface (hulls stand out of a concavity; a flat cluster left out shrinks
+// them a little), while a scale applied twice or forgotten is a factor of 10 or more (0.001,
+// 0.01, 0.0254).
+inline constexpr double kPlacementRatio = 1.5;
+inline constexpr double kPlacementOffset = 0.25;
+
+// Whether pieces whose box is `pieces` are pieces of the mesh whose box is `source` (in its file's
+// coordinates) at `scale`: "" when they are (above), else one line saying how they differ, e.g.
+// "its pieces are 0.01 times the size of the mesh at scale 1 (0.0812 against 8.12 across):
+// written at scale 0.01?".
+std::string placement_mismatch(const Box& source, double scale, const Box& pieces);
 
 }  // namespace graspcd::decompose

@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <iomanip>
 #include <optional>
@@ -40,6 +41,11 @@ std::string scale_text(double scale) {
   return out.str();
 }
 
+// The options' progress callback, when set.
+void report(const DecomposeOptions& o, const std::string& stage, double share = -1) {
+  if (o.progress) o.progress(stage, share);
+}
+
 double bounding_diagonal(const TriangleMesh& mesh) {
   Vec3 lo = mesh.vertices.front(), hi = lo;
   for (const Vec3& v : mesh.vertices) {
@@ -73,6 +79,8 @@ std::optional<Manifest::Simplify> simplify_copy(const DecomposeOptions& o, const
   const bool decimate = mesh.faces.size() > static_cast<std::size_t>(o.simplify);
   const Clock::time_point start = Clock::now();
   if (decimate) {
+    report(o, "CGAL: decimating " + std::to_string(mesh.faces.size()) + " faces to at most " +
+                  std::to_string(o.simplify));
     try {
       coarse = exact::simplify_edge_collapse(mesh, static_cast<std::size_t>(o.simplify));
     } catch (const std::invalid_argument& e) {
@@ -116,15 +124,22 @@ Decomposition run_engine(const DecomposeOptions& o, const TriangleMesh& mesh, bo
                          const TriangleMesh& coarse, double& seconds) {
   HacdOptions hacd;
   hacd.max_pieces = static_cast<std::size_t>(o.pieces);
+  const std::string merging = "HACD: merging the faces' clusters down to " +
+                              std::to_string(o.pieces) + " (the share merged)";
+  if (o.progress) hacd.progress = [&o, &merging](double share) { report(o, merging, share); };
   const Clock::time_point start = Clock::now();
   Decomposition d;
   try {
     if (o.engine == Engine::kVhacd) {
+      report(o, "V-HACD in node: voxels, splits and hulls (no progress from it; stopped after " +
+                    scale_text(o.timeout) + " s)");
       d = vhacd_decompose(mesh, vhacd_options(o));
     } else if (decimated) {
+      report(o, "HACD: the cost of every merge of the decimated copy's faces");
       const Partition partition = transfer_partition(hacd_partition(coarse, hacd), coarse, mesh);
       d = pieces_of_partition(mesh, partition);
     } else {
+      report(o, "HACD: the cost of every merge of " + std::to_string(mesh.faces.size()) + " faces");
       d = hacd_decompose(mesh, hacd);
     }
   } catch (const VhacdUnavailable&) {
@@ -142,6 +157,89 @@ Decomposition run_engine(const DecomposeOptions& o, const TriangleMesh& mesh, bo
                             ? " of V-HACD's hulls have no volume and were left out"
                             : " of HACD's clusters have no hull even as a slab and were left out"));
   }
+  return d;
+}
+
+// Whether `a` comes before `b` with runs of digits compared by value ("contact2" before
+// "contact10").
+bool natural_less(const std::string& a, const std::string& b) {
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (std::isdigit(static_cast<unsigned char>(a[i])) &&
+        std::isdigit(static_cast<unsigned char>(b[j]))) {
+      std::size_t i2 = i, j2 = j;
+      while (i2 < a.size() && std::isdigit(static_cast<unsigned char>(a[i2]))) ++i2;
+      while (j2 < b.size() && std::isdigit(static_cast<unsigned char>(b[j2]))) ++j2;
+      const std::string x = a.substr(i, i2 - i), y = b.substr(j, j2 - j);
+      const std::size_t zx = x.find_first_not_of('0'), zy = y.find_first_not_of('0');
+      const std::string vx = zx == std::string::npos ? "" : x.substr(zx);
+      const std::string vy = zy == std::string::npos ? "" : y.substr(zy);
+      if (vx.size() != vy.size()) return vx.size() < vy.size();
+      if (vx != vy) return vx < vy;
+      i = i2;
+      j = j2;
+    } else {
+      if (a[i] != b[j]) return a[i] < b[j];
+      ++i;
+      ++j;
+    }
+  }
+  return a.size() - i < b.size() - j;
+}
+
+// The mesh files of the folder of given pieces (Engine::kGiven), by natural_less of their names.
+std::vector<fs::path> given_piece_files(const std::string& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw io::InputError(dir, 0, "not a folder of pieces");
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    std::string ext = e.path().extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool mesh = ext == ".obj" || ext == ".stl" || ext == ".off" || ext == ".ply" ||
+                      ext == ".gltf" || ext == ".glb" || ext == ".dae";
+    if (mesh && e.is_regular_file(ec)) files.push_back(e.path());
+  }
+  if (ec) throw io::InputError(dir, 0, "cannot read the folder: " + ec.message());
+  if (files.empty()) {
+    throw io::InputError(dir, 0,
+                         "no mesh file in the folder (.obj, .stl, .off, .ply, .gltf, .glb, .dae)");
+  }
+  std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
+    return natural_less(a.filename().string(), b.filename().string());
+  });
+  return files;
+}
+
+// Engine::kGiven: each piece of `o.describe` read, scaled as the mesh and rebuilt as its convex
+// hull (qhull), refused when it has no volume; the pieces together refused when they do not lie
+// where `mesh` (already scaled) lies.
+Decomposition given_pieces(const DecomposeOptions& o, const TriangleMesh& mesh, double& seconds) {
+  const Clock::time_point start = Clock::now();
+  const std::vector<fs::path> files = given_piece_files(o.describe);
+  Decomposition d;
+  Box box;
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    report(o, "reading the pieces of " + o.describe,
+           static_cast<double>(k) / static_cast<double>(files.size()));
+    const std::string file = files[k].string();
+    TriangleMesh piece = io::load_mesh(file);
+    io::scale_mesh(file, o.scale, &piece);
+    ConvexPiece p{convex_hull(piece.vertices)};
+    if (p.hull.faces.empty()) {
+      throw io::InputError(file, 0, "a piece without volume (its points are flat or fewer than 4)");
+    }
+    const Box b = bounding_box(p.hull);
+    box = k == 0 ? b : Box{box.lo.cwiseMin(b.lo), box.hi.cwiseMax(b.hi)};
+    d.pieces.push_back(std::move(p));
+  }
+  const std::string mismatch = placement_mismatch(bounding_box(mesh), 1, box);
+  if (!mismatch.empty()) {
+    throw io::InputError(o.describe, 0,
+                         "not pieces of " + o.mesh + " at --scale " + scale_text(o.scale) + ": " +
+                             mismatch +
+                             " (the pieces must be in the mesh's coordinates and units)");
+  }
+  seconds = seconds_since(start);
   return d;
 }
 
@@ -283,6 +381,7 @@ DecomposeRun decompose_into(const DecomposeOptions& o, const std::string& work) 
   }
   // The mesh as graspcd reads it: a bad file is one line naming it.
   io::MeshStats stats;
+  report(o, "reading " + o.mesh);
   const TriangleMesh mesh = [&] {
     TriangleMesh loaded = io::load_mesh(o.mesh, &stats);
     io::scale_mesh(o.mesh, o.scale, &loaded);
@@ -310,7 +409,9 @@ DecomposeRun decompose_into(const DecomposeOptions& o, const std::string& work) 
   TriangleMesh coarse;
   m.simplify = simplify_copy(o, mesh, coarse);
   const Decomposition d =
-      run_engine(o, mesh, m.simplify && m.simplify->decimated, coarse, m.seconds);
+      o.engine == Engine::kGiven
+          ? given_pieces(o, mesh, m.seconds)
+          : run_engine(o, mesh, m.simplify && m.simplify->decimated, coarse, m.seconds);
 
   // How far the pieces' hulls lie from the original surface, and the volume they add.
   std::vector<TriangleMesh> hulls;
@@ -318,6 +419,7 @@ DecomposeRun decompose_into(const DecomposeOptions& o, const std::string& work) 
   const double bound =
       o.hausdorff_bound > 0 ? o.hausdorff_bound : kDefaultBoundFraction * bounding_diagonal(mesh);
   const Clock::time_point h_start = Clock::now();
+  report(o, "the Hausdorff distance from the pieces to the mesh (CGAL; no progress from it)");
   const exact::BoundedHausdorff h = exact::one_sided_hausdorff(hulls, mesh, bound);
   m.hausdorff = {h.distance, h.error_bound, seconds_since(h_start)};
   const double diagonal = bounding_diagonal(mesh);
@@ -329,7 +431,10 @@ DecomposeRun decompose_into(const DecomposeOptions& o, const std::string& work) 
       << " m), which no piece of it can: the engine's answer does not fit the mesh";
     warnings().add("decompose_far_pieces", w.str());
   }
-  if (stats.closedness.closed()) m.volume = added_volume(hulls, mesh, o.mesh);
+  if (stats.closedness.closed()) {
+    report(o, "the volumes (CGAL)");
+    m.volume = added_volume(hulls, mesh, o.mesh);
+  }
   if (m.volume && m.volume->added_fraction < -kMaxVolumeLoss) {
     std::ostringstream w;
     w << std::setprecision(3) << o.mesh << ": the pieces hold " << -100 * m.volume->added_fraction
@@ -345,8 +450,10 @@ DecomposeRun decompose_into(const DecomposeOptions& o, const std::string& work) 
     files = write_decomposition_files(
         d.pieces, work, stem,
         "graspcd decompose: " + std::to_string(d.pieces.size()) + " convex pieces (" +
-            (o.engine == Engine::kVhacd ? "V-HACD" : "HACD") + ") of " +
-            fs::path(o.mesh).filename().string() +
+            (o.engine == Engine::kVhacd   ? "V-HACD"
+             : o.engine == Engine::kGiven ? "given in " + o.describe
+                                          : "HACD") +
+            ") of " + fs::path(o.mesh).filename().string() +
             (o.scale == 1 ? std::string(", in its own coordinates and scale")
                           : ", in its own coordinates times the scale " + scale_text(o.scale)),
         o.out);
@@ -356,10 +463,16 @@ DecomposeRun decompose_into(const DecomposeOptions& o, const std::string& work) 
 
   m.source = fs::absolute(o.mesh).lexically_normal().string();
   m.engine = engine_name(o.engine);
-  m.engine_parameters = engine_parameters(o);
+  m.scale = o.scale;
+  m.units = o.scale_given || stats.in_metres ? "m" : "source";
+  if (o.engine == Engine::kGiven) {
+    m.pieces_from = fs::absolute(o.describe).lexically_normal().string();
+  } else {
+    m.engine_parameters = engine_parameters(o);
+  }
   m.source_faces = mesh.faces.size();
   m.closed = stats.closedness.closed();
-  m.max_pieces = o.pieces;
+  m.max_pieces = o.engine == Engine::kGiven ? static_cast<int>(d.pieces.size()) : o.pieces;
   m.piece_count = d.pieces.size();
   m.slabs = d.slabs;
   m.flat_clusters = d.flat_clusters;
@@ -374,13 +487,21 @@ DecomposeRun decompose_into(const DecomposeOptions& o, const std::string& work) 
 
 }  // namespace
 
-const char* engine_name(Engine engine) { return engine == Engine::kVhacd ? "vhacd" : "hacd"; }
+const char* engine_name(Engine engine) {
+  return engine == Engine::kVhacd ? "vhacd" : engine == Engine::kGiven ? "given" : "hacd";
+}
 
 std::string decomposition_text(const Manifest& m, const DecomposeOptions& o) {
   std::ostringstream out;
   out << std::setprecision(4);
-  out << "engine " << m.engine << "\n";
-  out << "pieces " << m.piece_count << " (at most " << o.pieces << ")\n";
+  out << "engine " << m.engine << (m.pieces_from.empty() ? "" : " (" + m.pieces_from + ")") << "\n";
+  out << "scale " << m.scale << " (" << (m.units == "m" ? "metres" : "the mesh's own units")
+      << ")\n";
+  if (m.engine == engine_name(Engine::kGiven)) {
+    out << "pieces " << m.piece_count << "\n";
+  } else {
+    out << "pieces " << m.piece_count << " (at most " << o.pieces << ")\n";
+  }
   if (m.simplify) {
     out << "simplify_faces " << m.simplify->faces_before;
     if (m.simplify->decimated) {

@@ -6,6 +6,7 @@
 // DIR/decomposition.json (manifest.h).
 #pragma once
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -13,15 +14,19 @@
 
 namespace graspcd::decompose {
 
-enum class Engine { kHacd, kVhacd };
+// kGiven: no engine; the pieces are read from a folder (decompose --describe: a published
+// decomposition, e.g. the convex pieces a model set ships beside its meshes).
+enum class Engine { kHacd, kVhacd, kGiven };
 
-// The engine's name as the command line and the manifest write it: "hacd", "vhacd".
+// The engine's name as the command line and the manifest write it: "hacd", "vhacd", "given".
 const char* engine_name(Engine engine);
 
 struct DecomposeOptions {
   std::string mesh;  // any format io::load_mesh reads
   double scale = 1;  // its coordinates multiplied by this (file units to metres)
-  std::string out;   // the folder of the pieces, the fragment and the manifest (created)
+  // The scale was given (--scale): the pieces are in metres (Manifest::units "m").
+  bool scale_given = false;
+  std::string out;  // the folder of the pieces, the fragment and the manifest (created)
   Engine engine = Engine::kHacd;
   int pieces = 16;             // at most this many pieces (HACD's clusters, V-HACD's hulls)
   int simplify = 0;            // HACD only. 0: HACD on the mesh itself; F: on a copy of <= F faces
@@ -29,6 +34,14 @@ struct DecomposeOptions {
   double timeout = 600;        // V-HACD only: node is stopped after this many s
   std::string vhacd_script;    // V-HACD only: empty for default_vhacd_script() (vhacd.h)
   double hausdorff_bound = 0;  // 0: kDefaultBoundFraction of the bounding box diagonal
+  // Engine::kGiven: the folder of the pieces, each a mesh file (any format io::load_mesh reads)
+  // in `mesh`'s coordinates and units, taken in the order of their names (numbers by value:
+  // contact2 before contact10). Each is written as its convex hull (qhull), which is what
+  // MuJoCo collides, scaled as `mesh` is.
+  std::string describe;
+  // Called as the work goes (e.g. for progress lines): what is being done and, when known, the
+  // share of that stage done (0 to 1; negative: unknown). HACD reports its merges.
+  std::function<void(const std::string&, double)> progress;
 };
 
 // The Hausdorff distance's error bound when DecomposeOptions::hausdorff_bound is 0: this fraction
@@ -63,7 +76,9 @@ struct DecomposeRun {
   std::string document;  // decomposition.json as written (with graspcd's envelope), no final '\n'
 };
 
-// Decomposes `options.mesh` into `options.out` and writes the manifest there. The folder is
+// Decomposes `options.mesh` into `options.out` (Engine::kGiven: describes the pieces of
+// `options.describe` as its decomposition, refusing pieces that do not lie where the mesh lies,
+// decompose::placement_mismatch) and writes the manifest there. The folder is
 // written whole or not at all: in a private folder beside it (.NAME.graspcd-XXXXXX, removed on
 // errors and on INT, TERM and HUP), renamed to it at the end. A folder that holds nothing, or
 // only an earlier decomposition (decomposition.json and the files it lists), is replaced whole

@@ -6,6 +6,7 @@
 #include <mujoco/mujoco.h>
 
 #include <string>
+#include <vector>
 
 #include "graspcd/grasp/decomposed_pieces.h"
 #include "graspcd/grasp/grasp.h"
@@ -19,12 +20,16 @@ struct DecomposedScene {
   int mesh_assets = 0;     // <mesh> assets of the scene that read the source file
   int replaced_geoms = 0;  // geoms of those meshes, now without collision
   int pieces = 0;          // convex pieces per replaced geom
+  std::vector<std::string>
+      piece_files;  // piece K's file, DIR/NAME (as decomposition.json names it)
 };
 
 // Writes a copy of the scene `scene_path` (tinyxml2; the main file only, its includes are left as
 // they are) in which every <mesh> asset whose file has the file name of the decomposition's
 // source (DIR/decomposition.json, "source") gets one sibling <mesh> per piece (the piece's OBJ by
-// absolute path, the asset's scale kept), and every <geom> of such a mesh:
+// absolute path, its scale the asset's divided by the decomposition's "scale", so that the pieces
+// lie where the scene's mesh lies whatever scale they were written at), and every <geom> of such
+// a mesh:
 //  - stays, for its mass and inertia, but no longer collides (contype = conaffinity = 0);
 //  - gets one sibling <geom> per piece with all its attributes (pos, quat, class, friction,
 //    contype, ...) but name (NAME__piece_K), mesh, and mass 0 (the density attribute dropped),
@@ -32,9 +37,14 @@ struct DecomposedScene {
 // MuJoCo places each piece by its own centre of mass and the geom's pos and quat, so the pieces
 // stand where the mesh stood. The copy is written into the scene's folder as a hidden file whose
 // name is unique (removed by the caller); its <include>s and meshdir keep working.
+// Before, the pieces are checked against the scene's mesh file (or else the manifest's source):
+// pieces whose bounding box is not the mesh's at the decomposition's scale
+// (decompose::placement_mismatch: a scale applied twice, or forgotten) are refused. A manifest
+// without a scale (written before graspcd 0.5) is read as scale 1, with the warning
+// "decomposition_scale".
 // Throws io::InputError (grasp.h) naming DIR for a missing or bad decomposition.json, naming
-// the scene when it cannot be read, holds no mesh of the source file, or its folder cannot be
-// written.
+// DIR/decomposition.json for pieces that do not lie where the mesh lies, naming the scene when it
+// cannot be read, holds no mesh of the source file, or its folder cannot be written.
 DecomposedScene write_decomposed_scene(const std::string& scene_path,
                                        const std::string& decomposition_dir);
 

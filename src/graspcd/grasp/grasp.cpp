@@ -24,16 +24,17 @@ namespace {
 // check_start_state; then, under native collision, the geometry MuJoCo collides (the hulls of
 // the meshes, or of the pieces) by check_hull_start.
 // `truth`: the model with the true object (true_object_model) for a decomposed scene, else null.
+// `open`: the open meshes reported elsewhere (the hand's, the served ones).
 void throw_if_bad_start(const mjModel* m, const mjData* d, int object, const std::string& scene,
-                        const GraspOptions& options, const mjModel* truth) {
+                        const GraspOptions& options, const mjModel* truth, const OpenMeshes& open) {
   const bool decomposed = truth != nullptr;
   const mujoco::SceneNames& names = options.names;
-  const std::string problem = check_start_state(decomposed ? truth : m, d, object, names);
+  const std::string problem = check_start_state(decomposed ? truth : m, d, object, names, open);
   if (!problem.empty()) {
-    throw names.refusal(scene, 0, "the start state is not valid: " + problem);
+    throw names.refusal(scene, 0, "the start state is not valid: " + problem + names.start_note);
   }
   if (!options.native) return;
-  const std::string hull = check_hull_start(m, d, object);
+  const std::string hull = check_hull_start(m, d, object, names);
   if (!hull.empty()) {
     throw names.refusal(scene, 0,
                         std::string("cannot start with ") +
@@ -140,7 +141,12 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   // e.g. a gripper half closed with a pad through a mug's handle), else the model's qpos0.
   if (m->nkey > 0) mj_resetDataKeyframe(m, d, 0);
   mj_forward(m, d);
-  throw_if_bad_start(m, d, run->object(), scene_path, options, truth.get());
+  OpenMeshes open;
+  if (drive) open.hand_body = mj_name2id(m, mjOBJ_BODY, drive->hand.c_str());
+  if (registry) {
+    open.served = [&registry](int g) { return registry->geom_tree(g) != nullptr; };
+  }
+  throw_if_bad_start(m, d, run->object(), scene_path, options, truth.get(), open);
   if (truth) run->set_truth(truth.get());
   if (registry) registry->reset_stats();
   run->run(options, result);

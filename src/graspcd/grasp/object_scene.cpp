@@ -328,13 +328,67 @@ std::string units_hint(double size, double scale, bool fitted, const io::MeshSta
   return w.str();
 }
 
+// What a refused start adds about the object's size (an object too large for the hand reads as a
+// finger or the palm penetrating it): its extent across and along gravity against the template's
+// room (graspcd_fit) and what to try: --fit (with the scale it gives), an --up under which the
+// file's box fits the room, or, for an object already within the room, another turn. "" without
+// a room.
+std::string size_hint(const TriangleMesh& mesh, const ObjectPlacement& placement,
+                      const Vec3& extent, double scale, const TemplateRoom& room,
+                      double fit_fraction, const std::string& hand) {
+  if (!room.fit) return "";
+  const double room_width = (*room.fit)[0], room_height = (*room.fit)[1];
+  const Vec3 size = scale * extent;
+  std::ostringstream out;
+  out << std::setprecision(3) << "the object is " << size[0] << " x " << size[1] << " x " << size[2]
+      << " m (across, across, up), " << hand << "room " << room_width << " across and "
+      << room_height << " up";
+  if (placement.fit) {
+    out << ": fitted to it; turn it (--up, --yaw) or pick another hand";
+    return out.str();
+  }
+  const double width = std::max(size[0], size[1]);
+  const bool wide = width > room_width, tall = size[2] > room_height;
+  if (!wide && !tall) {
+    out << ": it fits; turn it (--up, --yaw) or pick another hand";
+    return out.str();
+  }
+  out << ": too "
+      << (wide && tall ? "large"
+          : wide       ? "wide"
+                       : "tall")
+      << "; try --fit (scale " << std::setprecision(4)
+      << fit_fraction *
+             std::min(room_width / std::max(extent[0], extent[1]), room_height / extent[2])
+      << ")";
+  // The file's box at this scale, each axis up in turn (no yaw).
+  Vec3 lo = mesh.vertices.front(), hi = lo;
+  for (const Vec3& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  const Vec3 box = scale * (hi - lo);
+  static const char* kAxes[] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a) {
+    const std::string axis = kAxes[a];
+    if (placement.up == axis || placement.up == "-" + axis || placement.up == "+" + axis) continue;
+    const double across = std::max(box[(a + 1) % 3], box[(a + 2) % 3]);
+    if (across <= room_width && box[a] <= room_height) {
+      out << std::setprecision(3) << " or --up " << axis << " (" << across << " across, " << box[a]
+          << " up)";
+      break;
+    }
+  }
+  return out.str();
+}
+
 // The object turned, scaled (given or fitted to the room) and placed: its lowest point
 // kSupportGap above the support point, centred on it across gravity. Warns when it comes out
 // larger than kLargeObject. The scene and pairs paths are left empty.
 ObjectScene place_object(const TriangleMesh& mesh, const ObjectPlacement& placement,
                          double fit_fraction, const GravityFrame& f, const TemplateRoom& room,
                          const TemplateParts& t, const std::string& template_path,
-                         const io::MeshStats& stats) {
+                         const io::MeshStats& stats, const std::string& hand) {
   const Eigen::Quaterniond q = object_rotation(placement, f.up);
   const Mat3 R = q.toRotationMatrix();
   // The turned mesh's extent in (e1, e2, up), unscaled.
@@ -367,6 +421,8 @@ ObjectScene place_object(const TriangleMesh& mesh, const ObjectPlacement& placem
       units_hint(std::max({out.size[0], out.size[1], out.size[2]}), s, placement.fit, stats);
   if (!out.units_hint.empty()) {
     warnings().add("mesh_units", placement.file + ": " + out.units_hint, "mesh");
+  } else {
+    out.size_hint = size_hint(mesh, placement, extent, s, room, fit_fraction, hand);
   }
   const Vec3 centre = 0.5 * s * (lo + hi);
   const Vec3 pos =
@@ -636,8 +692,8 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTempl
   const TemplateParts t = read_template(doc, template_path);
   const GravityFrame frame = gravity_frame(t.root, template_path);
   const TemplateRoom room = template_room(t, hand.fit, template_path);
-  ObjectScene out =
-      place_object(mesh, placement, hand.fit_fraction, frame, room, t, template_path, stats);
+  ObjectScene out = place_object(mesh, placement, hand.fit_fraction, frame, room, t, template_path,
+                                 stats, hand.mesh_owner());
   out.faces = mesh.faces.size();
   Vec3 support = room.support;
   raise_to_reach(t, room, frame, hand, template_path, out, support);
@@ -693,7 +749,9 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTempl
                {{out.pairs, hand.drive.empty() ? hand.pairs() : hand.drive},
                 {object_file.string(), placement.file}},
                hand.mesh_owner(),
-               "object_mesh"};
+               "object_mesh",
+               {},
+               out.size_hint.empty() ? "" : "; " + out.size_hint};
   return out;
 }
 

@@ -60,6 +60,11 @@ struct ObjectScene {
   // units, e.g. "the object is 60 m across at --scale 1: is the file in millimetres? try --scale
   // 0.001"; also the warning "mesh_units". A refusal of the scene adds it to its line.
   std::string units_hint;
+  // Without a units hint, what a refused start adds about the object's size against the
+  // template's room (graspcd_fit) and what to try, e.g. "the object is 0.07 x 0.07 x 0.15 m
+  // (across, across, up), the robotiq hand's room 0.075 across and 0.06 up: too tall; try --fit
+  // (scale 0.36) or --up x (0.15 across, 0.07 up)"; SceneNames::start_note carries it.
+  std::string size_hint;
   // How messages name the written files: the scene as the user's mesh ("in the template scene"),
   // the pair config as the template's, the mesh copy as the user's mesh, the hand's meshes as
   // the hand's (mujoco/scene_names.h).

@@ -9,6 +9,8 @@
 #include "graspcd/core/containment.h"
 #include "graspcd/core/obb_tree.h"
 #include "graspcd/core/penetration.h"
+#include "graspcd/grasp/decomposed_pieces.h"
+#include "graspcd/io/limit_text.h"
 #include "graspcd/io/warnings.h"
 #include "graspcd/mujoco/collision_pose.h"
 #include "graspcd/mujoco/primitives.h"
@@ -39,6 +41,31 @@ std::string millimetres(double metres) {
   char text[32];
   std::snprintf(text, sizeof text, "%.1f mm", metres * 1e3);
   return text;
+}
+
+// A depth beyond kStartPenetration, in mm with enough decimals to differ from it (0.5004 mm is
+// not "0.5 mm" beside "at most 0.5 mm allowed").
+std::string depth_mm(double metres) {
+  return io::fixed_beyond(metres * 1e3, kStartPenetration * 1e3, 1) + " mm";
+}
+
+// How a refusal names what MuJoCo collides of a mesh geom: a piece of a decomposed scene
+// (is_piece) by its number, its mesh and, when `names` has it, its file ("piece 3 of mesh 'bowl'
+// (bowl16/bowl_piece_3.obj)"); any other mesh as its convex hull, "mesh 'bowl''s convex hull".
+// `geom` words a geom that is not a piece ("geom 'finger'").
+std::string piece_name(const mjModel* m, int g, const mujoco::SceneNames* names) {
+  const char* mesh = mj_id2name(m, mjOBJ_MESH, m->geom_dataid[g]);
+  const std::string name = mesh != nullptr ? mesh : "";
+  const std::size_t at = name.rfind("__piece_");
+  const std::string k = name.substr(at + 8);
+  std::string out = "piece " + k + " of mesh '" + name.substr(0, at) + "'";
+  const bool number =
+      !k.empty() && k.size() < 10 && k.find_first_not_of("0123456789") == std::string::npos;
+  const std::size_t index = number ? static_cast<std::size_t>(std::stoul(k)) : 0;
+  if (number && names != nullptr && index < names->pieces.size()) {
+    out += " (" + names->pieces[index] + ")";
+  }
+  return out;
 }
 
 // A geom's surface in the world: its triangles, their tree, whether it bounds a solid, and the
@@ -115,11 +142,23 @@ std::optional<WorldSurface> world_surface(const mjModel* m, const mjData* d, int
   return out;
 }
 
-// Once per geom and check (`warned` by geom id).
-void warn_open(const mjModel* m, int g, std::vector<char>& warned,
-               const mujoco::SceneNames& names) {
+// Whether geom `g`'s body is `body` or lies below it.
+bool in_subtree(const mjModel* m, int g, int body) {
+  if (body < 0) return false;
+  for (int b = m->geom_bodyid[g]; b > 0; b = m->body_parentid[b]) {
+    if (b == body) return true;
+  }
+  return false;
+}
+
+// Once per geom and check (`warned` by geom id), and only for a geom no other part reports: not
+// the hand's (`open.hand_body`'s subtree: a hand's own open meshes are listed in its docs), not
+// one the registry serves (it reports its open meshes, "mesh_open").
+void warn_open(const mjModel* m, int g, std::vector<char>& warned, const mujoco::SceneNames& names,
+               const OpenMeshes& open) {
   if (warned[static_cast<std::size_t>(g)]) return;
   warned[static_cast<std::size_t>(g)] = 1;
+  if (in_subtree(m, g, open.hand_body) || (open.served && open.served(g))) return;
   warnings().add("start_check_open",
                  "start check: " + geom_name(m, g, &names) +
                      " is not a closed mesh: what lies inside it is not checked");
@@ -137,19 +176,25 @@ bool far_apart(const mjModel* m, const mjData* d, int a, int b) {
   return gap > kStartPenetration;
 }
 
-// "MuJoCo collides mesh 'M' as its convex hull, which WHAT lies X inside at the start".
-std::string inside_hull(const mjModel* m, int hull_geom, const std::string& what, double depth) {
+// "MuJoCo collides mesh 'M' as its convex hull, which WHAT lies X inside at the start"; inside a
+// piece of a decomposed scene, "WHAT lies X inside piece K of mesh 'M' (FILE) at the start".
+std::string inside_hull(const mjModel* m, int hull_geom, const std::string& what, double depth,
+                        const mujoco::SceneNames& names) {
+  if (is_piece(m, hull_geom)) {
+    return what + " lies " + depth_mm(depth) + " inside " + piece_name(m, hull_geom, &names) +
+           " at the start";
+  }
   const char* mesh = mj_id2name(m, mjOBJ_MESH, m->geom_dataid[hull_geom]);
   const std::string named = mesh != nullptr && *mesh != '\0' ? "mesh '" + std::string(mesh) + "'"
                                                              : geom_name(m, hull_geom);
   return "MuJoCo collides " + named + " as its convex hull, which " + what + " lies " +
-         millimetres(depth) + " inside at the start";
+         depth_mm(depth) + " inside at the start";
 }
 
 }  // namespace
 
 std::string check_start_state(const mjModel* m, const mjData* d, int object_body,
-                              const mujoco::SceneNames& names) {
+                              const mujoco::SceneNames& names, const OpenMeshes& open) {
   const int root = m->body_rootid[object_body];
   const auto in_object = [&](int g) { return m->body_rootid[m->geom_bodyid[g]] == root; };
   std::vector<char> warned(static_cast<std::size_t>(m->ngeom), 0);
@@ -174,7 +219,7 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
         double depth = 0;
         for (const Vec3& v : object->probes) depth = std::max(depth, -normal.dot(v - at));
         if (depth > kStartPenetration) {
-          return what + " lies " + millimetres(depth) + " below the plane " + geom_name(m, g) +
+          return what + " lies " + depth_mm(depth) + " below the plane " + geom_name(m, g) +
                  " (at most " + millimetres(kStartPenetration) +
                  " allowed): put its lowest point on the support";
         }
@@ -193,27 +238,28 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
       if (other_closed) {
         const VertexPenetration p = deepest_point_inside(other->tree, object->probes);
         if (p.depth > kStartPenetration) {
-          return what + " penetrates " + geom_name(m, g) + " by " + millimetres(p.depth) +
+          return what + " penetrates " + geom_name(m, g) + " by " + depth_mm(p.depth) +
                  " (at most " + millimetres(kStartPenetration) + " allowed)";
         }
       } else {
-        warn_open(m, g, warned, names);
+        warn_open(m, g, warned, names, open);
       }
       if (object_closed) {
         const VertexPenetration p = deepest_point_inside(object->tree, other->probes);
         if (p.depth > kStartPenetration) {
-          return geom_name(m, g) + " penetrates the object (" + what + ") by " +
-                 millimetres(p.depth) + " (at most " + millimetres(kStartPenetration) + " allowed)";
+          return geom_name(m, g) + " penetrates the object (" + what + ") by " + depth_mm(p.depth) +
+                 " (at most " + millimetres(kStartPenetration) + " allowed)";
         }
       } else {
-        warn_open(m, o, warned, names);
+        warn_open(m, o, warned, names, open);
       }
     }
   }
   return "";
 }
 
-std::string check_hull_start(const mjModel* m, const mjData* d, int object_body) {
+std::string check_hull_start(const mjModel* m, const mjData* d, int object_body,
+                             const mujoco::SceneNames& names) {
   const int root = m->body_rootid[object_body];
   const auto in_object = [&](int g) { return m->body_rootid[m->geom_bodyid[g]] == root; };
   for (int o = 0; o < m->ngeom; ++o) {
@@ -237,18 +283,19 @@ std::string check_hull_start(const mjModel* m, const mjData* d, int object_body)
       // a bowl's cavity or a handle's hole), then the other's hull around the object. A mesh's
       // probes are its hull's: MuJoCo collides two meshes hull against hull.
       const auto probed = [&](int geom, std::string name) {
+        if (is_piece(m, geom)) return piece_name(m, geom, &names);
         return m->geom_type[geom] == mjGEOM_MESH ? "the hull of " + name : name;
       };
       if (object_mesh && object->closedness.closed()) {
         const VertexPenetration p = deepest_point_inside(object->tree, other->probes);
         if (p.depth > kStartPenetration) {
-          return inside_hull(m, o, probed(g, geom_name(m, g)), p.depth);
+          return inside_hull(m, o, probed(g, geom_name(m, g)), p.depth, names);
         }
       }
       if (other_mesh && other->closedness.closed()) {
         const VertexPenetration p = deepest_point_inside(other->tree, object->probes);
         if (p.depth > kStartPenetration) {
-          return inside_hull(m, g, probed(o, geom_name(m, o) + " of the object"), p.depth);
+          return inside_hull(m, g, probed(o, geom_name(m, o) + " of the object"), p.depth, names);
         }
       }
     }

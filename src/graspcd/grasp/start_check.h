@@ -22,6 +22,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <functional>
 #include <string>
 
 #include "graspcd/mujoco/scene_names.h"
@@ -33,11 +34,22 @@ namespace graspcd::grasp {
 // MuJoCo's soft contacts at rest sink a fraction of a millimetre, which this also allows.
 inline constexpr double kStartPenetration = 0.5e-3;
 
+// Which open meshes the start check leaves unreported (each is reported elsewhere, once): the
+// geoms of the hand (the subtree of `hand_body`, the "grasp" section's "hand"; docs/real-hands.md
+// lists the real hands' open meshes) and the geoms `served` says the registry serves (it warns
+// "mesh_open" for those).
+struct OpenMeshes {
+  int hand_body = -1;
+  std::function<bool(int geom)> served;
+};
+
 // The first violation as one message (no file name in front), or "" when the start state is
 // valid. `object_body` is the object's body id; `d` holds the initial state after mj_forward.
 // `names` words the warnings of a scene graspcd wrote (a mesh of the hand called the hand's).
+// An open mesh near the object is the warning "start_check_open" (what lies inside it is not
+// checked), but for those `open` leaves out.
 std::string check_start_state(const mjModel* m, const mjData* d, int object_body,
-                              const mujoco::SceneNames& names = {});
+                              const mujoco::SceneNames& names = {}, const OpenMeshes& open = {});
 
 // The start as MuJoCo's native collision sees it (--native, and the pieces of --decomposed, which
 // are mesh geoms collided natively): every mesh geom is its convex hull (MuJoCo 2.2's mesh_graph,
@@ -47,9 +59,14 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
 // geom's inside the object's hull, then the object's inside the other's hull. The first depth
 // beyond kStartPenetration as one message, "MuJoCo collides mesh 'bowl' as its convex hull, which
 // geom 'left_pad' lies 18.3 mm inside at the start" (a mesh's probes are named "the hull of geom
-// ..."), or "" when none. A start that passes check_start_state and fails this one is a limit of
-// the hull, not of the scene. Primitives against primitives, planes and height fields are left to
-// check_start_state, which sees them as MuJoCo collides them.
-std::string check_hull_start(const mjModel* m, const mjData* d, int object_body);
+// ..."), or "" when none. A piece of a decomposed scene is convex and is named as the piece it is,
+// with its file from `names` (SceneNames::pieces): "geom 'table' lies 3.6 mm inside piece 0 of
+// mesh 'object_mesh' (can/textured_piece_0.obj) at the start". A start that passes
+// check_start_state and fails this one is a limit of the hull (or of the pieces), not of the
+// scene. Primitives against primitives, planes and height fields are left to check_start_state,
+// which sees them as MuJoCo collides them. Every depth is printed with enough decimals to differ
+// from kStartPenetration.
+std::string check_hull_start(const mjModel* m, const mjData* d, int object_body,
+                             const mujoco::SceneNames& names = {});
 
 }  // namespace graspcd::grasp

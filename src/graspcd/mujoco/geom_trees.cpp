@@ -166,7 +166,11 @@ const MeshTree& GeomTrees::mesh_tree_of(const mjModel* m, int mesh, const std::s
   const std::string what =
       "mesh " + std::to_string(mesh) + (mname.empty() ? "" : " '" + mname + "'");
   if (tris.empty()) throw io::InputError(source, 0, what + " has no face of non-zero area");
-  if (!hygiene.dropped_faces.empty()) {
+  // The object mesh of a scene graspcd wrote from a user's file (SceneNames::object_mesh): the
+  // reader that copied the file reported its zero-area faces, under the user's file and in its
+  // face order; the same fault is not reported again here.
+  const bool reported = !names.object_mesh.empty() && mname == names.object_mesh;
+  if (!hygiene.dropped_faces.empty() && !reported) {
     warn("mesh_zero_area_faces",
          dropped_faces_message(source, names.mesh_owner(mname) + what, hygiene.dropped_faces));
   }

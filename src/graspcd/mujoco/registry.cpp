@@ -117,6 +117,12 @@ void Registry::warn_open_meshes(const std::string& source, const SceneNames& nam
       const int mesh = m->geom_dataid[g];
       if (!warned.insert(mesh).second) continue;
       const std::string mname = object_name(m, mjOBJ_MESH, mesh);
+      // The object mesh of a scene graspcd wrote: the user's file (SceneNames::scene).
+      if (!names.object_mesh.empty() && mname == names.object_mesh) {
+        warn("mesh_open", names.scene + ": the object is " + t->closedness.describe() +
+                              "; containment inside it is not checked (surface contacts only)");
+        continue;
+      }
       warn("mesh_open", source + ": " + names.mesh_owner(mname) + "mesh " + std::to_string(mesh) +
                             (mname.empty() ? "" : " '" + mname + "'") + " is " +
                             t->closedness.describe() +

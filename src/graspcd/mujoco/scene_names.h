@@ -29,6 +29,13 @@ struct SceneNames {
   // hand's " (empty: nothing).
   std::string hand;
   std::string object_mesh;
+  // A decomposed scene's pieces (grasp/decomposed_scene.h): piece K's file as the user knows it
+  // (DIR/NAME_piece_K.obj), for a refusal that names a piece (empty: none).
+  std::vector<std::string> pieces;
+  // After a refusal of the start state only (grasp/start_check.h), before `note`: what the
+  // object's size says against the hand's room ("; the object is ... m, the robotiq hand's room
+  // ...: too tall; try --fit ...").
+  std::string start_note;
 
   // The file a message names for `path`.
   std::string file(const std::string& path) const;

@@ -392,6 +392,8 @@ ValidationReport validate_scene(const std::string& scene, const std::vector<Test
     const grasp::GraspResult result = grasp::run_grasp(scene, grasp);
     ValidationReport report = validator.finish(result);
     report.config = config;
+    report.max_steps = options.max_steps;
+    report.cut_short = report.steps >= options.max_steps;
     return report;
   }
   // The decomposed grasp runs natively (no registry): the pairs and trees come from a registry of
@@ -412,6 +414,8 @@ ValidationReport validate_scene(const std::string& scene, const std::vector<Test
   registry.reset();  // before its model
   ValidationReport report = validator.finish(result);
   report.config = config;
+  report.max_steps = options.max_steps;
+  report.cut_short = report.steps >= options.max_steps;
   report.decomposed_dir = options.decomposed_dir;
   report.decomposed = decomposed;
   return report;

@@ -124,9 +124,13 @@ struct ValidationReport {
   std::string grasp_method;    // the method that drove the grasp
   int steps = 0;               // closing grasp steps checked
   int steps_with_contact = 0;  // those at which CGAL found some pair intersecting
-  bool gripped = false;        // the grasp's verdict (grasp::GraspResult::gripped)
-  bool held = false;           // grasp::GraspResult::held
-  std::string reason;          // why not held (grasp::GraspResult::reason); empty when held
+  // ValidateOptions::max_steps, and whether the closing ran that many grasp steps: --max-steps
+  // cut it short (the hand had not said it was done before).
+  int max_steps = 0;
+  bool cut_short = false;
+  bool gripped = false;  // the grasp's verdict (grasp::GraspResult::gripped)
+  bool held = false;     // grasp::GraspResult::held
+  std::string reason;    // why not held (grasp::GraspResult::reason); empty when held
   std::vector<MethodTable> methods;
   double exact_seconds = 0;   // CGAL's time over the run
   double tester_seconds = 0;  // the testers' time over the run

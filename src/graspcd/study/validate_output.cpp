@@ -23,6 +23,13 @@ void text_header(std::ostream& out, const ValidationReport& report) {
       << report.grasp_method << (report.gripped ? " (gripped)" : " (not gripped)")
       << "; truth: CGAL " << exact::cgal_version()
       << " on the same triangles or boxes in the same poses\n";
+  out << "# checked: the closing, " << report.steps << " grasp steps, each after its last physics "
+      << "step; "
+      << (report.cut_short
+              ? "--max-steps " + std::to_string(report.max_steps) +
+                    " cut the closing short (the hand had not finished closing)"
+              : "the closing ended before --max-steps " + std::to_string(report.max_steps))
+      << "; the squeeze, the lift and the hold are not checked\n";
   if (report.decomposed.pieces > 0) {
     out << "# decomposed: the grasp ran natively with " << report.decomposed.replaced_geoms
         << " geom(s) of " << report.decomposed.source << " colliding as "
@@ -145,6 +152,9 @@ json validation_json(const ValidationReport& report) {
               {"grasp_method", report.grasp_method},
               {"steps", report.steps},
               {"steps_with_contact", report.steps_with_contact},
+              {"phases", json::array({"closing"})},
+              {"max_steps", report.max_steps},
+              {"cut_short", report.cut_short},
               {"gripped", report.gripped},
               {"cgal", exact::cgal_version()},
               {"exact_seconds", report.exact_seconds},
