@@ -425,9 +425,12 @@ DecomposeRun decompose_into(const DecomposeOptions& o, const std::string& work) 
   const double diagonal = bounding_diagonal(mesh);
   if (h.distance - h.error_bound > kFarPiecesDiagonals * diagonal) {
     std::ostringstream w;
-    w << std::setprecision(4) << o.mesh << ": " << (o.engine == Engine::kVhacd ? "V-HACD" : "HACD")
-      << "'s pieces lie up to " << h.distance << " m from the mesh, farther than "
-      << kFarPiecesDiagonals << " x its bounding box diagonal (" << diagonal
+    w << std::setprecision(4) << o.mesh << ": "
+      << (o.engine == Engine::kVhacd   ? "V-HACD's pieces"
+          : o.engine == Engine::kGiven ? "the given pieces"
+                                       : "HACD's pieces")
+      << " lie up to " << h.distance << " m from the mesh, farther than " << kFarPiecesDiagonals
+      << " x its bounding box diagonal (" << diagonal
       << " m), which no piece of it can: the engine's answer does not fit the mesh";
     warnings().add("decompose_far_pieces", w.str());
   }
