@@ -123,7 +123,11 @@ void check_scene_file(const std::string& path, const SceneNames& names) {
     if (file.is_relative()) file = scan.main_dir / fs::path(scan.meshdir) / file;
     std::error_code ec;
     if (!fs::exists(file, ec)) continue;  // MuJoCo's error names it
-    io::check_mesh_file(file.lexically_normal().string());
+    try {
+      io::check_mesh_file(file.lexically_normal().string());
+    } catch (const io::InputError& e) {
+      throw scan.names->refusal(e.file(), e.line(), e.message());  // the user's name for a copy
+    }
   }
 }
 
