@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -111,6 +112,46 @@ TriangleMesh read_object_mesh(const std::string& file, io::MeshStats* stats) {
   return mesh;
 }
 
+// The first <keyframe> of the files `e` includes (<include file>, read as MuJoCo 2.2 reads it:
+// relative to the main file's folder `main_dir`, its children taking the include's place), and
+// of the files those include, `depth` deep at most; the file that holds it is `file`. An include
+// that cannot be read is left to MuJoCo, whose error names it; one that is no regular file (a
+// FIFO) is refused here, before anything opens it.
+const tinyxml2::XMLElement* included_keyframe(
+    const tinyxml2::XMLElement* e, const fs::path& main_dir, int depth,
+    std::vector<std::unique_ptr<tinyxml2::XMLDocument>>& docs, std::string& file) {
+  constexpr int kMaxIncludeDepth = 16;
+  for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const char* name = c->Attribute("file");
+    if (std::string(c->Name()) == "include" && name != nullptr && depth < kMaxIncludeDepth) {
+      const std::string path = (main_dir / name).string();
+      std::error_code ec;
+      if (!fs::exists(path, ec)) continue;
+      io::require_regular_file(path);
+      docs.push_back(std::make_unique<tinyxml2::XMLDocument>());
+      tinyxml2::XMLDocument& doc = *docs.back();
+      if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS || doc.RootElement() == nullptr) {
+        continue;
+      }
+      std::vector<tinyxml2::XMLElement*> keys;
+      collect(doc.RootElement(), "keyframe", keys);
+      if (!keys.empty()) {
+        file = path;
+        return keys.front();
+      }
+      if (const tinyxml2::XMLElement* key =
+              included_keyframe(doc.RootElement(), main_dir, depth + 1, docs, file)) {
+        return key;
+      }
+      continue;
+    }
+    if (const tinyxml2::XMLElement* key = included_keyframe(c, main_dir, depth, docs, file)) {
+      return key;
+    }
+  }
+  return nullptr;
+}
+
 // What of the template the object scene changes, in `doc`.
 struct TemplateParts {
   tinyxml2::XMLElement* root = nullptr;   // <mujoco>
@@ -132,10 +173,19 @@ TemplateParts read_template(tinyxml2::XMLDocument& doc, const std::string& templ
   }
   // A keyframe is the grasp's start (grasp.h) and holds the template object's pose, which the new
   // object's placement would not replace.
+  // (In the template or in a file it includes.)
+  constexpr const char* kKeyframe =
+      "a template with a <keyframe> cannot take a new object (the keyframe starts the grasp with "
+      "the template object's pose)";
   if (tinyxml2::XMLElement* key = t.root->FirstChildElement("keyframe")) {
-    throw template_error(template_path, key,
-                         "a template with a <keyframe> cannot take a new object (the keyframe "
-                         "starts the grasp with the template object's pose)");
+    throw template_error(template_path, key, kKeyframe);
+  }
+  std::vector<std::unique_ptr<tinyxml2::XMLDocument>> included;
+  std::string holder;
+  if (const tinyxml2::XMLElement* key =
+          included_keyframe(t.root, fs::path(template_path).parent_path(), 0, included, holder)) {
+    throw io::InputError(holder, static_cast<std::size_t>(key->GetLineNum()),
+                         "template scene (included by " + template_path + "): " + kKeyframe);
   }
   tinyxml2::XMLElement* world = t.root->FirstChildElement("worldbody");
   for (tinyxml2::XMLElement* world_element = world; world_element;
@@ -527,9 +577,14 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTempl
                          "the hand's mesh folder has a file named 'object', the object's folder");
   }
   fs::create_directories(object_folder);
-  // MuJoCo 2.2 reads OBJ and binary STL only: any other format is the mesh as graspcd read it,
-  // written as STEM.converted.obj (in its file units).
-  const bool convert = stats.format != "OBJ" && stats.format != "binary STL";
+  // MuJoCo 2.2 reads OBJ and binary STL only, a binary STL of at most kMujocoStlFaces triangles,
+  // and refuses a mesh with zero-area faces ("faces have inconsistent orientation"): any other
+  // file is the mesh as graspcd read it (those faces dropped, with a warning), written as
+  // STEM.converted.obj (in its file units).
+  const std::size_t file_faces = mesh.faces.size() + stats.dropped_faces.size();
+  const bool convert = (stats.format != "OBJ" && stats.format != "binary STL") ||
+                       (stats.format == "binary STL" && file_faces > io::kMujocoStlFaces) ||
+                       stats.zero_area_faces > 0;
   const fs::path object_file =
       object_folder / (!flipped.empty() ? stem + ".outward.obj"
                        : convert        ? stem + ".converted.obj"
