@@ -34,8 +34,9 @@ struct DeclaredMesh {
 // The checks made before Assimp reads `path` (`format`: "ply", "gltf", "glb", "dae"), each an
 // InputError naming the file and what is inconsistent:
 //  - PLY in ASCII: the elements the header declares (one line each) against the lines that
-//    follow end_header ("the header declares 108 elements (8 vertex, 100 face), one line each,
-//    but 20 lines follow end_header");
+//    follow end_header ("the header declares 104 elements (4 vertex, 100 face), one line each in
+//    an ASCII PLY, but 8 lines of data follow end_header"); in binary, the bytes its counts need
+//    at least against the bytes that follow;
 //  - glTF and GLB: JSON that nlohmann cannot parse ("FILE:LINE: bad JSON: ..."), a POSITION
 //    accessor that is not VEC3 of 32-bit floats;
 //  - COLLADA: XML that tinyxml2 cannot parse, a <unit meter> that is not a finite positive number.
@@ -44,8 +45,9 @@ DeclaredMesh check_declared(const std::string& path, const std::string& format);
 
 // The faces Assimp's reader made of each mesh (ImportedMesh::read_faces) against the triangles
 // each glTF primitive declares: fewer are triangles that named a vertex beyond the POSITION
-// accessor, which Assimp drops ("meshes[0].primitives[0]: 10 of its 12 triangles name a vertex
-// beyond the 8 of its POSITION accessor 0"). Nothing is checked when the counts of meshes differ.
+// accessor, which Assimp drops ("meshes[0].primitives[0]: 2 of its 4 triangles (indices accessor
+// 1) name a vertex beyond the 4 of its POSITION accessor 0"). Nothing is checked when the counts
+// of meshes differ.
 void check_read_faces(const std::string& path, const DeclaredMesh& declared,
                       const std::vector<std::uint64_t>& read_faces);
 
