@@ -3,10 +3,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iostream>
 #include <sstream>
+#include <string>
 
 #include "graspcd/io/text_input.h"
 
@@ -51,15 +53,58 @@ CLI::Validator number_in_range(double lo, double hi) {
                        "FLOAT " + range.str());
 }
 
-CLI::Validator integer_in_range(long long lo, long long hi) {
-  const std::string range = std::to_string(lo) + " .. " + std::to_string(hi);
+namespace {
+
+// The decimal integer validator of [lo, hi]: `below` and `above` word the range in the errors of
+// a value below lo and above hi ("in 4 .. 100", "> 0"), `name` in the help.
+CLI::Validator integer_validator(long long lo, unsigned long long hi, const std::string& below,
+                                 const std::string& above, const std::string& name) {
   return CLI::Validator(
-      [lo, hi, range](std::string& input) -> std::string {
-        long long x = 0;
-        if (!CLI::detail::lexical_cast(input, x)) return "Value " + input + " is not an integer";
-        return x >= lo && x <= hi ? "" : "Value " + input + " is not in " + range;
+      [lo, hi, below, above](std::string& input) -> std::string {
+        std::size_t i = 0;
+        const bool negative = !input.empty() && input[0] == '-';
+        if (!input.empty() && (input[0] == '-' || input[0] == '+')) ++i;
+        if (i == input.size() || input.find_first_not_of("0123456789", i) != std::string::npos) {
+          return "Value " + input + " is not a decimal integer";
+        }
+        const std::string digits =
+            input.substr(std::min(input.find_first_not_of('0', i), input.size() - 1));
+        // 19 digits hold every bound (2^63 has 19); more are out of range.
+        const bool fits = digits.size() <= 19;
+        const unsigned long long magnitude = fits ? std::stoull(digits) : 0;
+        const unsigned long long least =
+            lo < 0 ? 0 : static_cast<unsigned long long>(lo);  // for a non-negative value
+        const unsigned long long most_negative =
+            lo < 0 ? static_cast<unsigned long long>(-(lo + 1)) + 1 : 0;
+        const bool below_zero = negative && (!fits || magnitude > 0);
+        const bool low =
+            below_zero ? !fits || magnitude > most_negative : fits && magnitude < least;
+        const bool high = !below_zero && (!fits || magnitude > hi);
+        if (low || high) return "Value " + input + " is not " + (low ? below : above);
+        input = (negative && magnitude > 0 ? "-" : "") + digits;
+        return "";
       },
-      "INT in " + range);
+      name);
+}
+
+}  // namespace
+
+CLI::Validator integer_in_range(long long lo, unsigned long long hi) {
+  const std::string range = std::to_string(lo) + " .. " + std::to_string(hi);
+  return integer_validator(lo, hi, "in " + range, "in " + range, "INT in " + range);
+}
+
+CLI::Validator positive_integer(unsigned long long hi) {
+  return integer_validator(1, hi, "> 0", "<= " + std::to_string(hi), "POSITIVE");
+}
+
+CLI::Validator non_negative_integer(unsigned long long hi) {
+  return integer_validator(0, hi, ">= 0", "<= " + std::to_string(hi), "NONNEGATIVE");
+}
+
+CLI::Validator decimal_integer(long long lo, unsigned long long hi) {
+  const std::string range = "in " + std::to_string(lo) + " .. " + std::to_string(hi);
+  return integer_validator(lo, hi, range, range, "");
 }
 
 void for_each_case(const std::string& path, std::size_t count,

@@ -51,9 +51,18 @@ CLI::Validator non_negative_number();
 // is not a finite number".
 CLI::Validator number_in_range(double lo, double hi);
 
-// A CLI11 validator of an integer option in [lo, hi]: "Value abc is not an integer", "Value 0 is
-// not in 4 .. 100000000" (CLI11's Range says "Value abc not in range" of a non-number).
-CLI::Validator integer_in_range(long long lo, long long hi);
+// Integer options are read in decimal. CLI11 2.1 converts an integer with strtoll's base 0, so
+// "010" would be octal 8, "0x10" 16 and "08" no number ("not in range"). These validators accept
+// an optional sign and decimal digits only ("Value 0x10 is not a decimal integer"), check the
+// range ("Value 0 is not in 4 .. 100000000"; "is not > 0", "is not >= 0") and hand CLI11 the
+// number without its leading zeros ("010" is 10). They rewrite the value, so an option takes them
+// through transform(), never check() (which would drop the rewrite): every integer option of the
+// command line does (tests/app/hostile_formats_test.cpp finds them in the help).
+CLI::Validator integer_in_range(long long lo, unsigned long long hi);
+CLI::Validator positive_integer(unsigned long long hi = 2147483647);
+CLI::Validator non_negative_integer(unsigned long long hi = 2147483647);
+// The same check without a word in the help (an option whose type says enough, --seed's UINT).
+CLI::Validator decimal_integer(long long lo, unsigned long long hi);
 
 // The paragraphs on the number grammar and the errors that every subcommand's help repeats.
 std::string number_grammar_help();

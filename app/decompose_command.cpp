@@ -110,17 +110,17 @@ Command add_decompose_command(CLI::App& parent) {
       ->capture_default_str();
   app->add_option("--pieces", options->run.pieces,
                   "At most this many convex pieces (HACD's clusters, V-HACD's hulls)")
-      ->check(CLI::Range(1, 1024))
+      ->transform(integer_in_range(1, 1024))
       ->capture_default_str();
   app->add_option("--simplify", options->run.simplify,
                   "HACD partitions a copy decimated to at most F faces (CGAL's edge collapse); "
                   "the pieces are hulls of the original vertices")
       ->type_name("F")
-      ->check(integer_in_range(4, 100000000));
+      ->transform(integer_in_range(4, 100000000));
   app->add_option("--resolution", options->run.resolution,
                   "V-HACD: voxels in the mesh's bounding box (finer: closer pieces, slower)")
       ->type_name("R")
-      ->check(integer_in_range(10000, 64000000))
+      ->transform(integer_in_range(10000, 64000000))
       ->capture_default_str();
   app->add_option("--timeout", options->run.timeout,
                   "V-HACD: node is stopped after this many seconds (the mesh is then refused)")
@@ -129,7 +129,7 @@ Command add_decompose_command(CLI::App& parent) {
       ->capture_default_str();
   app->add_option("--hausdorff-bound", options->run.hausdorff_bound,
                   "Error bound of the Hausdorff distance in m (default 0.001 of the bounding box "
-                  "diagonal)")
+                  "diagonal; from 1e-6 of it up to the diagonal itself)")
       ->check(positive_number());
   app->add_flag("--json", options->json, "Print one JSON document instead of text");
   app->footer(wrap_help(

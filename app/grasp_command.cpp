@@ -272,13 +272,13 @@ Command add_grasp_command(CLI::App& parent) {
   app->add_option("--noslip", options->noslip,
                   "MuJoCo's noslip solver iterations (mjOption.noslip_iterations, 0: off) for "
                   "every configuration (default: the scene's, MuJoCo's 0)")
-      ->check(CLI::Range(0, 1000));
+      ->transform(integer_in_range(0, 1000));
   app->add_flag("--multiccd", options->multiccd,
                 "MuJoCo's multi-point convex collision (mjENBL_MULTICCD) for what MuJoCo "
                 "collides itself: --native's hulls, --decomposed's pieces, the pairs graspcd "
                 "does not serve (--multiccd=false: off; default: the scene's flag, MuJoCo's off)");
   app->add_option("--max-steps", options->max_steps, "Most closing grasp steps")
-      ->check(positive_number())
+      ->transform(positive_integer())
       ->capture_default_str();
   app->add_option("--manifold", options->manifold,
                   "The contacts per served pair: support (the support polygon, the default), "

@@ -114,17 +114,30 @@ int check_stdout(const StdoutBuffer& out, int exit_code) {
 // A parse error: --help and --version print (exit 0); every usage error is one line (exit 2).
 int parse_error(CLI::App& app, const CLI::ParseError& e, int argc, char** argv,
                 const StdoutBuffer& out) {
+  // A word that is no option and no subcommand where the subcommand should be: a misspelled
+  // subcommand, named even beside --help (which would print the general help and exit 0).
+  if (app.get_subcommands().empty()) {
+    for (int i = 1; i < argc; ++i) {
+      if (argv[i][0] == '-') continue;
+      std::string names;
+      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+      }
+      return report_error(std::string("graspcd: unknown subcommand '") + argv[i] +
+                          "' (expected one of: " + names + ")");
+    }
+  }
   if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
     return check_stdout(out, app.exit(e));
   }
-  // A first word that is no option and no subcommand: a misspelled subcommand.
-  if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
-    std::string names;
-    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-      names += (names.empty() ? "" : ", ") + sub->get_name();
+  // An unknown option or an extra word is named first: CLI11 checks the required arguments
+  // before it, so "meshpair --bogus" would say "A is required".
+  if (dynamic_cast<const CLI::ExtrasError*>(&e) == nullptr) {
+    const std::vector<std::string> extras = app.remaining(true);
+    if (!extras.empty()) {
+      return report_error(std::string("graspcd: ") + CLI::ExtrasError(extras).what() +
+                          " (run with --help for usage)");
     }
-    return report_error(std::string("graspcd: unknown subcommand '") + argv[1] +
-                        "' (expected one of: " + names + ")");
   }
   return report_error(std::string("graspcd: ") + e.what() + " (run with --help for usage)");
 }

@@ -163,7 +163,7 @@ Command add_meshpair_command(CLI::App& parent) {
                 "Answer with CGAL by brute force over all triangle pairs (NS is then its time)");
   app->add_option("--poses", options->poses, "Pose file, or - for stdin")->capture_default_str();
   app->add_option("--leaf-size", options->leaf_size, "Most triangles per tree leaf")
-      ->check(positive_number())
+      ->transform(positive_integer())
       ->capture_default_str();
   app->add_option("--fit", options->fit,
                   "Box fit: covariance (paper eq. 1-3) or hull (area-weighted, Gottschalk 1996)")

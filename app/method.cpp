@@ -21,10 +21,10 @@ void add_method_options(CLI::App& app, MethodOptions& options, MethodDefaults de
                      "perceptron-scaled, perceptron-warm, neurosat or neurosat-sticky")
           ->check(CLI::IsMember(method_names())),
       app.add_option("--cap", options.cap, "Perceptron: most passes per box test (positive)")
-          ->check(positive_number()),
+          ->transform(positive_integer()),
       app.add_option("--switch", options.switch_passes,
                      "Neuro-SAT: passes before SAT takes over (positive)")
-          ->check(positive_number())};
+          ->transform(positive_integer())};
   for (CLI::Option* option : options_added) {
     option->capture_default_str();
     if (defaults == MethodDefaults::kSceneConfig) {

@@ -1,6 +1,8 @@
 // graspcd stress [--quick] [--json] [--seed N] [--cases N]: the numerical stress suite
 // (src/graspcd/study/stress.h): every method against CGAL on seeded degenerate and extreme cases.
+#include <cstdint>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -49,10 +51,12 @@ Command add_stress_command(CLI::App& parent) {
   app->add_flag("--quick", o->stress.quick,
                 "A fiftieth of the cases per class (at least 50): a few seconds");
   app->add_flag("--json", o->json, "Print the table as JSON instead of text");
-  app->add_option("--seed", o->stress.seed, "Seed of the case generator")->capture_default_str();
+  app->add_option("--seed", o->stress.seed, "Seed of the case generator")
+      ->transform(decimal_integer(0, std::numeric_limits<std::uint64_t>::max()))
+      ->capture_default_str();
   app->add_option("--cases", o->stress.cases,
                   "Cases per class (overrides the defaults and --quick)")
-      ->check(positive_number());
+      ->transform(positive_integer());
   app->footer(wrap_help(
       "Generates seeded box pairs and triangle pairs, each built around a known contact (a "
       "vertex on a face, crossing edges, coplanar triangles touching) and then moved apart or "

@@ -63,18 +63,18 @@ Command add_study_command(CLI::App& parent) {
                 "The sweep on all three examples with every knob value (hours: use --shard)");
   app->add_option("--out", o->study.out_dir, "Output folder (JSON and CSV)")->capture_default_str();
   app->add_option("--repeats", o->study.repeats, "Timed replays per method (medians of these)")
-      ->check(positive_number())
+      ->transform(positive_integer())
       ->capture_default_str();
   app->add_option("--perceptron-repeats", o->study.perceptron_repeats,
                   "Timed replays of Table 1's perceptron, perceptron-warm and perceptron-scaled "
                   "(at most --repeats; they are most of the study's time)")
-      ->check(positive_number())
+      ->transform(positive_integer())
       ->capture_default_str();
   app->add_option("--jobs", o->study.jobs, "Replays run at once, one thread each (0: one per core)")
-      ->check(non_negative_number())
+      ->transform(non_negative_integer())
       ->capture_default_str();
   app->add_option("--max-steps", o->study.max_steps, "Most closing grasp steps per grasp")
-      ->check(positive_number())
+      ->transform(positive_integer())
       ->capture_default_str();
   app->add_option("--mjcf", o->study.mjcf_dir,
                   "Folder of the scenes (default: the template scenes, PREFIX/share/graspcd/mjcf)");

@@ -65,10 +65,10 @@ Command add_trajectory_command(CLI::App& parent) {
       ->delimiter(',')
       ->capture_default_str();
   app->add_option("--repeats", o->options.repeats, "Timed replays per method (per-step medians)")
-      ->check(positive_number())
+      ->transform(positive_integer())
       ->capture_default_str();
   app->add_option("--max-steps", o->options.max_steps, "Most closing grasp steps")
-      ->check(positive_number())
+      ->transform(positive_integer())
       ->capture_default_str();
   app->footer(wrap_help(
       "Records the grasp of paper section 9 with graspcd's contacts (SAT), replays the recorded "

@@ -221,7 +221,8 @@ Command add_validate_command(CLI::App& parent) {
       "validate", "Check a scene's grasp against CGAL: every registered pair at every grasp step");
   app->add_option("SCENE", o->scene, "The scene: an MJCF file with its SCENE.pairs.json");
   app->add_option("--objects", o->objects,
-                  "A folder of objects (every OBJ and STL under it): one row per object, each "
+                  "A folder of objects (every mesh file under it: OBJ, STL, OFF, PLY, glTF/GLB, "
+                  "COLLADA): one row per object, each "
                   "grasped in the --hand template as graspcd grasp --object does");
   app->add_option("--shard", o->shard,
                   "--objects: only shard i of N of the set (every N-th object from the i-th)");
@@ -242,7 +243,7 @@ Command add_validate_command(CLI::App& parent) {
       ->excludes("--method");
   app->add_option("--max-steps,--steps", o->steps,
                   "Most closing grasp steps (--steps: the same, kept as an alias)")
-      ->check(positive_number())
+      ->transform(positive_integer())
       ->capture_default_str();
   app->add_option("--config", o->config,
                   "Pair config (JSON); default SCENE.pairs.json beside the scene");
@@ -307,7 +308,8 @@ Command add_validate_command(CLI::App& parent) {
       "collisions are reported, not failures: the perceptron may leave boxes it cannot separate "
       "within its cap), 1 when one did, 2 for bad input (a missing or bad scene or config: one "
       "line 'FILE: message').\n"
-      "--objects DIR: every OBJ and STL file under DIR (recursively, sorted by path) goes "
+      "--objects DIR: every mesh file under DIR (.obj, .stl, .off, .ply, .gltf, .glb, .dae; "
+      "recursively, sorted by path) goes "
       "through the graspcd grasp --object workflow (--hand, --fit or --scale, --up, --yaw: the "
       "same for every object; the start state checked) and is validated as above. One row per "
       "object: its scale, the closing grasp steps checked, the steps with a contact to check, "

@@ -396,6 +396,14 @@ DecomposeRun decompose_into(const DecomposeOptions& o, const std::string& work) 
         << finest << " m)";
     throw BoundError(out.str());
   }
+  const double coarsest = kMaxBoundFraction * bounding_diagonal(mesh);
+  if (o.hausdorff_bound > coarsest) {
+    std::ostringstream out;
+    out << "the bound " << o.hausdorff_bound << " m is coarser than " << o.mesh
+        << "'s bounding box diagonal (" << coarsest
+        << " m): a distance known only to within the mesh's size says nothing";
+    throw BoundError(out.str());
+  }
   for (const std::string& w : io::mesh_warnings(o.mesh, stats, true)) {
     warnings().add("mesh_hygiene", w);
   }

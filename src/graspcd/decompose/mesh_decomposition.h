@@ -53,8 +53,15 @@ inline constexpr double kDefaultBoundFraction = 1e-3;
 // end; DecomposeOptions::hausdorff_bound below it is refused before anything runs.
 inline constexpr double kMinBoundFraction = 1e-6;
 
-// Thrown by decompose_mesh for a DecomposeOptions::hausdorff_bound below kMinBoundFraction of the
-// mesh's bounding box diagonal (the command line names its option before the message).
+// The coarsest Hausdorff bound accepted: the bounding box diagonal itself. A distance known only to
+// within the mesh's size says nothing (CGAL then answers the bound itself, and a bound of 1e308
+// overflows to an infinite distance); a coarser DecomposeOptions::hausdorff_bound is refused
+// before anything runs.
+inline constexpr double kMaxBoundFraction = 1;
+
+// Thrown by decompose_mesh for a DecomposeOptions::hausdorff_bound below kMinBoundFraction or
+// above kMaxBoundFraction of the mesh's bounding box diagonal (the command line names its option
+// before the message).
 class BoundError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;

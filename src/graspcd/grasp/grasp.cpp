@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "graspcd/grasp/decomposed_pieces.h"
@@ -138,8 +139,21 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
     run = std::make_unique<GraspRun>(m, d, registry.get(), options, scene_path);
   }
   // The start state: the scene's first keyframe when it has one (a hand shaped before the grasp,
-  // e.g. a gripper half closed with a pad through a mug's handle), else the model's qpos0.
-  if (m->nkey > 0) mj_resetDataKeyframe(m, d, 0);
+  // e.g. a gripper half closed with a pad through a mug's handle), else the model's qpos0. The
+  // keyframe's time starts MuJoCo's clock, on which the events are reported: before 0 it is
+  // refused (grasp.h).
+  if (m->nkey > 0) {
+    if (m->key_time[0] < 0) {
+      const char* name = m->names + m->name_keyadr[0];
+      std::ostringstream message;
+      message << "the first keyframe" << (*name ? std::string(" '") + name + "'" : "")
+              << ", where the grasp starts, has time=\"" << m->key_time[0]
+              << "\": the grasp's clock starts at the keyframe's time and cannot start before 0 "
+                 "(give time=\"0\" or leave it out)";
+      throw options.names.refusal(scene_path, 0, message.str());
+    }
+    mj_resetDataKeyframe(m, d, 0);
+  }
   mj_forward(m, d);
   OpenMeshes open;
   if (drive) open.hand_body = mj_name2id(m, mjOBJ_BODY, drive->hand.c_str());

@@ -17,7 +17,10 @@
 //   3. Lift: the wrist rises by `lift_height` over `lift_time` s, the hand keeping its orientation.
 //   4. Hold `hold_time` s.
 //
-// The start is the scene's first keyframe, else qpos0 with zero controls. It is checked first
+// The start is the scene's first keyframe, else qpos0 with zero controls. The keyframe's time is
+// where MuJoCo's clock starts: the events (ejected, dropped, slipped, the deepest penetration) are
+// times on that clock and sim_time the seconds simulated since; a time before 0 is bad input
+// naming the scene. The start is checked first
 // (start_check.h): on the true meshes, then, under native collision, on the convex hulls MuJoCo
 // collides; a start beyond kStartPenetration is bad input naming the scene ("the start state is
 // not valid: ...", "cannot start with --native: ...").

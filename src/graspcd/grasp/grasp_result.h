@@ -175,7 +175,9 @@ struct GraspResult {
   // buffer (nconmax) and the constraint buffer (njmax) were full in this many steps.
   int contact_buffer_full = 0;
   int constraint_buffer_full = 0;
-  double sim_time = 0;  // simulated seconds, all phases
+  // Simulated seconds, all phases. The times of the events above (slip_time, release_time, the
+  // ejection's) are MuJoCo's clock, which starts at the first keyframe's time (grasp.h).
+  double sim_time = 0;
   long physics_steps = 0;
   double step_wall_ms = 0;  // mean wall time per physics step (mj_step1 + control + mj_step2)
   std::uint64_t detection_ns_close = 0;  // summed over the closing grasp steps

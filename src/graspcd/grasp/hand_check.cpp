@@ -215,7 +215,7 @@ HandCheck check_hand(const HandTemplate& hand) {
   }
   // 2. The template contract.
   for (const TemplateProblem& p : template_problems(t.scene)) {
-    out.missing.push_back({hand.scene, p.line, p.what, p.how});
+    out.missing.push_back({p.file.empty() ? hand.scene : p.file, p.line, p.what, p.how});
   }
   // 3. The pair config.
   const CheckedConfig config = check_config(t.pairs(), out.pairs, out);

@@ -406,7 +406,7 @@ void HandRun::hold(const GraspOptions& options, GraspResult& result) {
 void HandRun::finish(GraspResult& result) const {
   result.object_z_final = object_height();
   result.physics_steps = physics_steps_;
-  result.sim_time = d_->time;
+  result.sim_time = d_->time - start_time_;
   result.step_wall_ms =
       physics_steps_ > 0 ? static_cast<double>(wall_ns_) / 1e6 / static_cast<double>(physics_steps_)
                          : 0.0;
@@ -425,6 +425,7 @@ void HandRun::finish(GraspResult& result) const {
 
 // Paper section 9: close, squeeze, settle, lift, hold (grasp.h), then the verdicts.
 void HandRun::run(const GraspOptions& options, GraspResult& result) {
+  start_time_ = d_->time;
   result.segments = segments_;
   result.first_contact.assign(segments_.size(), -1);
   result.object_z_initial = object_height();

@@ -137,6 +137,7 @@ class HandRun {
   PairRun pair_run_;
   long physics_steps_ = 0;
   std::int64_t wall_ns_ = 0;
+  double start_time_ = 0;  // MuJoCo's clock at the start: the first keyframe's time, else 0
   BridgeTotals totals_;
   ObjectWatch watch_;
   std::vector<mjtNum> energy_scratch_;

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -113,6 +114,46 @@ TriangleMesh read_object_mesh(const std::string& file, io::MeshStats* stats) {
   return mesh;
 }
 
+// The first <keyframe> of the files `e` includes (<include file>, read as MuJoCo 2.2 reads it:
+// relative to the main file's folder `main_dir`, its children taking the include's place), and
+// of the files those include, `depth` deep at most; the file that holds it is `file`. An include
+// that cannot be read is left to MuJoCo, whose error names it; one that is no regular file (a
+// FIFO) is refused here, before anything opens it.
+const tinyxml2::XMLElement* included_keyframe(
+    const tinyxml2::XMLElement* e, const fs::path& main_dir, int depth,
+    std::vector<std::unique_ptr<tinyxml2::XMLDocument>>& docs, std::string& file) {
+  constexpr int kMaxIncludeDepth = 16;
+  for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const char* name = c->Attribute("file");
+    if (std::string(c->Name()) == "include" && name != nullptr && depth < kMaxIncludeDepth) {
+      const std::string path = (main_dir / name).string();
+      std::error_code ec;
+      if (!fs::exists(path, ec)) continue;
+      io::require_regular_file(path);
+      docs.push_back(std::make_unique<tinyxml2::XMLDocument>());
+      tinyxml2::XMLDocument& doc = *docs.back();
+      if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS || doc.RootElement() == nullptr) {
+        continue;
+      }
+      std::vector<tinyxml2::XMLElement*> keys;
+      collect(doc.RootElement(), "keyframe", keys);
+      if (!keys.empty()) {
+        file = path;
+        return keys.front();
+      }
+      if (const tinyxml2::XMLElement* key =
+              included_keyframe(doc.RootElement(), main_dir, depth + 1, docs, file)) {
+        return key;
+      }
+      continue;
+    }
+    if (const tinyxml2::XMLElement* key = included_keyframe(c, main_dir, depth, docs, file)) {
+      return key;
+    }
+  }
+  return nullptr;
+}
+
 // What of the template the object scene changes, in `doc`.
 struct TemplateParts {
   tinyxml2::XMLElement* root = nullptr;   // <mujoco>
@@ -135,7 +176,7 @@ bool has_free_joint(const tinyxml2::XMLElement* body) {
 
 // The parts of a template read into `doc`, each piece of the contract it lacks added to
 // `problems` (in the order they are met; a part that cannot be found stops the search below it).
-TemplateParts find_template_parts(tinyxml2::XMLDocument& doc,
+TemplateParts find_template_parts(tinyxml2::XMLDocument& doc, const std::string& template_path,
                                   std::vector<TemplateProblem>& problems) {
   const auto lacks = [&](const tinyxml2::XMLElement* at, const std::string& what,
                          const std::string& how) {
@@ -148,13 +189,22 @@ TemplateParts find_template_parts(tinyxml2::XMLDocument& doc,
     return t;
   }
   // A keyframe is the grasp's start (grasp.h) and holds the template object's pose, which the new
-  // object's placement would not replace.
+  // object's placement would not replace, in the template or in a file it includes.
+  constexpr const char* kKeyframe =
+      "a template with a <keyframe> cannot take a new object (the keyframe starts the grasp with "
+      "the template object's pose)";
+  constexpr const char* kNoKeyframe =
+      "remove the <keyframe>: the grasp starts from qpos0 and the drive's closing shapes the hand";
   if (tinyxml2::XMLElement* key = t.root->FirstChildElement("keyframe")) {
-    lacks(key,
-          "a template with a <keyframe> cannot take a new object (the keyframe starts the grasp "
-          "with the template object's pose)",
-          "remove the <keyframe>: the grasp starts from qpos0 and the drive's closing shapes the "
-          "hand");
+    lacks(key, kKeyframe, kNoKeyframe);
+  }
+  std::vector<std::unique_ptr<tinyxml2::XMLDocument>> included;
+  std::string holder;
+  if (const tinyxml2::XMLElement* key =
+          included_keyframe(t.root, fs::path(template_path).parent_path(), 0, included, holder)) {
+    problems.push_back({static_cast<std::size_t>(std::max(0, key->GetLineNum())),
+                        "template scene (included by " + template_path + "): " + kKeyframe,
+                        kNoKeyframe, holder});
   }
   tinyxml2::XMLElement* world = t.root->FirstChildElement("worldbody");
   for (tinyxml2::XMLElement* world_element = world; world_element;
@@ -216,10 +266,11 @@ TemplateParts read_template(tinyxml2::XMLDocument& doc, const std::string& templ
                          std::string("cannot read the template scene: ") + doc.ErrorName());
   }
   std::vector<TemplateProblem> problems;
-  const TemplateParts t = find_template_parts(doc, problems);
+  const TemplateParts t = find_template_parts(doc, template_path, problems);
   if (!problems.empty()) {
-    throw io::InputError(template_path, problems.front().line,
-                         "template scene: " + problems.front().what);
+    const TemplateProblem& p = problems.front();
+    if (!p.file.empty()) throw io::InputError(p.file, p.line, p.what);
+    throw io::InputError(template_path, p.line, "template scene: " + p.what);
   }
   return t;
 }
@@ -671,7 +722,7 @@ std::vector<TemplateProblem> template_problems(const std::string& template_path)
                          std::string("cannot read the template scene: ") + doc.ErrorName());
   }
   std::vector<TemplateProblem> problems;
-  const TemplateParts t = find_template_parts(doc, problems);
+  const TemplateParts t = find_template_parts(doc, template_path, problems);
   if (t.root == nullptr || std::string(t.root->Name()) != "mujoco") return problems;
   try {
     gravity_frame(t.root, template_path);
@@ -717,9 +768,14 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTempl
                          "the hand's mesh folder has a file named 'object', the object's folder");
   }
   fs::create_directories(object_folder);
-  // MuJoCo 2.2 reads OBJ and binary STL only: any other format is the mesh as graspcd read it,
-  // written as STEM.converted.obj (in its file units).
-  const bool convert = stats.format != "OBJ" && stats.format != "binary STL";
+  // MuJoCo 2.2 reads OBJ and binary STL only, a binary STL of at most kMujocoStlFaces triangles,
+  // and refuses a mesh with zero-area faces ("faces have inconsistent orientation"): any other
+  // file is the mesh as graspcd read it (those faces dropped, with a warning), written as
+  // STEM.converted.obj (in its file units).
+  const std::size_t file_faces = mesh.faces.size() + stats.dropped_faces.size();
+  const bool convert = (stats.format != "OBJ" && stats.format != "binary STL") ||
+                       (stats.format == "binary STL" && file_faces > io::kMujocoStlFaces) ||
+                       stats.zero_area_faces > 0;
   const fs::path object_file =
       object_folder / (!flipped.empty() ? stem + ".outward.obj"
                        : convert        ? stem + ".converted.obj"

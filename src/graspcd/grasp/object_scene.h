@@ -77,6 +77,7 @@ struct TemplateProblem {
   std::size_t line = 0;
   std::string what;
   std::string how;
+  std::string file;  // the file `line` is in, when not the template itself (a file it includes)
 };
 
 // The pieces of the contract the scene `template_path` lacks, in the order write_object_scene

@@ -10,11 +10,14 @@
 namespace graspcd::io {
 
 // `text` on one line: each line trimmed of blanks, blank lines dropped, the rest joined by "; "
-// (MuJoCo's multi-line errors, a library's message, a file name holding a line break).
+// (MuJoCo's multi-line errors, a library's message, a file name holding a line break), and every
+// byte a terminal could take for a control (an escape sequence quoted from a file) written as
+// \xNN: the C0 controls but the tab, DEL, the C1 controls and bytes that are not well-formed
+// UTF-8. Every error and warning line is made by it; a second pass changes nothing.
 std::string one_line(const std::string& text);
 
-// what() is "FILE:LINE: MESSAGE", or "FILE: MESSAGE" when line() is 0 (the file as a whole);
-// the message is made one line (one_line).
+// what() is "FILE:LINE: MESSAGE", or "FILE: MESSAGE" when line() is 0 (the file as a whole),
+// made one line (one_line), the file's name with it.
 class InputError : public std::runtime_error {
  public:
   InputError(std::string file, std::size_t line, std::string message);

@@ -34,17 +34,23 @@ ImportedMesh import_in_process(const std::string& path, const std::string& forma
   // The file's own axes: COLLADA's up_axis is not turned to Y-up (the user's --up says which axis
   // is up). Assimp scales COLLADA by its <unit meter> (to metres) whatever is set.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
-  // Points and lines are kept (aiProcess_SortByPType is not run) so that they can be refused.
-  const aiScene* scene =
-      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices);
-  if (scene == nullptr) {
+  const auto failed = [&] {
     out.error = one_line(importer.GetErrorString());
     if (out.error.find("bad_alloc") != std::string::npos) {
       out.error = "the import library (Assimp) ran out of memory reading it";
     }
     if (out.error.empty()) out.error = "Assimp cannot read it";
     return out;
+  };
+  // The file as its reader makes it, each mesh's faces counted; then the post-processing.
+  // Points and lines are kept (aiProcess_SortByPType is not run) so that they can be refused.
+  const aiScene* scene = importer.ReadFile(path, 0);
+  if (scene == nullptr) return failed();
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    out.read_faces.push_back(scene->mMeshes[m] != nullptr ? scene->mMeshes[m]->mNumFaces : 0);
   }
+  scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_PreTransformVertices);
+  if (scene == nullptr) return failed();
   (void)format;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* mesh = scene->mMeshes[m];
@@ -101,6 +107,8 @@ std::string encode(const ImportedMesh& m) {
   put_u64(b, m.error_face);
   put_u64(b, m.parts.size());
   for (const std::string& p : m.parts) put_string(b, p);
+  put_u64(b, m.read_faces.size());
+  for (const std::uint64_t n : m.read_faces) put_u64(b, n);
   put_u64(b, m.mesh.vertices.size());
   for (const Vec3& v : m.mesh.vertices) b.append(reinterpret_cast<const char*>(v.data()), 24);
   put_u64(b, m.mesh.faces.size());
@@ -142,6 +150,8 @@ bool decode(const std::string& b, ImportedMesh& m) {
   m.error_face = r.u64();
   const std::uint64_t parts = r.u64();
   for (std::uint64_t i = 0; r.ok && i < parts; ++i) m.parts.push_back(r.str());
+  const std::uint64_t meshes = r.u64();
+  for (std::uint64_t i = 0; r.ok && i < meshes; ++i) m.read_faces.push_back(r.u64());
   const std::uint64_t nv = r.u64();
   if (!r.ok || nv > (b.size() - r.at) / 24) return false;
   m.mesh.vertices.resize(nv);

@@ -20,6 +20,10 @@ namespace graspcd::io {
 struct ImportedMesh {
   TriangleMesh mesh;
   std::vector<std::string> parts;  // the meshes' names, in order ("" when unnamed)
+  // The faces of each mesh as the format's reader made them, before the post-processing joins
+  // and places them: for glTF, one mesh per primitive, in the file's order (meshes, then their
+  // primitives), so that they can be checked against what the file declares (mesh_declared.h).
+  std::vector<std::uint64_t> read_faces;
   // On failure: Assimp's message (on one line), and where it was found when the reader knows:
   // the mesh (1-based) and its face (1-based) or vertex; 0 when not known.
   std::string error;

@@ -25,6 +25,7 @@
 #include "graspcd/core/mesh_hygiene.h"
 #include "graspcd/core/tolerances.h"
 #include "graspcd/io/input_error.h"
+#include "graspcd/io/mesh_declared.h"
 #include "graspcd/io/mesh_import.h"
 
 namespace graspcd::io {
@@ -546,7 +547,10 @@ TriangleMesh load_with_assimp(const std::string& path, const std::string& ext, M
       fail(path, "not a COLLADA file (no <COLLADA> in its first 4096 bytes)");
     }
   }
+  // What the file declares, checked where Assimp does not (mesh_declared.h).
+  const DeclaredMesh declared = check_declared(path, ext);
   ImportedMesh imported = import_with_assimp(path, ext);
+  if (imported.error.empty()) check_read_faces(path, declared, imported.read_faces);
   if (!imported.error.empty()) {
     std::string where;
     if (imported.error_mesh > 0) where = "mesh " + std::to_string(imported.error_mesh) + " ";
@@ -707,8 +711,13 @@ void check_mesh_file(const std::string& path) {
     if (read_obj_vertex_lines(path, objects).empty()) fail(path, "no vertex in the OBJ file");
   } else if (ext == "stl") {
     bool ascii = false;
-    load_stl(path, &ascii);
+    const TriangleMesh stl = load_stl(path, &ascii);
     if (ascii) fail(path, "an ASCII STL, which MuJoCo 2.2 cannot read (it reads binary STL)");
+    if (stl.faces.size() > kMujocoStlFaces) {
+      fail(path, "a binary STL of " + std::to_string(stl.faces.size()) +
+                     " triangles, which MuJoCo 2.2 cannot read (at most " +
+                     std::to_string(kMujocoStlFaces) + " per STL file; an OBJ has no such limit)");
+    }
   }
 }
 

@@ -17,6 +17,10 @@ namespace graspcd::io {
 // The formats load_mesh reads, as an error message names them.
 inline constexpr const char* kMeshFormats = "expected .obj, .stl, .ply, .off, .gltf, .glb or .dae";
 
+// The most triangles MuJoCo 2.2 reads from a binary STL file (it refuses more, asking whether the
+// file is ASCII).
+inline constexpr std::uint64_t kMujocoStlFaces = 200000;
+
 // Facts about a loaded mesh that the caller may want to report (mesh_warnings() words them).
 struct MeshStats {
   // Zero-area faces (three vertices exactly collinear or coincident, after welding) dropped on
@@ -99,8 +103,9 @@ void scale_mesh(const std::string& path, double scale, TriangleMesh* mesh);
 // (MuJoCo's, for the meshes a scene names) will read: an OBJ's byte-order mark, vertex lines
 // (the number grammar: no nan, inf or out-of-range coordinate, which MuJoCo would read as 0 or
 // inf) and face lines (at least 3 vertices, every index naming a vertex); a binary STL's size and
-// its coordinates, and an ASCII STL refused (MuJoCo 2.2 reads binary STL only). Other formats
-// are left to their reader. Throws InputError as load_mesh does.
+// its coordinates, its triangles (at most kMujocoStlFaces), and an ASCII STL refused (MuJoCo 2.2
+// reads binary STL only). Other formats are left to their reader. Throws InputError as load_mesh
+// does.
 void check_mesh_file(const std::string& path);
 
 }  // namespace graspcd::io

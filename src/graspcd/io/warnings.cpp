@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "graspcd/io/input_error.h"
+
 namespace graspcd {
 
 void WarningSink::add(const std::string& code, const std::string& message,
@@ -47,8 +49,8 @@ WarningSink& warnings() {
 }
 
 std::string warning_line(const Warning& w) {
-  if (w.count <= 1) return w.message;
-  return w.message + " (" + std::to_string(w.count) + " times)";
+  if (w.count <= 1) return io::one_line(w.message);
+  return io::one_line(w.message) + " (" + std::to_string(w.count) + " times)";
 }
 
 }  // namespace graspcd

@@ -39,7 +39,7 @@ class WarningSink {
 // The process's sink.
 WarningSink& warnings();
 
-// A warning as one line: "MESSAGE" or "MESSAGE (N times)".
+// A warning as one line (io::one_line): "MESSAGE" or "MESSAGE (N times)".
 std::string warning_line(const Warning& w);
 
 }  // namespace graspcd

@@ -181,7 +181,11 @@ void check_scene_file(const std::string& path, const SceneNames& names) {
     const fs::path file = mesh_place(scan, mesh);
     std::error_code ec;
     if (!fs::exists(file, ec)) continue;  // MuJoCo's error names it
-    io::check_mesh_file(file.string());
+    try {
+      io::check_mesh_file(file.string());
+    } catch (const io::InputError& e) {
+      throw scan.names->refusal(e.file(), e.line(), e.message());  // the user's name for a copy
+    }
   }
 }
 

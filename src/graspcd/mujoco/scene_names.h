@@ -39,7 +39,10 @@ struct SceneNames {
 
   // The file a message names for `path`.
   std::string file(const std::string& path) const;
-  // The refusal of `path` (at `line`, 0 for the whole file) with these names.
+  // `message` with every written file it quotes (MuJoCo's errors quote the mesh file they read)
+  // replaced by the file the user knows it by.
+  std::string named(const std::string& message) const;
+  // The refusal of `path` (at `line`, 0 for the whole file) with these names, in its message too.
   io::InputError refusal(const std::string& path, std::size_t line,
                          const std::string& message) const;
   // "the robotiq hand's " for a mesh of the hand named `mesh_name`, else "".
