@@ -29,7 +29,11 @@ TILT_SHOWN_DEG = 2.0
 
 
 def outcome(g):
-    """The outcome of a grasp's --json document `g` (a run that started)."""
+    """The outcome of a grasp's --json document `g` (a run that started): the library's
+    "outcome" (grasp/verdicts.h, the same in `graspcd grasp --json` and `graspcd judge --json`);
+    for a document without it (graspcd before 0.5.0), from its ejected, held and tilt."""
+    if "outcome" in g:
+        return g["outcome"]
     if g.get("ejected"):
         return "ejected"
     if g["held"]:
