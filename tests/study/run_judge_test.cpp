@@ -133,6 +133,48 @@ TEST_F(RunJudgeTest, AGraspJudgedFromItsOwnRecordHasItsVerdictsAndEditsChangeThe
   EXPECT_NEAR(ejected.result.ejected->speed, 30.0, 1.0);
 }
 
+// The six-direction test (grasp/six_directions.h) on example 2: the can the project's hand holds
+// stays in it in all six directions; made slippery (friction 0.05) and five times as dense, it
+// leaves the hand in the lift and is lost in every direction. Each judged from its record gives
+// the run's directions. Whole grasps: the Release pass only.
+TEST_F(RunJudgeTest, TheSixDirectionsHoldAGrippedCanAndLoseASlipperyOne) {
+  if (graspcd::testing::test_scale() < 1) GTEST_SKIP() << "whole grasps: Release pass only";
+  const auto run_and_judge = [&](const std::string& scene, bool native) {
+    grasp::GraspOptions options;
+    options.true_penetration = true;
+    options.six_directions = true;
+    options.native = native;
+    options.write_run = (dir_ / "six.jsonl").string();
+    const grasp::GraspResult run = grasp::run_grasp(scene, options);
+    const JudgedRun judged = judge_run(scene, options.write_run);
+    EXPECT_TRUE(judged.judged) << judged.message;
+    EXPECT_EQ(grasp::verdict_json(run), grasp::verdict_json(judged.result));
+    return run;
+  };
+  const grasp::GraspResult held = run_and_judge(kMjcf + "/example2.xml", false);
+  ASSERT_EQ(held.directions.size(), 6u);
+  for (const grasp::DirectionResult& d : held.directions) {
+    EXPECT_TRUE(d.passed) << d.name << " moved " << d.moved;
+  }
+  std::ifstream in(kMjcf + "/example2.xml");
+  std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const std::size_t at = xml.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    xml.replace(at, from.size(), to);
+  };
+  replace("meshdir=\"meshes\"", "meshdir=\"" + kMjcf + "/meshes\"");
+  replace("mesh=\"can\" contype=\"1\" conaffinity=\"3\"",
+          "mesh=\"can\" contype=\"1\" conaffinity=\"3\" friction=\"0.05 0.005 0.0001\" "
+          "density=\"5000\"");
+  const grasp::GraspResult lost = run_and_judge(write("slippery.xml", xml), true);
+  EXPECT_FALSE(lost.held);
+  ASSERT_EQ(lost.directions.size(), 6u);
+  int passed = 0;
+  for (const grasp::DirectionResult& d : lost.directions) passed += d.passed ? 1 : 0;
+  EXPECT_EQ(passed, 0);
+}
+
 // A record the test writes from example 2's start state: the hand never moves, so nothing is
 // gripped; the judge measures the motion without running a grasp.
 std::vector<json> still_record(const std::string& scene) {
