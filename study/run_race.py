@@ -46,7 +46,9 @@ section, MuJoCo 3.14 (the WebAssembly build, node tools/mujoco3/grasp3.mjs; docs
 races four more configurations: "3.14 hull" (its hull, multiccd on: 3.14's default), "3.14 sdf"
 and "3.14 sdf10" (the mesh SDF, sdf_initpoints 40 and 10) and "3.14 flex" (the rigid flex, radius
 0.5 mm), each once per --noslip value with the six directions; its record is kept and a race that
-finds it judges it again without running node (delete it to run it again). Their step cost is
+finds it judges it again without running node (delete it to run it again); --mujoco3-kept-only
+judges the kept records and runs node for none (records made ahead, or side by side, by the
+runner; the scene's "mujoco3" entry lists the runs without one). Their step cost is
 WebAssembly's, in its own field (ms_per_physics_step_wasm; ms_per_physics_step is null). A scene
 3.14 cannot start is a row "cannot start" with the runner's message; a scene of the project's own
 hand (no "grasp" section), or a machine without node or tools/mujoco3's npm packages, has no 3.14
@@ -266,12 +268,17 @@ def log_row(r):
           f" {'-' if tp is None else f'{1000 * tp:.2f}'} mm, {cost}", file=sys.stderr)
 
 
-def mujoco3_rows(graspcd, name, scene, records, noslips, node):
+def mujoco3_rows(graspcd, name, scene, records, noslips, node, kept_only=False, not_run=None):
     """The rows of one of MuJoCo 3.14's configurations, one per noslip value: the node runner's
-    record (made unless it exists in `records`) judged by graspcd judge."""
+    record (made unless it exists in `records`) judged by graspcd judge. With `kept_only`, a
+    record not made yet is not made: its configuration and noslip value go to `not_run`."""
     rows = []
     for n in noslips:
         record = os.path.join(records, record_name(name, n))
+        if kept_only and not os.path.exists(record):
+            print(f"[race]   {name} noslip {n}: no kept record, not run", file=sys.stderr)
+            not_run.append({"configuration": name, "noslip": n})
+            continue
         r, message = race_judged.mujoco3_row(graspcd, name, scene, record, n, node)
         if r is None:
             print(f"[race]   {name} noslip {n}: cannot start: {message}", file=sys.stderr)
@@ -325,9 +332,14 @@ def race_mujoco3(args, scene_name, scene, records, noslips, patterns, rows):
     if missing:
         print(f"[race] {scene_name}: MuJoCo 3.14 not raced: {missing}", file=sys.stderr)
         return f"not raced: {missing}"
+    not_run = []
     for name in names:
         print(f"[race] {scene_name}: {name} ({race_judged.SIMULATOR})", file=sys.stderr)
-        rows.extend(mujoco3_rows(args.graspcd, name, scene, records, noslips, args.node))
+        rows.extend(mujoco3_rows(args.graspcd, name, scene, records, noslips, args.node,
+                                 args.mujoco3_kept_only, not_run))
+    if not_run:
+        return {"not_run": not_run,
+                "why": "--mujoco3-kept-only: no record of these was kept in --work"}
     return None
 
 
@@ -388,6 +400,9 @@ def main():
                              " configurations: 0 without, 1 with (grasp --multiccd), one run each")
     parser.add_argument("--node", default="node",
                         help="node, which runs MuJoCo 3.14's configurations (tools/mujoco3)")
+    parser.add_argument("--mujoco3-kept-only", action="store_true",
+                        help="judge only MuJoCo 3.14's records kept in --work, run node for none"
+                             " (the scene's \"mujoco3\" entry lists those not run)")
     parser.add_argument("--configurations",
                         help="comma-separated configuration names or fnmatch patterns to race"
                              " (default: all but \"graspcd multiccd\")")

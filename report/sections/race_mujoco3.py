@@ -5,9 +5,11 @@ phantom and missed contacts, step cost: native and WebAssembly apart, never divi
 paragraph, computed from those rows, of where graspcd is better than MuJoCo 3.14 and where it is
 not."""
 
+import os
 import statistics
 
-import race_score  # study/race_score.py (on the path: sections/__init__.py)
+import race_judged  # study/race_judged.py (on the path: sections/__init__.py)
+import race_score  # study/race_score.py
 
 from sections.numbers import opt
 
@@ -37,9 +39,14 @@ def mujoco3_section(race):
       " row of the race (docs/run-record.md). Its step cost is WebAssembly's, measured around"
       " `mj_step` by the runner, in its own column: it says what a 3.14 user running this build"
       " pays, not what native MuJoCo 3.14 costs, and is never set against a native step cost."
-      " The scenes of the project's own hand (examples 1-3, concave_project_thinbox,"
-      " concave_bowl_lift, cube_cup_project) run on graspcd's C++ controllers and are not raced in"
-      " 3.14: " + not_raced(race) + ".")
+      " The scenes of the project's own hand run on graspcd's C++ controllers, which the node"
+      " runner does not drive, and are not raced in 3.14; the scenes without 3.14's rows: "
+      + not_raced(race) + ".")
+    missing = not_run(scenes)
+    if missing:
+        w("")
+        w("Runs of 3.14 this race did not make (`run_race.py --mujoco3-kept-only`: no record was"
+          " kept for them): " + "; ".join(missing) + ".")
     w("")
     w("Per configuration, over the runs of the scenes 3.14 raced (scene and noslip setting):"
       " the runs that kept the object (held, tilted or not) and the outcomes of the others,"
@@ -114,15 +121,31 @@ def is_mujoco3(r):
 
 
 def not_raced(race):
-    """The note race.json keeps for the scenes without 3.14's rows, with their names."""
-    notes = {}
+    """The scenes without 3.14's rows, by why: the project's hand (no "grasp" section in the
+    scene's pair config), or the note race.json keeps."""
+    why = {}
     for s, e in race["scenes"].items():
+        if any(is_mujoco3(r) for r in e["rows"]):
+            continue
         note = e.get("mujoco3")
-        if note and not any(is_mujoco3(r) for r in e["rows"]):
-            notes.setdefault(note, []).append(s)
-    if not notes:
-        return "none of this file's scenes"
-    return "; ".join(f"{', '.join(s)}: {n}" for n, s in notes.items())
+        if not race_judged.driven(os.path.join(race_judged.ROOT, "mjcf", s + ".xml")):
+            reason = "the project's hand, no \"grasp\" section"
+        elif isinstance(note, str):
+            reason = note
+        else:
+            reason = "not raced in 3.14 in this file"
+        why.setdefault(reason, []).append(s)
+    return "; ".join(f"{', '.join(s)} ({n})" for n, s in why.items()) or "none"
+
+
+def not_run(scenes):
+    """The 3.14 runs a race left out (--mujoco3-kept-only), as "scene: configuration noslip N"."""
+    out = []
+    for s, e in scenes.items():
+        note = e.get("mujoco3")
+        if isinstance(note, dict):
+            out.extend(f"{s}: {x['configuration']} noslip {x['noslip']}" for x in note["not_run"])
+    return out
 
 
 def configuration_order(scenes):
