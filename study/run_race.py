@@ -304,6 +304,9 @@ def merge_rows(entry, old_entry, old, file):
     if not kept:
         return
     entry["rows"].extend(kept)
+    # 3.14's rows taken from the merged file bring its note of them (the runs it did not make).
+    if any(r["configuration"] in race_judged.MUJOCO3 for r in kept):
+        entry["mujoco3"] = old_entry.get("mujoco3")
     for key, d in old_entry.get("decompositions", {}).items():
         entry["decompositions"].setdefault(key, d)
     entry.setdefault("merged_rows", []).append(

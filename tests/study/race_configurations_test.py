@@ -73,6 +73,15 @@ again = {"rows": list(new["rows"]), "decompositions": {}}
 run_race.merge_rows(again, old_entry, old, "baselines.json")
 check("merged_rows" not in again and len(again["rows"]) == 4, "nothing merged twice")
 
+# 3.14's rows raced apart and merged: the scene keeps the merged file's note of them.
+ours = {"rows": [row("graspcd", 0, "held")], "decompositions": {},
+        "mujoco3": "not selected (--configurations)"}
+theirs = {"rows": [row("3.14 flex", 0, "held")], "decompositions": {},
+          "mujoco3": {"not_run": [{"configuration": "3.14 sdf", "noslip": 10}], "why": "kept"}}
+run_race.merge_rows(ours, theirs, {"machine": {}}, "mujoco3.json")
+check([run_race.row_key(r) for r in ours["rows"]] == [("graspcd", 0), ("3.14 flex", 0)]
+      and ours["mujoco3"] == theirs["mujoco3"], f"3.14's rows merged with their note: {ours}")
+
 # MuJoCo 3.14's configurations: raced by default, selected by a pattern, never by graspcd's.
 for name in ("3.14 hull", "3.14 sdf", "3.14 sdf10", "3.14 flex"):
     check(run_race.selected(name, None), f"{name} raced by default")
