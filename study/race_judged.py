@@ -147,14 +147,19 @@ def mujoco3_record(scene, configuration, noslip, record, node="node"):
     contacts per step added) or None where 3.14 could not start; and a message where the runner
     failed without a record (bad input, a defect: exit 1 or 2)."""
     summary_file = record + ".summary.json"
+    if os.path.exists(failed_file(record)) and not os.path.exists(record):
+        with open(failed_file(record), encoding="utf-8") as f:
+            return None, f.read().strip()
     if not os.path.exists(record):
         os.makedirs(os.path.dirname(record) or ".", exist_ok=True)
         done = subprocess.run([node, RUNNER, scene, "--configuration", configuration,
                                "--noslip", str(noslip), "--six-directions", "--summary",
                                "--out", record], capture_output=True, text=True)
         if done.returncode not in (0, 3):
-            lines = done.stderr.strip().splitlines()
-            return None, (lines[-1] if lines else f"grasp3.mjs: exit {done.returncode}")
+            message = failure_message(done.returncode, done.stderr)
+            with open(failed_file(record), "w", encoding="utf-8") as f:
+                f.write(message + "\n")
+            return None, message
         with open(summary_file, "w", encoding="utf-8") as f:
             f.write(done.stdout)
     summary = None
@@ -167,6 +172,25 @@ def mujoco3_record(scene, configuration, noslip, record, node="node"):
         with open(summary_file, "w", encoding="utf-8") as f:
             f.write(json.dumps(summary) + "\n")
     return summary, None
+
+
+def failed_file(record):
+    """Where a run that wrote no record keeps why (RECORD.failed), so that a later race reports it
+    again without running node."""
+    return record + ".failed"
+
+
+def failure_message(code, stderr):
+    """The row's message of a runner that wrote no record: its one line (bad input, exit 2), or
+    the first line of its stack (exit 1: an error MuJoCo 3.14 raised during the run, as
+    "collisionTask: collision function returned 11 contacts", or a defect of the runner)."""
+    lines = [x.strip() for x in stderr.strip().splitlines() if x.strip()]
+    first = lines[0] if lines else f"exit {code}"
+    for prefix in ("grasp3.mjs: ", "Error: "):
+        first = first[len(prefix):] if first.startswith(prefix) else first
+    if code == 1:
+        return f"the runner stopped during the run (exit 1): {first}"
+    return first
 
 
 def contacts_per_step(record):

@@ -275,7 +275,8 @@ def mujoco3_rows(graspcd, name, scene, records, noslips, node, kept_only=False, 
     rows = []
     for n in noslips:
         record = os.path.join(records, record_name(name, n))
-        if kept_only and not os.path.exists(record):
+        if kept_only and not (os.path.exists(record)
+                              or os.path.exists(race_judged.failed_file(record))):
             print(f"[race]   {name} noslip {n}: no kept record, not run", file=sys.stderr)
             not_run.append({"configuration": name, "noslip": n})
             continue
