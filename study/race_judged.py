@@ -124,11 +124,21 @@ def grasp_row(graspcd, name, command, scene, record, noslip, multiccd):
     writes RECORD with the six directions, the judge judges it. (row, None, the grasp's graspcd
     provenance: version and commit), or (None, message, None) when the grasp or the judge
     refused."""
+    if os.path.exists(record):
+        os.remove(record)
+    os.makedirs(os.path.dirname(record) or ".", exist_ok=True)
     done = subprocess.run(command + ["--write-run", record, "--six-directions"],
                           capture_output=True, text=True)
     if done.returncode != 0:
         lines = [x for x in done.stderr.strip().splitlines() if not x.startswith("warning:")]
-        return None, (lines[-1] if lines else f"exit {done.returncode}"), None
+        message = lines[-1] if lines else f"exit {done.returncode}"
+        # A start the grasp refused still writes its record: the judge's "cannot start" on it.
+        j = judge(graspcd, scene, record)[0] if os.path.exists(record) else None
+        if j is None or j["outcome"] != "cannot start":
+            return None, message, None
+        r = judged_row(name, j, noslip, multiccd)
+        r["grasp_outcome"] = "cannot start"
+        return r, None, j.get("graspcd", {})
     g = json.loads(done.stdout)
     j, message = judge(graspcd, scene, record)
     if j is None:
