@@ -282,7 +282,6 @@ def mujoco3_rows(graspcd, name, scene, records, noslips, node, kept_only=False, 
             continue
         r, message = race_judged.mujoco3_row(graspcd, name, scene, record, n, node)
         if r is None:
-            print(f"[race]   {name} noslip {n}: cannot start: {message}", file=sys.stderr)
             r = refused_row(name, n, message, True)
             r["simulator"] = race_judged.SIMULATOR
         log_row(r)
