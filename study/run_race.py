@@ -97,6 +97,7 @@ import time
 import xml.etree.ElementTree as ET
 
 import race_judged  # study/race_judged.py, beside this script
+import race_score  # study/race_score.py
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -198,6 +199,57 @@ def object_scene(graspcd, spec, work):
     return name, os.path.join(folder, stem + ".xml"), {"file": words[0], "options": words[1:]}
 
 
+def grasp_run(command):
+    """One grasp: (its JSON, None), or (None, the message) when it exited with an error (a start
+    it refused, exit code 2 with one line)."""
+    done = subprocess.run(command, capture_output=True, text=True)
+    if done.returncode != 0:
+        lines = [x for x in done.stderr.strip().splitlines() if not x.startswith("warning:")]
+        return None, (lines[-1] if lines else f"exit {done.returncode}")
+    return json.loads(done.stdout), None
+
+
+# The keys of `graspcd grasp --json` that are verdicts and judged contacts: `graspcd judge --json`
+# computes them from the run record with the same library code (docs/run-record.md), and
+# judged_run takes them from it.
+JUDGED_KEYS = ("gripped", "held", "reason", "evidence", "notes", "outcome", "closing",
+               "object_z_initial", "object_z_gripped", "object_z_final", "object_rise",
+               "hand_travel", "grip_rise", "hold_min_z", "hold_drift", "lowest_z", "tilt_deg",
+               "tilt_final_deg", "tilt_before_lift_deg", "max_speed", "kinetic_energy_max",
+               "ejected", "fell", "dropped_at", "drop", "pushed", "pushed_during_squeeze",
+               "pushed_over", "release_time", "slip_time", "touching_at_lift",
+               "support_warning", "true_penetration", "true_penetration_max",
+               "true_penetration_step", "six_directions", "judge")
+
+
+def judged_run(graspcd, scene, command, record):
+    """One grasp judged through `graspcd judge` (docs/run-record.md): `command` (a `graspcd grasp
+    SCENE ... --json` command line, with --judge for the contact counts) runs with --write-run
+    RECORD, then `graspcd judge SCENE RECORD --json` judges the record. Returns (the grasp's JSON
+    with its verdict keys, JUDGED_KEYS, replaced by the judge's, None), or (None, the message)
+    for a run that cannot start: a start refused (by graspcd or, from the record's contacts, by
+    the simulator's geometry), a run gone non-finite, or a grasp that failed before it could
+    write its record."""
+    g, message = grasp_run(command + ["--write-run", record])
+    if not os.path.exists(record):
+        return None, message
+    done = subprocess.run([graspcd, "judge", scene, record, "--json"], capture_output=True,
+                          text=True)
+    if done.returncode != 0:
+        lines = [x for x in done.stderr.strip().splitlines() if not x.startswith("warning:")]
+        return None, (lines[-1] if lines else f"graspcd judge: exit {done.returncode}")
+    j = json.loads(done.stdout)
+    if j["outcome"] == "cannot start":
+        return None, j.get("message") or message
+    if g is None:
+        return None, message
+    out = dict(g)
+    for key in JUDGED_KEYS:
+        if key in j:
+            out[key] = j[key]
+    return out, None
+
+
 def refused_row(name, noslip, message, multiccd=False):
     """The row of a run that did not start (or failed): no measures."""
     return {"configuration": name, "noslip": noslip, "outcome": "cannot start",
@@ -209,6 +261,34 @@ def refused_row(name, noslip, message, multiccd=False):
             "phantom": None,
             "missed": None, "contact_error_per_step": None, "first_contact": {},
             "cgal_first_contact": {}, "cgal_first_contact_body": {}}
+
+
+def row(name, g, noslip=None):
+    judge = g["judge"]
+    tp = g.get("true_penetration")
+    return {"configuration": name,
+            "noslip": g.get("noslip_iterations", noslip),
+            "multiccd": g.get("multiccd", False),
+            "outcome": race_score.outcome(g),
+            "reason": g.get("reason"),
+            "ejected": g.get("ejected"),
+            "tilt_deg": g.get("tilt_deg"), "tilt_final_deg": g.get("tilt_final_deg"),
+            "max_speed": g.get("max_speed"),
+            "kinetic_energy_max": g.get("kinetic_energy_max"),
+            "true_penetration_max": g.get("true_penetration_max"),
+            "true_penetration": tp,
+            "ms_per_physics_step": g["ms_per_physics_step"],
+            "contacts_per_step": g["mean_contacts"],
+            "gripped": g["gripped"], "held": g["held"],
+            "rise": g["object_z_final"] - g["object_z_initial"],
+            "first_contact": g["first_contact"],
+            "cgal_first_contact": judge["cgal_first_contact"],
+            "cgal_first_contact_body": judge["cgal_first_contact_body"],
+            "closing_steps": judge["steps"],
+            "judged_contacts": judge["contacts"],
+            "phantom": judge["phantom"], "missed": judge["missed"],
+            "phantom_by_geom": judge["phantom_by_geom"], "missed_by_geom": judge["missed_by_geom"],
+            "contact_error_per_step": judge["contact_error_per_step"]}
 
 
 def configuration_names(name, multiccds):

@@ -10,9 +10,9 @@
 #include "graspcd/core/obb_tree.h"
 #include "graspcd/core/penetration.h"
 #include "graspcd/core/sat.h"
+#include "graspcd/grasp/true_surfaces.h"
 #include "graspcd/mujoco/collision_pose.h"
 #include "graspcd/mujoco/primitives.h"
-#include "graspcd/mujoco/registry.h"
 
 namespace graspcd::grasp {
 
@@ -44,44 +44,6 @@ struct TruePenetrationWatch::Pair {
   double last_depth = 0;
 };
 
-namespace {
-
-// "geom 'NAME'", or for an unnamed geom "geom N (mesh 'M' of body 'B')" (its type for a
-// primitive), as the start check names geoms.
-std::string geom_label(const mjModel* m, int g) {
-  const char* name = mj_id2name(m, mjOBJ_GEOM, g);
-  if (name != nullptr && *name != '\0') return "geom '" + std::string(name) + "'";
-  std::string type = mujoco::geom_type_name(m->geom_type[g]);
-  if (m->geom_type[g] == mjGEOM_MESH) {
-    const char* mesh = mj_id2name(m, mjOBJ_MESH, m->geom_dataid[g]);
-    if (mesh != nullptr) type += " '" + std::string(mesh) + "'";
-  }
-  const char* body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]);
-  return "geom " + std::to_string(g) + " (" + type + " of body '" +
-         (body != nullptr ? body : "world") + "')";
-}
-
-bool may_collide(const mjModel* m, int a, int b) {
-  return (m->geom_contype[a] & m->geom_conaffinity[b]) != 0 ||
-         (m->geom_contype[b] & m->geom_conaffinity[a]) != 0;
-}
-
-// The geom's triangles in its frame: a mesh's faces (MuJoCo's float vertices), a primitive's
-// tessellation; empty for planes, height fields and anything else.
-std::vector<Triangle> local_triangles(const mjModel* m, int g) {
-  std::vector<Triangle> out;
-  const int type = m->geom_type[g];
-  if (type == mjGEOM_MESH && m->geom_dataid[g] >= 0) {
-    out = mujoco::Registry::mesh_triangles(m, m->geom_dataid[g]);
-  } else if (mujoco::is_primitive(type)) {
-    const TriangleMesh mesh = mujoco::tessellate_primitive(type, m->geom_size + 3 * g);
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) out.push_back(mesh.triangle(f));
-  }
-  return out;
-}
-
-}  // namespace
-
 TruePenetrationWatch::~TruePenetrationWatch() = default;
 
 TruePenetrationWatch::TruePenetrationWatch(const mjModel* truth, int object_body, int support_root)
@@ -92,7 +54,7 @@ TruePenetrationWatch::TruePenetrationWatch(const mjModel* truth, int object_body
   const auto surface = [&](int g) -> Surface* {
     std::unique_ptr<Surface>& s = surfaces_[static_cast<std::size_t>(g)];
     if (s) return s.get();
-    std::vector<Triangle> local = local_triangles(m, g);
+    std::vector<Triangle> local = geom_triangles(m, g);
     if (local.empty()) return nullptr;
     s = std::make_unique<Surface>();
     s->tree = ObbTree::build(std::move(local));
@@ -181,7 +143,8 @@ TruePenetrationWatch::TruePenetrationWatch(const mjModel* truth, int object_body
   result_.pairs = static_cast<int>(pairs_.size());
 }
 
-void TruePenetrationWatch::measure(const mjData* d, long step, const std::string& phase) {
+void TruePenetrationWatch::measure(const mjData* d, long step, double time,
+                                   const std::string& phase) {
   const mjModel* m = truth_;
   ++result_.measures;
   std::vector<Vec3> placed;
@@ -262,7 +225,7 @@ void TruePenetrationWatch::measure(const mjData* d, long step, const std::string
     if (depth > result_.max) {
       result_.max = depth;
       result_.step = step;
-      result_.time = d->time;
+      result_.time = time;
       result_.phase = phase;
       result_.geom = pair.name;
       result_.side = pair.support ? "support" : "hand";
