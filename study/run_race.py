@@ -5,7 +5,7 @@ usage: run_race.py GRASPCD [--out FILE] [--work DIR] [--scenes S1,S2,...] [--pie
                    [--object "NAME=FILE [grasp --object options]"]... [--scene-pieces S=4,8 ...]
                    [--simplify-above FACES=F] [--merge OLD.json] [--noslip 0,10]
                    [--engines hacd,vhacd] [--vhacd-pieces 16] [--multiccd 0,1]
-                   [--configurations "native hull*,decomposed-*"]
+                   [--configurations "native hull*,decomposed-*,3.14*"] [--node node]
 
 For each scene (default: examples 1-3; mjcf/S.xml) and each --object (a user's mesh through
 `graspcd grasp --object FILE OPTIONS --write-scene WORK/scenes/NAME`, raced as that scene under
@@ -36,6 +36,23 @@ stands on, the pair config's "support": the Robotiq scenes' table).
 (repeatable; `--scenes ""` races nothing and only merges: races run side by side, each into its
 own file, joined afterwards); the file lists each merged file's command, wall time and load
 ("merged").
+
+Every run writes a run record (docs/run-record.md) in WORK/records/SCENE/ and is judged from it by
+`graspcd judge` (study/race_judged.py): graspcd's own configurations run `graspcd grasp ... --judge
+--json --write-run RECORD --six-directions` (the grasp's JSON gives the step cost, the contacts
+per step and the first contacts; the judge the outcome, the verdicts, the true penetration, the six
+directions and the phantom and missed contacts). On the scenes whose pair config has a "grasp"
+section, MuJoCo 3.14 (the WebAssembly build, node tools/mujoco3/grasp3.mjs; docs/mujoco3.md)
+races four more configurations: "3.14 hull" (its hull, multiccd on: 3.14's default), "3.14 sdf"
+and "3.14 sdf10" (the mesh SDF, sdf_initpoints 40 and 10) and "3.14 flex" (the rigid flex, radius
+0.5 mm), each once per --noslip value with the six directions; its record is kept and a race that
+finds it judges it again without running node (delete it to run it again); --mujoco3-kept-only
+judges the kept records and runs node for none (records made ahead, or side by side, by the
+runner; the scene's "mujoco3" entry lists the runs without one). Their step cost is
+WebAssembly's, in its own field (ms_per_physics_step_wasm; ms_per_physics_step is null). A scene
+3.14 cannot start is a row "cannot start" with the runner's message; a scene of the project's own
+hand (no "grasp" section), or a machine without node or tools/mujoco3's npm packages, has no 3.14
+rows and says why in its "mujoco3" entry.
 
 The protocol (study/race_score.py): every configuration runs once per --noslip value
 (MuJoCo's noslip iterations, `grasp --noslip N`; default 0 and 10), and each run is one row with
@@ -79,7 +96,8 @@ import sys
 import time
 import xml.etree.ElementTree as ET
 
-import race_score  # study/race_score.py, beside this script
+import race_judged  # study/race_judged.py, beside this script
+import race_score  # study/race_score.py
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -238,7 +256,8 @@ def refused_row(name, noslip, message, multiccd=False):
             "message": message, "gripped": False, "held": False, "reason": None,
             "tilt_deg": None, "tilt_final_deg": None, "max_speed": None,
             "kinetic_energy_max": None, "true_penetration_max": None, "true_penetration": None,
-            "multiccd": multiccd, "ms_per_physics_step": None, "contacts_per_step": None,
+            "multiccd": multiccd, "ms_per_physics_step": None, "ms_per_physics_step_wasm": None,
+            "contacts_per_step": None, "six_directions": None,
             "phantom": None,
             "missed": None, "contact_error_per_step": None, "first_contact": {},
             "cgal_first_contact": {}, "cgal_first_contact_body": {}}
@@ -287,25 +306,67 @@ def selected(name, patterns):
     return any(fnmatch.fnmatchcase(name, p) for p in patterns)
 
 
-def race_rows(name, command, noslips, multiccd=False):
-    """The rows of one configuration, one per noslip value, and the first run's JSON (or None)."""
+def record_name(configuration, noslip):
+    """A run's record's file name: its configuration (spaces as "_") and noslip value."""
+    return f"{configuration.replace(' ', '_')}_noslip{noslip}.jsonl"
+
+
+def race_rows(graspcd, name, command, scene, records, noslips, multiccd=False):
+    """The rows of one of graspcd's configurations, one per noslip value, each run writing its
+    record in `records` and judged from it (race_judged.grasp_row), and the first run's
+    provenance (its graspcd version and commit) or None."""
     rows, first = [], None
     if multiccd:
         command = command + ["--multiccd"]
     for n in noslips:
-        g, message = grasp_run(command + ["--noslip", str(n)])
-        if g is None:
+        record = os.path.join(records, record_name(name, n))
+        r, message, version = race_judged.grasp_row(graspcd, name, command + ["--noslip", str(n)],
+                                                    scene, record, n, multiccd)
+        if r is None:
             print(f"[race]   {name} noslip {n}: cannot start: {message}", file=sys.stderr)
             rows.append(refused_row(name, n, message, multiccd))
             continue
-        first = first or g
-        r = row(name, g, n)
-        print(f"[race]   {name} noslip {n}: {r['outcome']}, true penetration"
-              f" {1000 * r['true_penetration_max']:.2f} mm,"
-              f" {r['ms_per_physics_step']:.3f} ms per step,"
-              f" {r['contacts_per_step']:.2f} contacts per step", file=sys.stderr)
+        first = first or {"graspcd": version}
+        log_row(r)
         rows.append(r)
     return rows, first
+
+
+def log_row(r):
+    """The progress line of one judged row."""
+    if r["outcome"] == "cannot start":
+        print(f"[race]   {r['configuration']} noslip {r['noslip']}: cannot start:"
+              f" {r.get('message')}", file=sys.stderr)
+        return
+    native, wasm = r.get("ms_per_physics_step"), r.get("ms_per_physics_step_wasm")
+    cost = (f"{native:.3f} ms per step" if native is not None else
+            "no step cost" if wasm is None else f"{wasm:.3f} ms per step (WebAssembly)")
+    six = r.get("six_directions") or {}
+    tp = r.get("true_penetration_max")
+    print(f"[race]   {r['configuration']} noslip {r['noslip']}: {r['outcome']},"
+          f" six directions {six.get('held', '-')} of {six.get('of', 6)}, true penetration"
+          f" {'-' if tp is None else f'{1000 * tp:.2f}'} mm, {cost}", file=sys.stderr)
+
+
+def mujoco3_rows(graspcd, name, scene, records, noslips, node, kept_only=False, not_run=None):
+    """The rows of one of MuJoCo 3.14's configurations, one per noslip value: the node runner's
+    record (made unless it exists in `records`) judged by graspcd judge. With `kept_only`, a
+    record not made yet is not made: its configuration and noslip value go to `not_run`."""
+    rows = []
+    for n in noslips:
+        record = os.path.join(records, record_name(name, n))
+        if kept_only and not (os.path.exists(record)
+                              or os.path.exists(race_judged.failed_file(record))):
+            print(f"[race]   {name} noslip {n}: no kept record, not run", file=sys.stderr)
+            not_run.append({"configuration": name, "noslip": n})
+            continue
+        r, message = race_judged.mujoco3_row(graspcd, name, scene, record, n, node)
+        if r is None:
+            r = refused_row(name, n, message, True)
+            r["simulator"] = race_judged.SIMULATOR
+        log_row(r)
+        rows.append(r)
+    return rows
 
 
 def row_key(r):
@@ -323,6 +384,9 @@ def merge_rows(entry, old_entry, old, file):
     if not kept:
         return
     entry["rows"].extend(kept)
+    # 3.14's rows taken from the merged file bring its note of them (the runs it did not make).
+    if any(r["configuration"] in race_judged.MUJOCO3 for r in kept):
+        entry["mujoco3"] = old_entry.get("mujoco3")
     for key, d in old_entry.get("decompositions", {}).items():
         entry["decompositions"].setdefault(key, d)
     entry.setdefault("merged_rows", []).append(
@@ -336,6 +400,58 @@ def engines_available(graspcd):
     --help` names it."""
     done = subprocess.run([graspcd, "decompose", "--help"], capture_output=True, text=True)
     return ["hacd"] + (["vhacd"] if "vhacd" in done.stdout.lower() else [])
+
+
+def race_mujoco3(args, scene_name, scene, records, noslips, patterns, rows):
+    """MuJoCo 3.14's configurations of one scene (those --configurations selects), their rows
+    added to `rows`; returns why the scene has none (None when raced)."""
+    names = [n for n in race_judged.MUJOCO3 if selected(n, patterns)]
+    if not names:
+        return "not selected (--configurations)"
+    if not race_judged.driven(scene):
+        return ("not raced: the scene's hand runs on graspcd's C++ controllers (its pair config"
+                " has no \"grasp\" section for the node runner to drive)")
+    missing = race_judged.mujoco3_missing(args.node)
+    if missing:
+        print(f"[race] {scene_name}: MuJoCo 3.14 not raced: {missing}", file=sys.stderr)
+        return f"not raced: {missing}"
+    not_run = []
+    for name in names:
+        print(f"[race] {scene_name}: {name} ({race_judged.SIMULATOR})", file=sys.stderr)
+        rows.extend(mujoco3_rows(args.graspcd, name, scene, records, noslips, args.node,
+                                 args.mujoco3_kept_only, not_run))
+    if not_run:
+        return {"not_run": not_run,
+                "why": "--mujoco3-kept-only: no record of these was kept in --work"}
+    return None
+
+
+# An absolute path in a command or message: "/" then a name, then at least one more "/NAME",
+# starting a word (not the "m/s" of a speed).
+ABSOLUTE_PATH = re.compile(r"(?<![\w./])/[A-Za-z0-9_.+-]+(?:/[A-Za-z0-9_.+-]+)+")
+
+
+def without_machine_paths(value):
+    """race.json's strings without this machine's paths: a path inside a checkout of the
+    repository from the checkout on ("mjcf/S.xml"), any other absolute path its file's name
+    alone (a work folder, an executable, a merged file). Applied to everything written."""
+    if isinstance(value, dict):
+        return {k: without_machine_paths(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [without_machine_paths(v) for v in value]
+    if not isinstance(value, str):
+        return value
+
+    def short(m):
+        path = m.group(0)
+        if path.startswith(ROOT + "/"):
+            return os.path.relpath(path, ROOT)
+        for folder in ("/mjcf/", "/tools/", "/examples/", "/data/"):
+            at = path.find(folder)
+            if at >= 0:
+                return path[at + 1:]
+        return os.path.basename(path)
+    return ABSOLUTE_PATH.sub(short, value)
 
 
 def main():
@@ -365,6 +481,11 @@ def main():
     parser.add_argument("--multiccd", default="0,1",
                         help="MuJoCo's multi-point convex collision for the native and decomposed"
                              " configurations: 0 without, 1 with (grasp --multiccd), one run each")
+    parser.add_argument("--node", default="node",
+                        help="node, which runs MuJoCo 3.14's configurations (tools/mujoco3)")
+    parser.add_argument("--mujoco3-kept-only", action="store_true",
+                        help="judge only MuJoCo 3.14's records kept in --work, run node for none"
+                             " (the scene's \"mujoco3\" entry lists those not run)")
     parser.add_argument("--configurations",
                         help="comma-separated configuration names or fnmatch patterns to race"
                              " (default: all but \"graspcd multiccd\")")
@@ -421,6 +542,8 @@ def main():
                              {"above": simplify_above[0], "max_faces": simplify,
                               "source_faces": faces})
         base = [args.graspcd, "grasp", scene, "--judge", "--json"]
+        # Every run's record (graspcd's, rewritten each race; 3.14's, kept and reused).
+        records = os.path.join(args.work, "records", scene_name)
         first = None
 
         def race(route, command):
@@ -434,13 +557,16 @@ def main():
                 if not selected(name, patterns):
                     continue
                 print(f"[race] {scene_name}: {name}", file=sys.stderr)
-                rows, g = race_rows(name, command, noslips, multiccd)
+                rows, g = race_rows(args.graspcd, name, command, scene, records, noslips,
+                                    multiccd)
                 entry["rows"].extend(rows)
                 first = first or g
 
         race("graspcd", base)
         race("graspcd exact", base + ["--exact"])
         race("native hull", base + ["--native"])
+        entry["mujoco3"] = race_mujoco3(args, scene_name, scene, records, noslips, patterns,
+                                        entry["rows"])
         vhacd_counts = counts if args.vhacd_pieces is None else \
             [int(p) for p in args.vhacd_pieces.split(",") if p]
         if "vhacd" in engines:
@@ -514,7 +640,7 @@ def main():
     result["load_average_end"] = list(os.getloadavg())
     os.makedirs(os.path.dirname(args.out), exist_ok=True)
     with open(args.out, "w", encoding="utf-8") as f:
-        json.dump(result, f, indent=1)
+        json.dump(without_machine_paths(result), f, indent=1)
         f.write("\n")
     print(f"wrote {args.out}", file=sys.stderr)
 

@@ -10,6 +10,7 @@ import race_score  # study/race_score.py (on the path: sections/__init__.py)
 
 from sections.numbers import opt
 from sections.race_findings import race_findings
+from sections.race_mujoco3 import mujoco3_section
 
 
 def race_section(race, fig_dir, fig_rel):
@@ -21,6 +22,7 @@ def race_section(race, fig_dir, fig_rel):
     lines.extend(race_protocol_text(race))
     lines.extend(race_rows(race, fig_dir, fig_rel))
     lines.extend(race_findings(race))
+    lines.extend(mujoco3_section(race))
     return lines
 
 
@@ -202,18 +204,20 @@ def race_rows(race, fig_dir, fig_rel):
     """One row per run, and the figure of their step costs, contact errors and penetrations."""
     lines = [""]
     w = lines.append
-    w("| scene | configuration | noslip | outcome | tilt final (deg) | top speed (m/s) |"
-      " kinetic energy (mJ) | true penetration: hand, support (mm) | step cost (ms) |"
-      " contacts per step |"
+    w("| scene | configuration | noslip | outcome | six directions | tilt final (deg) |"
+      " top speed (m/s) | kinetic energy (mJ) | true penetration: hand, support (mm) |"
+      " step cost, native (ms) | step cost, WebAssembly (ms) | contacts per step |"
       " first contact as CGAL's | phantom, missed | contact error per step |")
-    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     fig, (ax, axp) = plt.subplots(1, 2, figsize=(13, 4.8))
     markers = "osD^v<>phH*"
     for k, (scene, e) in enumerate(race["scenes"].items()):
         points = {True: ([], [], []), False: ([], [], [])}
         for r in e["rows"]:
             w(row_line(scene, r))
-            if race_score.row_outcome(r) != "cannot start":
+            # A WebAssembly step cost is not on the native axis.
+            if (race_score.row_outcome(r) != "cannot start"
+                    and r.get("ms_per_physics_step") is not None):
                 plot_row(r, ax, axp, points)
         plot_scene(scene, color=f"C{k % 10}", marker=markers[k % len(markers)], points=points,
                    ax=ax, axp=axp)
@@ -223,7 +227,8 @@ def race_rows(race, fig_dir, fig_rel):
     w("")
     w("Filled markers: the object was kept (held, tilted or not); hollow: it was not (dropped,"
       " ejected; a run that could not start has no point). Rows of an earlier race (no noslip"
-      " column) have no true penetration and appear in the left panel only.")
+      " column) have no true penetration and appear in the left panel only. MuJoCo 3.14's rows"
+      " have a WebAssembly step cost, not a native one, and are not in the figure.")
     w("")
     return lines
 
@@ -239,7 +244,7 @@ def row_line(scene, r):
         at = message.find("cannot start with ")
         message = message[at + len("cannot start with "):] if at >= 0 else message
         return (f"| {scene} | {r['configuration']} | {noslip} | cannot start:"
-                f" {message.replace('|', '/')} | - | - | - | - | - | - | - | - | - |")
+                f" {message.replace('|', '/')} | - | - | - | - | - | - | - | - | - | - | - |")
     # A segment is a geom name (the project's hands) or a "body:NAME" touch pattern.
     segments = r["first_contact"]
     same = sum(1 for seg, step in segments.items()
@@ -249,15 +254,26 @@ def row_line(scene, r):
     if "outcome" in r and outcome == "dropped" and r.get("reason"):
         shown = f"dropped ({r['reason']})"
     return (f"| {scene} | {r['configuration']} | {'-' if noslip is None else noslip} |"
-            f" {shown} | {opt(r.get('tilt_final_deg'), '.1f')} |"
+            f" {shown} | {six_directions_cell(r)} | {opt(r.get('tilt_final_deg'), '.1f')} |"
             f" {opt(r.get('max_speed'), '.3g')} |"
             f" {opt(None if r.get('kinetic_energy_max') is None else 1000 * r['kinetic_energy_max'], '.3g')} |"
             f" {penetration_cell(r)} |"
-            f" {r['ms_per_physics_step']:.3f} | {r['contacts_per_step']:.1f} |"
+            f" {opt(r.get('ms_per_physics_step'), '.3f')} |"
+            f" {opt(r.get('ms_per_physics_step_wasm'), '.3f')} |"
+            f" {opt(r.get('contacts_per_step'), '.1f')} |"
             f" {same} of {len(segments)} |"
             f" {by_geom(r['phantom'], r.get('phantom_by_geom'))},"
             f" {by_geom(r['missed'], r.get('missed_by_geom'))} |"
-            f" {r['contact_error_per_step']:.2f} |")
+            f" {opt(r.get('contact_error_per_step'), '.2f')} |")
+
+
+def six_directions_cell(r):
+    """A row's six-direction result: "6 of 6", "4 of 6 (lost -y, -z)", "-" without the test."""
+    six = r.get("six_directions")
+    if not six:
+        return "-"
+    lost = [d["direction"] for d in six.get("directions", []) if not d.get("passed")]
+    return f"{six['held']} of {six['of']}" + (f" (lost {', '.join(lost)})" if lost else "")
 
 
 def plot_row(r, ax, axp, points):

@@ -29,11 +29,14 @@ def race_findings(race):
             cheap_good.extend(as_good_finding(where, ours, cheaper))
             best = min(rows, key=race_score.score)
             if "outcome" in best:
+                cost = (f"{best['ms_per_physics_step']:.3f} ms"
+                        if best.get("ms_per_physics_step") is not None else
+                        f"{best['ms_per_physics_step_wasm']:.3f} ms in WebAssembly")
                 verdicts.append(f"- {where}: best {best['configuration']}"
                                 f" ({shown_outcome(best)},"
                                 f" {1000 * race_score.hand_penetration(best):.2f} mm into the"
                                 f" hand, {best['contact_error_per_step']:.2f} errors per step,"
-                                f" {best['ms_per_physics_step']:.3f} ms).")
+                                f" {cost}).")
     return findings_text(exact, cheap_good, noslip_changes(race), verdicts)
 
 

@@ -73,6 +73,38 @@ again = {"rows": list(new["rows"]), "decompositions": {}}
 run_race.merge_rows(again, old_entry, old, "baselines.json")
 check("merged_rows" not in again and len(again["rows"]) == 4, "nothing merged twice")
 
+# 3.14's rows raced apart and merged: the scene keeps the merged file's note of them.
+ours = {"rows": [row("graspcd", 0, "held")], "decompositions": {},
+        "mujoco3": "not selected (--configurations)"}
+theirs = {"rows": [row("3.14 flex", 0, "held")], "decompositions": {},
+          "mujoco3": {"not_run": [{"configuration": "3.14 sdf", "noslip": 10}], "why": "kept"}}
+run_race.merge_rows(ours, theirs, {"machine": {}}, "mujoco3.json")
+check([run_race.row_key(r) for r in ours["rows"]] == [("graspcd", 0), ("3.14 flex", 0)]
+      and ours["mujoco3"] == theirs["mujoco3"], f"3.14's rows merged with their note: {ours}")
+
+# MuJoCo 3.14's configurations: raced by default, selected by a pattern, never by graspcd's.
+for name in ("3.14 hull", "3.14 sdf", "3.14 sdf10", "3.14 flex"):
+    check(run_race.selected(name, None), f"{name} raced by default")
+    check(run_race.selected(name, ["3.14*"]), f"{name} by 3.14*")
+    check(not run_race.selected(name, ["graspcd*", "native hull*"]), f"{name} not graspcd's")
+check(run_race.record_name("3.14 sdf10", 10) == "3.14_sdf10_noslip10.jsonl", "a record's name")
+check(run_race.record_name("decomposed-16 multiccd", 0)
+      == "decomposed-16_multiccd_noslip0.jsonl", "a record's name, with multiccd")
+
+# race.json without this machine's paths: a checkout's file from the checkout on, any other
+# absolute path its name alone; speeds and relative paths untouched.
+strip = run_race.without_machine_paths
+check(strip("/work/main/mjcf/concave_robotiq_bowl_rim.xml: with /work/race-work/bowl_16:"
+            " cannot start") == "mjcf/concave_robotiq_bowl_rim.xml: with bowl_16: cannot start",
+      "a message's paths")
+check(strip(run_race.ROOT + "/study/run_race.py") == "study/run_race.py", "this checkout's file")
+check(strip(["/opt/x/graspcd", "--merge", "/tmp/a/b.json"]) == ["graspcd", "--merge", "b.json"],
+      "a command's paths")
+check(strip({"m": "2.5 m/s over 1/60 s", "mesh": "../shared/models/objects/mug.obj"})
+      == {"m": "2.5 m/s over 1/60 s", "mesh": "../shared/models/objects/mug.obj"},
+      "no path, or a relative one, untouched")
+check(strip({"n": 3, "x": None}) == {"n": 3, "x": None}, "numbers untouched")
+
 for f in failures:
     print(f"race_configurations_test: FAILED: {f}", file=sys.stderr)
 sys.exit(1 if failures else 0)

@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""study/run_race.py's MuJoCo 3.14 rows on one case: `run_race.py GRASPCD --scenes
+concave_robotiq_mug_rim --configurations "3.14 hull" --noslip 0` runs the node runner
+(tools/mujoco3/grasp3.mjs) with the six directions, keeps its record in --work, and judges it
+with `graspcd judge`. 3.14's hull starts 15-32 mm inside the mug (docs/mujoco3.md): the row must
+say "cannot start" (the judge's start rule on 3.14's own contacts) or "ejected", never a grip.
+The row carries a WebAssembly step cost and no native one, the race.json no path of this
+machine, and the report's race section shows the row. A second race of the same scene judges
+the kept record again without running node (the record is not rewritten).
+
+Run by ctest as race_mujoco3_test (label slow) with GRASPCD, the executable; exits 77 (skipped),
+saying why, where node, tools/mujoco3's npm packages or ../shared/models is missing."""
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "study"))
+sys.path.insert(0, str(ROOT / "report"))
+import race_judged  # noqa: E402
+
+SKIP = 77
+SCENE = "concave_robotiq_mug_rim"
+
+
+def skip(why):
+    print(f"race_mujoco3_test: skipped: {why}")
+    sys.exit(SKIP)
+
+
+graspcd = sys.argv[1] if len(sys.argv) > 1 else str(ROOT / "build" / "graspcd")
+missing = race_judged.mujoco3_missing()
+if missing:
+    skip(missing)
+if not (ROOT.parent / "shared" / "models").is_dir():
+    skip(f"{ROOT.parent / 'shared' / 'models'} is missing (the scene's hand and mesh)")
+
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+
+
+def race(work, out):
+    done = subprocess.run(
+        ["/usr/bin/python3", str(ROOT / "study" / "run_race.py"), graspcd, "--scenes", SCENE,
+         "--configurations", "3.14 hull", "--noslip", "0", "--work", work, "--out", out],
+        capture_output=True, text=True, cwd=ROOT)
+    if done.returncode != 0:
+        print(done.stderr, file=sys.stderr)
+        sys.exit(f"race_mujoco3_test: run_race.py exited {done.returncode}")
+    with open(out, encoding="utf-8") as f:
+        text = f.read()
+    return text, json.loads(text)
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    work = os.path.join(tmp, "work")
+    text, data = race(work, os.path.join(tmp, "race.json"))
+    rows = data["scenes"][SCENE]["rows"]
+    check([r["configuration"] for r in rows] == ["3.14 hull"], f"rows {rows}")
+    r = rows[0]
+    check(r["simulator"] == race_judged.SIMULATOR, f"simulator {r.get('simulator')}")
+    check(r["outcome"] in ("cannot start", "ejected"),
+          f"3.14's hull of the mug: outcome {r['outcome']} ({r.get('message')})")
+    check(not r["held"], "3.14's hull of the mug is not held")
+    check(r["ms_per_physics_step"] is None, "no native step cost on a WebAssembly row")
+    if r["outcome"] != "cannot start":
+        check(r["ms_per_physics_step_wasm"] > 0, "a WebAssembly step cost")
+        check(r["six_directions"]["of"] == 6, f"six directions {r.get('six_directions')}")
+        check(r["phantom"] is not None and r["missed"] is not None, "the judge's contact counts")
+    else:
+        check(r["message"], "a row that cannot start says why")
+    record = os.path.join(work, "records", SCENE, "3.14_hull_noslip0.jsonl")
+    check(os.path.exists(record), f"the record kept in --work: {record}")
+    with open(record, encoding="utf-8") as f:
+        header = json.loads(f.readline())
+    check(header.get("six_directions") is not None, "the record has the six directions")
+    check(tmp not in text and str(ROOT) not in text,
+          "race.json carries no path of this machine")
+    check(data["scenes"][SCENE]["mujoco3"] is None, "the scene was raced in 3.14")
+
+    # The report's race section shows the row, its WebAssembly cost in its own column.
+    from sections.race import race_section  # noqa: E402  (report/sections)
+    lines = race_section(data, tmp, "figures")
+    shown = [x for x in lines if x.startswith(f"| {SCENE} | 3.14 hull | 0 |")]
+    check(len(shown) == 1, f"the report's row: {shown}")
+    check(any(x.startswith("### Against MuJoCo 3.14") for x in lines),
+          "the report's 3.14 subsection")
+
+    # Raced again: the kept record is judged again, not rewritten by node.
+    before = os.stat(record).st_mtime_ns
+    _, again = race(work, os.path.join(tmp, "again.json"))
+    check(os.stat(record).st_mtime_ns == before, "the kept record is reused")
+    r2 = again["scenes"][SCENE]["rows"][0]
+    check((r2["outcome"], r2.get("message"), r2.get("true_penetration_max"))
+          == (r["outcome"], r.get("message"), r.get("true_penetration_max")),
+          "the same record judges to the same row")
+
+for f in failures:
+    print(f"race_mujoco3_test: FAILED: {f}", file=sys.stderr)
+sys.exit(1 if failures else 0)
