@@ -228,6 +228,7 @@ void HandRun::physics_step() {
   scan_contacts();
   watch_object();
   if (true_watch_ && physics_steps_ % grasp_step_length_ == 0) {
+    const CostTimer timer(cost_, CostPart::kTruePenetration);
     const bool closing = phase_.rfind("grasp step ", 0) == 0;
     true_watch_->measure(d_, physics_steps_ / grasp_step_length_,
                          closing ? std::string("the closing") : phase_);
@@ -372,7 +373,10 @@ void HandRun::close(const GraspOptions& options, GraspResult& result) {
       for (std::size_t s = 0; s < segments; ++s) touched[s] = touched[s] || touching_[s];
     }
     add_step_record(k, contacts_, touching_, take_stats(), object_height(), result);
-    if (options.on_grasp_step) options.on_grasp_step(m_, d_, k);
+    if (options.on_grasp_step) {
+      const CostTimer timer(cost_, CostPart::kJudge);
+      options.on_grasp_step(m_, d_, k);
+    }
     for (std::size_t s = 0; s < segments; ++s) {
       if (touched[s] && result.first_contact[s] < 0) result.first_contact[s] = k;
     }
@@ -431,9 +435,14 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   start_watch();
   grasp_step_length_ = std::max(1, options.physics_steps_per_grasp_step);
   if (options.true_penetration) {
-    true_watch_ =
-        std::make_unique<TruePenetrationWatch>(truth_ ? truth_ : m_, object_, support_root());
+    const CostTimer timer(&result.cost, CostPart::kTrees);
+    true_watch_ = std::make_unique<TruePenetrationWatch>(truth_ ? truth_ : m_, object_,
+                                                         support_root(), surfaces_);
   }
+  // The physics part is the phases' time less the parts measured inside them.
+  cost_ = &result.cost;
+  const GraspCost before = result.cost;
+  const CostInstant phases_start = CostInstant::now();
   close(options, result);
 
   // Phase 2: squeeze, then settle, watching how far the object is pushed from where it was.
@@ -480,6 +489,13 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   end_lift();
 
   hold(options, result);
+  PartTime physics = CostInstant::now().since(phases_start);
+  for (CostPart inside : {CostPart::kTruePenetration, CostPart::kJudge}) {
+    physics -= result.cost[inside];
+    physics += before[inside];
+  }
+  result.cost[CostPart::kPhysics] += physics;
+  cost_ = nullptr;
   take_stats();
   finish(result);
   result.hand_travel = hand_height() - hand_at_lift;

@@ -34,6 +34,9 @@ class HandRun {
   // (true_penetration.h): for a decomposed scene its true_object_model (decomposed_pieces.h);
   // by default the run's own model. Must outlive the run.
   void set_truth(const mjModel* truth) { truth_ = truth; }
+  // The surfaces of the truth model's geoms (surface_cache.h), kept across runs by the caller
+  // (without: the run builds its own). Must outlive the run.
+  void set_surfaces(SurfaceCache* surfaces) { surfaces_ = surfaces; }
 
   // Runs the phases and fills `result`'s grasp fields (the caller fills scene, method, warnings).
   void run(const GraspOptions& options, GraspResult& result);
@@ -141,7 +144,9 @@ class HandRun {
   ObjectWatch watch_;
   std::vector<mjtNum> energy_scratch_;
   const mjModel* truth_ = nullptr;
+  SurfaceCache* surfaces_ = nullptr;
   std::unique_ptr<TruePenetrationWatch> true_watch_;
+  GraspCost* cost_ = nullptr;   // the running grasp's (GraspResult::cost)
   long grasp_step_length_ = 5;  // physics steps per grasp step (GraspOptions)
 };
 

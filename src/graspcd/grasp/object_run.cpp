@@ -109,6 +109,7 @@ ObjectRun::ObjectRun(const ObjectRunOptions& options) : options_(options) {
 }
 
 const ObjectScene& ObjectRun::write(const ObjectPlacement& placement) {
+  const CostTimer timer(&cost_, CostPart::kScene);
   description_.scene = write_object_scene(placement, options_.hand, folder_.path().string());
   // A kept scene's pair config is the user's file from now on: messages name it there.
   if (!options_.write_scene.empty()) {
@@ -130,6 +131,7 @@ GraspResult ObjectRun::grasp(GraspOptions options) {
   }
   keep();
   result.scene = description_.kept ? description_.scene.scene : description_.file;
+  result.cost += cost_;
   return result;
 }
 

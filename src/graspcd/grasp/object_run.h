@@ -47,12 +47,15 @@ class ObjectRun {
 
   // Writes the scene of `placement` (its file: the run's) into the folder; its messages name the
   // files as ObjectScene::names has them, the pair config of a kept scene as DIR/STEM.pairs.json.
-  // Throws io::InputError naming a bad mesh or template; std::invalid_argument for a bad `up`.
+  // Its time is the grasp's "scene" part (grasp_cost.h). Throws io::InputError naming a bad mesh
+  // or template; std::invalid_argument for a bad `up`.
   const ObjectScene& write(const ObjectPlacement& placement);
 
   const std::string& scene() const { return description_.scene.scene; }
   const mujoco::SceneNames& names() const { return description_.scene.names; }
   const ObjectRunDescription& description() const { return description_; }
+  // The time of write(): the "scene" part (grasp_cost.h).
+  const GraspCost& cost() const { return cost_; }
 
   // run_grasp on the written scene with its names; then the scene is kept (with `write_scene`),
   // also when the grasp refuses it (so that it can be edited). The result's scene is the kept
@@ -66,6 +69,7 @@ class ObjectRun {
   std::optional<io::RemoveIfEmpty> created_;  // DIR, when this run created it
   io::CleanupGuard folder_;                   // the temporary or private folder
   ObjectRunDescription description_;
+  GraspCost cost_;  // the scene's writing
 };
 
 }  // namespace graspcd::grasp

@@ -6,8 +6,9 @@
 // What is checked, at the initial state (after mj_forward): every geom of the object's body tree
 // against every other geom the contype/conaffinity filter lets collide with it (explicit <pair>
 // elements are not read), skipping pairs whose bounding spheres (geom_rbound) are farther apart
-// than kStartPenetration. The geoms' surfaces are MuJoCo's own float vertices placed in the world
-// (meshes: mesh_face, not the hull; primitives: the MuJoCo layer's tessellations, primitives.h).
+// than kStartPenetration. The geoms' surfaces are MuJoCo's own float vertices in the geoms' frames
+// (meshes: mesh_face, not the hull; primitives: the MuJoCo layer's tessellations, primitives.h;
+// surface_cache.h), one geom placed in the other's frame by the state.
 //  - A plane (the floor): the depth of the object's lowest vertex below it.
 //  - Anything else: the depth inside the other's closed solid of each vertex of one geom and of
 //    points along its edges at most kStartPenetration apart, both ways (exact inside test,
@@ -24,6 +25,7 @@
 
 #include <string>
 
+#include "graspcd/grasp/surface_cache.h"
 #include "graspcd/mujoco/scene_names.h"
 
 namespace graspcd::grasp {
@@ -36,8 +38,11 @@ inline constexpr double kStartPenetration = 0.5e-3;
 // The first violation as one message (no file name in front), or "" when the start state is
 // valid. `object_body` is the object's body id; `d` holds the initial state after mj_forward.
 // `names` words the warnings of a scene graspcd wrote (a mesh of the hand called the hand's).
+// `surfaces`: the geoms' surfaces (surface_cache.h), kept by the caller across grasps of one model
+// (null: built for this check).
 std::string check_start_state(const mjModel* m, const mjData* d, int object_body,
-                              const mujoco::SceneNames& names = {});
+                              const mujoco::SceneNames& names = {},
+                              SurfaceCache* surfaces = nullptr);
 
 // The start as MuJoCo's native collision sees it (--native, and the pieces of --decomposed, which
 // are mesh geoms collided natively): every mesh geom is its convex hull (MuJoCo 2.2's mesh_graph,
@@ -50,6 +55,7 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
 // ..."), or "" when none. A start that passes check_start_state and fails this one is a limit of
 // the hull, not of the scene. Primitives against primitives, planes and height fields are left to
 // check_start_state, which sees them as MuJoCo collides them.
-std::string check_hull_start(const mjModel* m, const mjData* d, int object_body);
+std::string check_hull_start(const mjModel* m, const mjData* d, int object_body,
+                             SurfaceCache* surfaces = nullptr);
 
 }  // namespace graspcd::grasp
