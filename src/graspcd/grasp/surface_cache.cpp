@@ -20,6 +20,42 @@ bool less(const Vec3& a, const Vec3& b) {
   return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
 }
 
+// The distance from p to the closed box b (Ericson (2005), 5.1.4).
+double point_box_distance(const Vec3& p, const Obb& b) {
+  const Vec3 local = b.axes.transpose() * (p - b.center);
+  return (local.cwiseAbs() - b.half).cwiseMax(0.0).norm();
+}
+
+// The distance from p to some triangle of the tree at most `cap` away, or infinity when there is
+// none: a depth-first search that leaves every node whose box lies farther than the cap (a box
+// holds its triangles; the comparison leaves a margin for the box's rounding), so that a point far
+// from the surface costs a few box tests.
+double triangle_within(const ObbTree& tree, const Vec3& p, double cap,
+                       std::vector<std::int32_t>& stack) {
+  const std::vector<ObbNode>& nodes = tree.nodes();
+  const std::vector<Triangle>& triangles = tree.triangles();
+  if (nodes.empty()) return std::numeric_limits<double>::infinity();
+  const double slack = 1e-9 * (1 + nodes.front().box.half.maxCoeff());
+  stack.assign(1, 0);
+  while (!stack.empty()) {
+    const std::int32_t index = stack.back();
+    stack.pop_back();
+    const ObbNode& node = nodes[static_cast<std::size_t>(index)];
+    if (point_box_distance(p, node.box) - slack > cap) continue;
+    if (node.is_leaf()) {
+      for (std::int32_t k = 0; k < node.count; ++k) {
+        const double d =
+            point_triangle_distance(p, triangles[static_cast<std::size_t>(node.first + k)]);
+        if (d <= cap) return d;
+      }
+      continue;
+    }
+    stack.push_back(node.right);
+    stack.push_back(index + 1);
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
 
 std::vector<Triangle> geom_local_triangles(const mjModel* m, int g) {
@@ -159,16 +195,18 @@ ProbeDepth deepest_probe_inside(const GeomSurface& solid, const GeomSurface& pro
     }
   }
   // Of those, the ones farther from the surface than the floor (and than the deepest so far) and
-  // inside the solid: the first test stops as soon as a triangle within that distance is found.
+  // inside the solid, in the order of what they cost: a triangle within that distance (found by
+  // a search that visits only the boxes that near), the inside test, and only then the distance
+  // to the surface, exactly.
   for (const Vec3& x : placed) {
     const double enough = std::max(floor, out.depth);
-    const double nearest = nearest_surface_distance(tree, x, enough, stack);
-    if (nearest <= enough) {
-      out.bound = std::max(out.bound, nearest);
+    const double near = triangle_within(tree, x, enough, stack);
+    if (near <= enough) {
+      out.bound = std::max(out.bound, near);
       continue;
     }
     if (point_side(tree, x) == PointSide::kOutside) continue;
-    out.depth = nearest;
+    out.depth = nearest_surface_distance(tree, x, enough, stack);
   }
   out.bound = std::max(out.bound, out.depth);
   return out;

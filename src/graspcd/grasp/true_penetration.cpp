@@ -130,8 +130,15 @@ void TruePenetrationWatch::measure(const mjData* d, long step, const std::string
       const Vec3 normal = mujoco::from_row_major(d->geom_xmat + 9 * g).col(2);
       const Vec3 at = mujoco::geom_position(d, g);
       const Pose pose{mujoco::from_row_major(d->geom_xmat + 9 * o), mujoco::geom_position(d, o)};
+      const GeomSurface& object = *surfaces_->surface(o);
+      // The vertices lie in their box along the geom's axes: none lies deeper than its deepest
+      // corner, and one no deeper than the side's deepest so far changes nothing.
+      const Vec3 n = pose.R.transpose() * normal;
+      const double corner = -normal.dot(apply_pose(pose, object.aligned_center()) - at) +
+                            n.cwiseAbs().dot(object.aligned_half());
+      if (corner <= side) continue;
       // A triangle's depth below a plane is deepest at a vertex.
-      for (const Vec3& p : surfaces_->surface(o)->vertices()) {
+      for (const Vec3& p : object.vertices()) {
         depth = std::max(depth, -normal.dot(apply_pose(pose, p) - at));
       }
     } else {
