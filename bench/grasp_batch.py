@@ -61,6 +61,9 @@ def main():
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--single", type=int, default=3,
                     help="grasps run one process each (the first placements of the batch)")
+    ap.add_argument("--today",
+                    help="another graspcd (e.g. a build of an earlier commit) whose one process "
+                    "per grasp is the baseline: --up/--yaw only, no offset")
     ap.add_argument("--workers", action="store_true",
                     help="also two batches at once (two workers) against one")
     args = ap.parse_args()
@@ -88,11 +91,15 @@ def main():
         results[name] = grasped * 60 / cpu if cpu > 0 else 0
         physics = parts.get("physics", 0) / max(1, grasped)
         other = sum(v for k, v in parts.items() if k != "physics")
+        later = parts_of(lines[1:])
+        later_other = sum(v for k, v in later.items() if k != "physics")
+        later_share = later_other / max(1e-9, later_other + later.get("physics", 0))
         print(f"{name}: batch of {args.placements} ({grasped} grasped): median {cpu:.2f} s CPU "
               f"({statistics.median(walls):.2f} s wall) over {args.runs} runs: "
               f"{results[name]:.1f} grasps/min; first grasp {first:.3f} s CPU before its first "
               f"physics step; not physics {other / max(1e-9, other + parts.get('physics', 0)):.0%}"
-              f" of the grasps' measured time; physics {physics:.3f} s CPU per grasp")
+              f" of the grasps' measured time ({later_share:.0%} in the grasps after the first); physics "
+              f"{physics:.3f} s CPU per grasp")
         print("  parts (s CPU, summed over the batch): " +
               ", ".join(f"{k} {v:.3f}" for k, v in parts.items()))
 
@@ -108,6 +115,13 @@ def main():
     single = len(cpus) * 60 / sum(cpus)
     print(f"one process per grasp: {single:.1f} grasps/min (median CPU of {args.runs} runs of "
           f"{len(cpus)} placements: {', '.join(f'{c:.2f}' for c in cpus)} s)")
+    if args.today:
+        today = [args.today, "grasp", "--object", args.object, "--hand", args.hand] + fixed + [
+            "--quiet"]
+        cpu = statistics.median(run(today)[1] for _ in range(args.runs))
+        print(f"one process per grasp with {args.today}: {60 / cpu:.1f} grasps/min (median CPU "
+              f"{cpu:.2f} s of {args.runs} runs); the batch: "
+              f"{results['graspcd default'] * cpu / 60:.2f}x")
     print(f"batch / one process per grasp: {results['graspcd default'] / single:.2f}x; "
           f"graspcd default / hull in the batch: "
           f"{results['graspcd default'] / results['MuJoCo 2.2 hull']:.2f}x")
