@@ -36,6 +36,7 @@ Command add_stress_command(CLI::App& parent);
 Command add_validate_command(CLI::App& parent);
 Command add_trajectory_command(CLI::App& parent);
 Command add_decompose_command(CLI::App& parent);
+Command add_judge_command(CLI::App& parent);
 
 // The text of `graspcd grasp --help` after the options (grasp_help.cpp).
 extern const char* const kGraspHelp;

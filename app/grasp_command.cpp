@@ -41,32 +41,18 @@ struct GraspCliOptions {
   bool exact = false;        // --exact: exact contacts every step (--contact-reuse 0)
   std::string manifold;  // --manifold support|moment|force[N]: the config's reduction overridden
   std::string object;    // --object FILE: a user's mesh in a template scene
-  PlacementOptions placement;  // its placement (object_placement.h)
-  std::string decomposed;      // --decomposed DIR: the object's collision by its convex pieces
-  bool judge = false;          // --judge: every closing step's contacts against CGAL (the race)
-  bool force = false;          // --force: --write-scene may replace files graspcd did not write
-  int noslip = 0;              // --noslip N: MuJoCo's noslip iterations (default: the scene's)
-  bool multiccd = false;       // --multiccd: MuJoCo's multi-point convex collision for the run
-  int placements = 0;          // --placements N: a batch of N grasps of --object (0: one grasp)
-  std::uint64_t seed = 1;      // --seed S: the batch's placements
-  double max_offset = 0.005;   // --max-offset M: the batch's offsets, m
+  PlacementOptions placement;   // its placement (object_placement.h)
+  std::string decomposed;       // --decomposed DIR: the object's collision by its convex pieces
+  bool judge = false;           // --judge: every closing step's contacts against CGAL (the race)
+  bool force = false;           // --force: --write-scene may replace files graspcd did not write
+  int noslip = 0;               // --noslip N: MuJoCo's noslip iterations (default: the scene's)
+  bool multiccd = false;        // --multiccd: MuJoCo's multi-point convex collision for the run
+  std::string write_run;        // --write-run FILE: the run record (docs/run-record.md)
+  bool six_directions = false;  // --six-directions: the test after the hold
+  int placements = 0;           // --placements N: a batch of N grasps of --object (0: one grasp)
+  std::uint64_t seed = 1;       // --seed S: the batch's placements
+  double max_offset = 0.005;    // --max-offset M: the batch's offsets, m
 };
-
-// --judge: per closing grasp step, phantom and missed contacts (contact_judge.h).
-nlohmann::json judge_json(const study::ContactJudgeSummary& j) {
-  const double steps = j.steps > 0 ? j.steps : 1;
-  return {{"steps", j.steps},
-          {"contacts", j.contacts},
-          {"phantom", j.phantom},
-          {"missed", j.missed},
-          {"phantom_by_geom", j.phantom_by_geom},
-          {"missed_by_geom", j.missed_by_geom},
-          {"truth_hits", j.truth_hits},
-          {"contact_error_per_step", static_cast<double>(j.phantom + j.missed) / steps},
-          {"cgal_first_contact", j.cgal_first_contact},
-          {"cgal_first_contact_body", j.cgal_first_contact_body},
-          {"phantom_distance", study::kPhantomDistance}};
-}
 
 // The race's judge on model m: the object and the support of the "grasp" section of the pair
 // config at config_path (drive_config.h), the body "object" and no support (the world body only,
@@ -97,6 +83,12 @@ void check_usage(const GraspCliOptions& options, const CLI::App& app) {
   }
   if (options.force && options.placement.write_scene.empty()) {
     throw UsageError("grasp: --force goes with --write-scene");
+  }
+  if (!options.write_run.empty() && !options.object.empty() &&
+      options.placement.write_scene.empty()) {
+    throw UsageError(
+        "grasp: --write-run with --object needs --write-scene DIR (the scene the record is "
+        "judged on)");
   }
   const bool batch = app.count("--placements") > 0;
   if (!options.decomposed.empty() && !options.object.empty() && !batch) {
@@ -141,6 +133,8 @@ grasp::GraspOptions grasp_options(const GraspCliOptions& options, const CLI::App
   if (app.count("--noslip") > 0) grasp.noslip_iterations = options.noslip;
   if (app.count("--multiccd") > 0) grasp.multiccd = options.multiccd;
   grasp.true_penetration = true;  // every run of the command measures it
+  grasp.write_run = options.write_run;
+  grasp.six_directions = options.six_directions;
   if (app.count("--method") > 0) grasp.method = options.method.method;
   if (app.count("--cap") > 0) grasp.cap = options.method.cap;
   if (app.count("--switch") > 0) grasp.switch_passes = options.method.switch_passes;
@@ -184,7 +178,7 @@ nlohmann::json batch_line(const grasp::BatchGrasp& b, int index, const grasp::Ob
     ran.scene.pos = b.placed.pos;
     ran.scene.quat = b.placed.quat;
     line = grasp::grasp_json(b.result, &ran, batch.decomposed(), options.decomposed);
-    if (judge) line["judge"] = judge_json(judge->summary());
+    if (judge) line["judge"] = study::contact_judge_json(judge->summary());
   } else {
     line = {{"scene", b.result.scene}, {"refusal", b.refusal}};
   }
@@ -341,7 +335,7 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   grasp::CostTimer write(&result.cost, grasp::CostPart::kWrite);
   if (options.json) {
     nlohmann::json doc = grasp::grasp_json(result, ran, pieces, options.decomposed);
-    if (judge) doc["judge"] = judge_json(judge->summary());
+    if (judge) doc["judge"] = study::contact_judge_json(judge->summary());
     write.stop();
     doc["cost"] = grasp::cost_json(result.cost);
     add_envelope(doc);
@@ -417,6 +411,15 @@ Command add_grasp_command(CLI::App& parent) {
   app->add_flag("--judge", options->judge,
                 "Judge every closing step's hand-object contacts against the true meshes (CGAL)");
   app->add_flag("--json", options->json, "Print one JSON document instead of text");
+  app->add_option("--write-run", options->write_run,
+                  "Write the run record to FILE: the header, the start state and one JSON line "
+                  "per physics step with the contacts, for graspcd judge (docs/run-record.md); "
+                  "written whole at the end, also when the start is refused");
+  app->add_flag("--six-directions", options->six_directions,
+                "After the hold, the six-direction test: six runs from the held state, the "
+                "support taken away, gravity off, the object pulled by its weight along +-x, "
+                "+-y, +-z of the hand for 1 s; each passes when the object still touches the "
+                "hand and moved less than 1 cm ('# six directions: held in N of 6')");
   app->add_flag("--quiet", options->quiet,
                 "Text without the per-step lines: the object line (--object) and the '#' summary "
                 "lines (no effect with --json)");

@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
       graspcd::cli::add_meshpair_command(app),  graspcd::cli::add_grasp_command(app),
       graspcd::cli::add_study_command(app),     graspcd::cli::add_stress_command(app),
       graspcd::cli::add_validate_command(app),  graspcd::cli::add_trajectory_command(app),
-      graspcd::cli::add_decompose_command(app),
+      graspcd::cli::add_decompose_command(app), graspcd::cli::add_judge_command(app),
   };
   // --version prints and exits inside CLI11's parse, before the words after it are seen: a word
   // after it is refused here rather than ignored.

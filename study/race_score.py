@@ -3,13 +3,15 @@
 The outcome of a run, best first (OUTCOMES):
   held          held (`graspcd grasp`'s verdict), its final tilt under 2 degrees;
   held tilted   held, its final tilt 2 degrees or more (the verdict's "tilted N°");
-  dropped       not held and not ejected: the object stayed in the scene but the hand did not keep
-                it (not gripped, slipped, dropped, its grip rose too little; `reason` says which);
-  ejected       the object was thrown out (faster than 2 m/s, below its support, out of the
-                scene: the grasp's "ejected");
+  dropped       not held and not ejected: the hand did not keep the object (it fell off its
+                support, left the hand, slipped, was pushed over, its grip rose too little;
+                `reason` says which);
+  ejected       the object was thrown out: faster than gravity and the hand could make it, or out
+                of the scene other than downwards (the grasp's "ejected", grasp/verdicts.h);
   cannot start  the grasp refused the start (exit code 2 with "cannot start" or "the start state
                 is not valid": a hull or pieces that hold a finger), or the run failed (its
                 message says why): no grasp to judge.
+The outcome is the library's (`outcome` in `graspcd grasp --json` and `graspcd judge --json`).
 The score orders runs: first the outcome's rank (RANK: ejected and cannot start share the worst
 rank, below every run that kept the object in the scene), then the deepest penetration of the true
 meshes into the hand over the run (`true_penetration.hand_max`; `true_penetration_max` for a row
@@ -29,7 +31,11 @@ TILT_SHOWN_DEG = 2.0
 
 
 def outcome(g):
-    """The outcome of a grasp's --json document `g` (a run that started)."""
+    """The outcome of a grasp's --json document `g` (a run that started): the library's
+    "outcome" (grasp/verdicts.h, the same in `graspcd grasp --json` and `graspcd judge --json`);
+    for a document without it (graspcd before 0.5.0), from its ejected, held and tilt."""
+    if "outcome" in g:
+        return g["outcome"]
     if g.get("ejected"):
         return "ejected"
     if g["held"]:

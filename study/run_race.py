@@ -191,6 +191,47 @@ def grasp_run(command):
     return json.loads(done.stdout), None
 
 
+# The keys of `graspcd grasp --json` that are verdicts and judged contacts: `graspcd judge --json`
+# computes them from the run record with the same library code (docs/run-record.md), and
+# judged_run takes them from it.
+JUDGED_KEYS = ("gripped", "held", "reason", "evidence", "notes", "outcome", "closing",
+               "object_z_initial", "object_z_gripped", "object_z_final", "object_rise",
+               "hand_travel", "grip_rise", "hold_min_z", "hold_drift", "lowest_z", "tilt_deg",
+               "tilt_final_deg", "tilt_before_lift_deg", "max_speed", "kinetic_energy_max",
+               "ejected", "fell", "dropped_at", "drop", "pushed", "pushed_during_squeeze",
+               "pushed_over", "release_time", "slip_time", "touching_at_lift",
+               "support_warning", "true_penetration", "true_penetration_max",
+               "true_penetration_step", "six_directions", "judge")
+
+
+def judged_run(graspcd, scene, command, record):
+    """One grasp judged through `graspcd judge` (docs/run-record.md): `command` (a `graspcd grasp
+    SCENE ... --json` command line, with --judge for the contact counts) runs with --write-run
+    RECORD, then `graspcd judge SCENE RECORD --json` judges the record. Returns (the grasp's JSON
+    with its verdict keys, JUDGED_KEYS, replaced by the judge's, None), or (None, the message)
+    for a run that cannot start: a start refused (by graspcd or, from the record's contacts, by
+    the simulator's geometry), a run gone non-finite, or a grasp that failed before it could
+    write its record."""
+    g, message = grasp_run(command + ["--write-run", record])
+    if not os.path.exists(record):
+        return None, message
+    done = subprocess.run([graspcd, "judge", scene, record, "--json"], capture_output=True,
+                          text=True)
+    if done.returncode != 0:
+        lines = [x for x in done.stderr.strip().splitlines() if not x.startswith("warning:")]
+        return None, (lines[-1] if lines else f"graspcd judge: exit {done.returncode}")
+    j = json.loads(done.stdout)
+    if j["outcome"] == "cannot start":
+        return None, j.get("message") or message
+    if g is None:
+        return None, message
+    out = dict(g)
+    for key in JUDGED_KEYS:
+        if key in j:
+            out[key] = j[key]
+    return out, None
+
+
 def refused_row(name, noslip, message, multiccd=False):
     """The row of a run that did not start (or failed): no measures."""
     return {"configuration": name, "noslip": noslip, "outcome": "cannot start",

@@ -23,7 +23,10 @@ TEST_F(CliTest, GraspPrintsAHeaderOneLinePerGraspStepAndASummary) {
   }
   // Eight grasp steps of 0.003 rad do not reach the object: no grip, nothing lifted.
   EXPECT_EQ(out[9].rfind("# method sat; first contact (grasp step): finger1_A=-", 0), 0u) << out[9];
-  EXPECT_EQ(out[10].rfind("# gripped no; held no: no segment reached the object;", 0), 0u)
+  EXPECT_EQ(out[10].rfind("# gripped no; held no, the closing was cut short at grasp step 8 "
+                          "(--max-steps): the hand did not touch it at the start of the lift (",
+                          0),
+            0u)
       << out[10];
   EXPECT_EQ(out[10].find("(gripped)"), std::string::npos) << out[10];
   EXPECT_EQ(out[11].rfind("# detection ns ", 0), 0u) << out[11];
@@ -57,11 +60,17 @@ TEST_F(CliTest, GraspJsonIsOneDocumentWithTheSameRecords) {
   EXPECT_EQ(doc.at("first_contact").size(), 12u);
   EXPECT_TRUE(doc.at("first_contact").at("finger2_C").is_null());
   EXPECT_EQ(doc.at("held"), false);
-  // Five steps reach nothing: the squeeze moves nothing, and nothing was gripped to drop.
+  // Five steps reach nothing; the squeeze closes the fingers onto the cup without moving it, and
+  // the lift leaves it behind: dropped when it left the hand, the closing cut short beside it.
   EXPECT_GE(doc.at("pushed").get<double>(), 0.0);
   EXPECT_LT(doc.at("pushed").get<double>(), 0.01);
   EXPECT_EQ(doc.at("pushed_during_squeeze"), false);
-  EXPECT_TRUE(doc.at("dropped_at").is_null());
+  EXPECT_EQ(doc.at("outcome"), "dropped");
+  ASSERT_TRUE(doc.at("dropped_at").is_number()) << doc.at("reason");
+  EXPECT_EQ(doc.at("dropped_at"), doc.at("release_time"));
+  EXPECT_EQ(doc.at("closing"), "max_steps");
+  EXPECT_EQ(doc.at("notes"),
+            nlohmann::json::array({"the closing was cut short at grasp step 5 (--max-steps)"}));
   graspcd::testing::expect_envelope(doc);
 }
 
@@ -228,7 +237,7 @@ TEST_F(CliTest, AGraspThatNeverTouchedTheObjectSaysWhyAndCanFail) {
   const nlohmann::json doc = nlohmann::json::parse(r.out);
   EXPECT_FALSE(doc["gripped"]);
   EXPECT_FALSE(doc["held"]);
-  EXPECT_EQ(doc["reason"], "no segment reached the object");
+  EXPECT_EQ(doc["reason"], "the hand did not touch it at the start of the lift");
   EXPECT_TRUE(doc["slip_time"].is_null());
   // Not a usage error: the verdict is the answer, printed in full.
   EXPECT_EQ(doc["steps"].size(), 2u);

@@ -52,9 +52,6 @@ double DrivenRun::height_of(int body) const {
   return h;
 }
 
-// The support's body tree (-1 for the world: the world body is never a hand geom's).
-int DrivenRun::support_root() const { return support_ > 0 ? m_->body_rootid[support_] : -1; }
-
 double DrivenRun::clamp_ctrl(int a, double u) const {
   if (!m_->actuator_ctrllimited[a]) return u;
   return std::clamp(u, m_->actuator_ctrlrange[2 * a], m_->actuator_ctrlrange[2 * a + 1]);

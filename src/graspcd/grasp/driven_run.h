@@ -31,9 +31,7 @@ class DrivenRun : public HandRun {
  private:
   void advance() override;
   double object_height() const override { return height_of(object_); }
-  double hand_height() const override { return height_of(hand_); }
-  std::array<double, 3> up() const override { return up_; }
-  int support_root() const override;
+  int support_body() const override { return support_; }
   void begin_grasp_step(int k) override;
   void grasp_step_targets(int, int) override {}
   bool closing_done(int k, const std::vector<bool>& touched, const GraspResult& result) override;

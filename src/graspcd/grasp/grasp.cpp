@@ -13,12 +13,17 @@
 #include "graspcd/grasp/driven_run.h"
 #include "graspcd/grasp/grasp_run.h"
 #include "graspcd/grasp/hand_run.h"
+#include "graspcd/grasp/run_record.h"
 #include "graspcd/grasp/start_check.h"
 #include "graspcd/grasp/surface_cache.h"
+#include "graspcd/grasp/true_surfaces.h"
+#include "graspcd/grasp/verdicts.h"
+#include "graspcd/io/warnings.h"
 #include "graspcd/mujoco/collision.h"
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
 #include "graspcd/mujoco/registry.h"
+#include "graspcd/version.h"
 
 namespace graspcd::grasp {
 
@@ -90,6 +95,88 @@ GraspConfig load_grasp_config(const mjModel* m, const std::string& config_path,
   if (options.max_contacts) config.manifold.max_per_pair = *options.max_contacts;
   out.registry = std::make_unique<mujoco::Registry>(m, config, config_path, options.names);
   return out;
+}
+
+// The run record's geom id of each geom of a decomposed scene's model (decomposed_scene.h): the
+// scene as given has no pieces, and each piece follows the geom it replaces in its body.
+std::vector<int> record_geom_ids(const mjModel* m) {
+  std::vector<int> ids(static_cast<std::size_t>(m->ngeom));
+  int pieces = 0;
+  int original = -1;
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (is_piece(m, g)) {
+      ++pieces;
+      ids[static_cast<std::size_t>(g)] = original;
+    } else {
+      original = g - pieces;
+      ids[static_cast<std::size_t>(g)] = original;
+    }
+  }
+  return ids;
+}
+
+// The run record's header of a grasp of `m` by `run` (run_record.h).
+RunHeader record_header(const mjModel* m, const HandRun& run, const GraspOptions& options,
+                        const std::string& scene, bool decomposed) {
+  RunHeader h;
+  h.scene = scene;
+  h.simulator =
+      std::string("MuJoCo ") + GRASPCD_MUJOCO_VERSION + " with graspcd " + GRASPCD_VERSION;
+  const bool multiccd = (m->opt.enableflags & mjENBL_MULTICCD) != 0;
+  const bool exact = options.contact_reuse && *options.contact_reuse == 0;
+  h.configuration = !options.configuration.empty() ? options.configuration
+                    : decomposed                   ? "decomposed"
+                    : options.native               ? "native hull"
+                    : exact                        ? "graspcd exact"
+                                                   : "graspcd";
+  if (options.configuration.empty() && multiccd) h.configuration += " multiccd";
+  h.timestep = m->opt.timestep;
+  h.nq = m->nq;
+  h.nv = m->nv;
+  const auto name = [m](int body) {
+    const char* n = mj_id2name(m, mjOBJ_BODY, body);
+    return std::string(body == 0 || n == nullptr ? "world" : n);
+  };
+  h.object = name(run.object());
+  h.hand = name(run.hand());
+  h.support = name(run.support_body());
+  h.contacts = true;
+  h.noslip_iterations = m->opt.noslip_iterations;
+  h.multiccd = multiccd;
+  h.max_steps = options.max_steps;
+  h.six_directions = options.six_directions;
+  return h;
+}
+
+// How the run collided the object with its support, for the support's warning (verdicts.h):
+// served by graspcd, or MuJoCo's own collision of the pair and how many contacts it makes.
+std::string support_cause(const mjModel* m, const mujoco::Registry* registry, int object,
+                          int support) {
+  const int root = m->body_rootid[object];
+  const int support_root = support > 0 ? m->body_rootid[support] : 0;
+  for (int o = 0; o < m->ngeom; ++o) {
+    if (m->body_rootid[m->geom_bodyid[o]] != root) continue;
+    for (int g = 0; g < m->ngeom; ++g) {
+      const int body = m->geom_bodyid[g];
+      const bool of_support = support > 0 ? m->body_rootid[body] == support_root : body == 0;
+      if (!of_support || !may_collide(m, o, g)) continue;
+      if (registry != nullptr && registry->find_pair(o, g) >= 0) {
+        return "graspcd serves the object's contacts with " + geom_label(m, g) +
+               " (its pair config)";
+      }
+      const bool multiccd = (m->opt.enableflags & mjENBL_MULTICCD) != 0;
+      if (m->geom_type[g] == mjGEOM_PLANE) {
+        return "MuJoCo collides the object with " + geom_label(m, g) +
+               " itself (a plane against the object's convex hull)";
+      }
+      return "MuJoCo collides the object with " + geom_label(m, g) +
+             " itself, convex hull against convex hull, " +
+             (multiccd ? "up to 5 contacts per step (multiccd)"
+                       : "one contact per step (multiccd off: grasp --multiccd gives up to 5, "
+                         "a served pair in the pair config the true meshes)");
+    }
+  }
+  return "the object's contact with its support";
 }
 
 }  // namespace
@@ -224,6 +311,17 @@ std::optional<GraspResult> GraspScene::grasp_if_valid(Refusal* refusal) {
     if (registry) registry->forget_fronts(d);
   }
   l.fresh = false;
+  const bool decomposed = l.truth != nullptr;
+  // The run record (GraspOptions::write_run), written whole or not at all; a refused start and a
+  // simulation gone non-finite end it with their message.
+  std::unique_ptr<RunRecordWriter> record;
+  if (!options.write_run.empty()) {
+    const std::string scene = decomposed ? options.names.scene : scene_path_;
+    record = std::make_unique<RunRecordWriter>(
+        options.write_run, record_header(m, *run, options, scene, decomposed),
+        decomposed ? record_geom_ids(m) : std::vector<int>{});
+    run->set_record(record.get());
+  }
   // The start state: the scene's first keyframe when it has one (a hand shaped before the grasp,
   // e.g. a gripper half closed with a pad through a mug's handle), else the model's qpos0.
   if (m->nkey > 0) mj_resetDataKeyframe(m, d, 0);
@@ -233,13 +331,29 @@ std::optional<GraspResult> GraspScene::grasp_if_valid(Refusal* refusal) {
       start_refusal(m, d, run->object(), scene_path_, options, l.truth.get(), l.surfaces.get());
   start_check.stop();
   if (refusal->error) {
+    if (record) record->end({"", "cannot start", refusal->error->what()});
     refusal->cost = result.cost;
     return std::nullopt;
   }
   if (l.truth) run->set_truth(l.truth.get());
   run->set_surfaces(l.surfaces.get());
+  run->set_mutable_model(l.model.get());
   if (registry) registry->reset_stats();
-  run->run(options, result);
+  try {
+    run->run(options, result);
+  } catch (const std::runtime_error& e) {
+    if (record) record->end({"", "nonfinite", e.what()});
+    throw;
+  }
+  if (record) record->end({result.closing, "ok", ""});
+  if (options.true_penetration) {
+    result.support_warning =
+        support_warning(result, support_cause(m, registry, run->object(), run->support_body()));
+    if (!result.support_warning.empty()) {
+      graspcd::warnings().add("support_penetration",
+                              options.names.file(scene_path_) + ": " + result.support_warning);
+    }
+  }
   return result;
 }
 

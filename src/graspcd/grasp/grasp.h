@@ -22,13 +22,13 @@
 // collides; a start beyond kStartPenetration is bad input naming the scene ("the start state is
 // not valid: ...", "cannot start with --native: ...").
 //
-// The verdicts (GraspResult; docs/design.md, "Semantics"): gripped (two hand geoms touch the
-// object with opposing normals before the lift, kGripOpposing); held (gripped, not ejected, the
-// grip point rose kHeldRiseShare of the hand's travel and slipped less than kHeldSlip); tilted
-// (the rotation since the lift, shown from kTiltShownDeg); ejected (faster than kEjectSpeed,
-// below its support, or out of the scene, after any physics step; never held); pushed (moved more
-// than kSqueezePush during the squeeze; still held); dropped (gripped, then no hand contact to the
-// end and below the hand's path); `reason` says why a grasp was not held.
+// The verdicts (GraspResult; docs/design.md, "Semantics"): computed from the motion by
+// verdicts.h's judge_grasp on what the motion watch measured (motion_watch.h), the same function
+// `graspcd judge` calls on a run record: held (carried with the hand, whatever touched it),
+// gripped (two hand geoms touching it from opposing sides at the start of the lift, true
+// meshes), ejected (a speed or a path gravity and the hand cannot give), dropped (it fell off its
+// support, or left the hand behind its path), pushed over, tilted, pushed, and a closing cut
+// short by --max-steps; `reason` says why a grasp was not held, and is empty when it was.
 //
 // Non-finite state: MuJoCo 2.2 resets a state with a bad number (NaN or beyond 1e10) in qpos,
 // qvel or qacc and zeroes bad controls; run_grasp stops instead with a std::runtime_error "SCENE:

@@ -3,6 +3,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "graspcd/grasp/verdicts.h"
+
 namespace graspcd::grasp {
 
 namespace {
@@ -102,33 +104,6 @@ json true_penetration_json(const TruePenetration& p) {
           {"unmeasured", p.unmeasured}};
 }
 
-// The verdicts and how the object moved (grasp.h).
-json verdict_json(const GraspResult& r) {
-  return {{"gripped", r.gripped},
-          {"held", r.held},
-          {"reason", r.reason.empty() ? json() : json(r.reason)},
-          {"object_rise", r.object_rise},
-          {"hand_travel", r.hand_travel},
-          {"slip_time", r.slip_time >= 0 ? json(r.slip_time) : json()},
-          {"pushed", r.squeeze_push},
-          {"pushed_during_squeeze", r.pushed_during_squeeze},
-          {"dropped_at", r.dropped_at ? json(*r.dropped_at) : json()},
-          {"object_z_initial", r.object_z_initial},
-          {"object_z_gripped", r.object_z_gripped},
-          {"object_z_final", r.object_z_final},
-          {"hold_min_z", r.hold_min_z},
-          {"hold_drift", r.hold_drift},
-          {"grip_rise", r.grip_rise},
-          {"tilt_deg", r.tilt_deg},
-          {"tilt_final_deg", r.tilt_final_deg},
-          {"max_speed", r.max_speed},
-          {"kinetic_energy_max", r.kinetic_energy_max},
-          {"ejected", r.ejected ? json{{"t", r.ejected->time},
-                                       {"speed", r.ejected->speed},
-                                       {"cause", r.ejected->cause}}
-                                : json()}};
-}
-
 // The run's cost and MuJoCo's side of it.
 json run_json(const GraspResult& r) {
   return {{"noslip_iterations", r.noslip_iterations},
@@ -193,6 +168,95 @@ std::string cost_text(const GraspCost& cost) {
   return out.str();
 }
 
+json verdict_json(const GraspResult& r) {
+  json directions = json::array();
+  int passed = 0;
+  for (const DirectionResult& d : r.directions) {
+    directions.push_back({{"direction", d.name},
+                          {"touching", d.touching},
+                          {"moved", d.moved},
+                          {"passed", d.passed}});
+    passed += d.passed ? 1 : 0;
+  }
+  json doc = {{"gripped", r.gripped},
+              {"held", r.held},
+              {"outcome", r.outcome},
+              {"reason", r.reason.empty() ? json() : json(r.reason)},
+              {"evidence", r.evidence},
+              {"notes", r.notes},
+              {"closing", r.closing},
+              {"touching_at_lift", r.touching_at_lift},
+              {"object_rise", r.object_rise},
+              {"hand_travel", r.hand_travel},
+              {"slip_time", r.slip_time >= 0 ? json(r.slip_time) : json()},
+              {"pushed", r.squeeze_push},
+              {"pushed_during_squeeze", r.pushed_during_squeeze},
+              {"tilt_before_lift_deg", r.tilt_before_lift_deg},
+              {"pushed_over", r.pushed_over},
+              {"release_time", r.release_time >= 0 ? json(r.release_time) : json()},
+              {"dropped_at", r.dropped_at ? json(*r.dropped_at) : json()},
+              {"drop", r.drop.empty() ? json() : json(r.drop)},
+              {"fell", r.fell ? json{{"t", r.fell->time}, {"speed", r.fell->speed}} : json()},
+              {"object_z_initial", r.object_z_initial},
+              {"object_z_gripped", r.object_z_gripped},
+              {"object_z_final", r.object_z_final},
+              {"lowest_z", r.lowest_z},
+              {"hold_min_z", r.hold_min_z},
+              {"hold_drift", r.hold_drift},
+              {"grip_rise", r.grip_rise},
+              {"tilt_deg", r.tilt_deg},
+              {"tilt_final_deg", r.tilt_final_deg},
+              {"max_speed", r.max_speed},
+              {"kinetic_energy_max", r.kinetic_energy_max},
+              {"ejected", r.ejected ? json{{"t", r.ejected->time},
+                                           {"speed", r.ejected->speed},
+                                           {"cause", r.ejected->cause},
+                                           {"limit", r.ejected->limit}}
+                                    : json()},
+              {"support_warning", r.support_warning.empty() ? json() : json(r.support_warning)},
+              {"true_penetration_max", r.true_penetration.max},
+              {"true_penetration_step", when_found(r.true_penetration, r.true_penetration.step)},
+              {"true_penetration", true_penetration_json(r.true_penetration)}};
+  doc["six_directions"] =
+      r.directions.empty()
+          ? json()
+          : json{{"held", passed}, {"of", r.directions.size()}, {"directions", directions}};
+  return doc;
+}
+
+std::string verdict_text(const GraspResult& r) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(4) << "# gripped " << (r.gripped ? "yes" : "no")
+      << "; held " << (r.held ? "yes" : "no");
+  for (const std::string& note : r.notes) out << ", " << note;
+  out << ": " << (r.held ? std::string("carried") : r.reason) << " (" << r.evidence
+      << "); object z (origin) " << r.object_z_initial << " -> " << r.object_z_gripped
+      << " (before the lift) -> " << r.object_z_final << " m (final), rose " << r.object_rise
+      << " m of the hand's " << r.hand_travel << " m, lowest " << r.hold_min_z << " m and drift "
+      << r.hold_drift << " m in the hold; grip point rose " << r.grip_rise << " m; tilt "
+      << r.tilt_final_deg << " deg final, " << r.tilt_deg << " deg largest, "
+      << r.tilt_before_lift_deg << " deg before the lift; fastest " << r.max_speed
+      << " m/s, kinetic energy at most " << std::setprecision(6) << r.kinetic_energy_max << " J; "
+      << true_penetration_text(r.true_penetration) << '\n';
+  if (!r.directions.empty()) {
+    int passed = 0;
+    std::string lost;
+    for (const DirectionResult& d : r.directions) {
+      if (d.passed) {
+        ++passed;
+        continue;
+      }
+      std::ostringstream why;
+      why << std::fixed << std::setprecision(1) << d.name << " (moved " << 100 * d.moved << " cm"
+          << (d.touching ? "" : ", not touching") << ")";
+      lost += (lost.empty() ? "" : ", ") + why.str();
+    }
+    out << "# six directions: held in " << passed << " of " << r.directions.size() << " directions"
+        << (lost.empty() ? "" : "; lost " + lost) << '\n';
+  }
+  return out.str();
+}
+
 std::string grasp_text(const GraspResult& r, const ObjectRunDescription* object,
                        const DecomposedScene* decomposed, bool quiet) {
   std::ostringstream out;
@@ -216,17 +280,7 @@ std::string grasp_text(const GraspResult& r, const ObjectRunDescription* object,
     }
   }
   out << '\n';
-  out << std::setprecision(4) << "# gripped " << (r.gripped ? "yes" : "no") << "; held "
-      << (r.held ? "yes" : "no") << (push_note(r).empty() ? "" : ", " + push_note(r))
-      << (tilt_note(r).empty() ? "" : ", " + tilt_note(r))
-      << (r.reason.empty() ? "" : ": " + r.reason) << "; object z (origin) " << r.object_z_initial
-      << " -> " << r.object_z_gripped << " (before the lift) -> " << r.object_z_final
-      << " m (final), rose " << r.object_rise << " m of the hand's " << r.hand_travel
-      << " m, lowest " << r.hold_min_z << " m and drift " << r.hold_drift
-      << " m in the hold; grip point rose " << r.grip_rise << " m; tilt " << r.tilt_final_deg
-      << " deg final, " << r.tilt_deg << " deg largest; fastest " << r.max_speed
-      << " m/s, kinetic energy at most " << std::setprecision(6) << r.kinetic_energy_max << " J; "
-      << true_penetration_text(r.true_penetration) << '\n';
+  out << verdict_text(r);
   out << "# detection ns " << r.detection_ns_close << " closing, " << r.detection_ns_total
       << " total; " << r.physics_steps << " physics steps, " << std::setprecision(2) << r.sim_time
       << " s simulated, " << std::setprecision(4) << r.step_wall_ms << " ms per physics step; "
@@ -246,10 +300,7 @@ json grasp_json(const GraspResult& r, const ObjectRunDescription* object,
               {"method", r.method},
               {"native", r.native},
               {"steps", steps_json(r)},
-              {"first_contact", first_contact_json(r)},
-              {"true_penetration_max", r.true_penetration.max},
-              {"true_penetration_step", when_found(r.true_penetration, r.true_penetration.step)},
-              {"true_penetration", true_penetration_json(r.true_penetration)}};
+              {"first_contact", first_contact_json(r)}};
   doc.update(verdict_json(r));
   doc.update(run_json(r));
   doc["cost"] = cost_json(r.cost);

@@ -19,6 +19,16 @@ nlohmann::json grasp_json(const GraspResult& r, const ObjectRunDescription* obje
                           const DecomposedScene* decomposed = nullptr,
                           const std::string& decomposed_dir = "");
 
+// The verdicts and how the object moved (verdicts.h), the keys `graspcd grasp --json` and
+// `graspcd judge --json` share: gripped, held, reason, evidence, notes, outcome, the heights,
+// rise and travel, drift, tilts, speed, energy, ejected, dropped_at and drop, closing, the
+// support's warning, the true penetration, the six directions when run.
+nlohmann::json verdict_json(const GraspResult& r);
+
+// The verdict's lines of the text (shared with `graspcd judge`): "# gripped ...; held ...",
+// and "# six directions: ..." when they ran.
+std::string verdict_text(const GraspResult& r);
+
 // The text: "# object ..." with an object run, the per-step table (left out when `quiet`), the
 // summary lines, "# decomposed: ..." with a decomposed scene. Without the cost line (cost_text).
 std::string grasp_text(const GraspResult& r, const ObjectRunDescription* object = nullptr,

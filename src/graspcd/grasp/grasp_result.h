@@ -26,8 +26,8 @@ namespace graspcd::grasp {
 
 inline constexpr double kGraspStepRad = 0.003;  // the paper's grasp step
 inline constexpr int kFingerSegments = 12;      // finger{1..4}_{A,B,C}
-// The verdicts (grasp.h): the share of the hand's travel the object's grip point must rise, and
-// the most the object may move in the hand during the hold (m).
+// The verdicts (verdicts.h; docs/design.md, "Semantics"): the share of the hand's travel the
+// object's grip point must rise, and the most the object may move in the hand during the hold (m).
 inline constexpr double kHeldRiseShare = 0.8;
 inline constexpr double kHeldSlip = 0.01;
 // The most the object may move from the start of the squeeze to the start of the lift before the
@@ -35,14 +35,24 @@ inline constexpr double kHeldSlip = 0.01;
 // farther was not gripped where the fingers closed on it (thrown up, tipped over, slid), even if
 // the hand then lifts it.
 inline constexpr double kSqueezePush = 0.01;
-// The speed past which an object has been thrown, not moved by the hand (grasp.h, "ejected"),
-// m/s. The fastest the hands move an object in a grasp: the lift's peak, pi/2 * 6 cm / 1 s =
-// 0.09 m/s, and the real hands' closing, up to 0.35 m/s on the shipped scenes (the Shadow hand);
-// MuJoCo's push out of a convex hull throws objects at 50-60 m/s. 2 m/s leaves a margin of five
-// below and twenty-five above.
-inline constexpr double kEjectSpeed = 2.0;
+// How much faster than gravity and the other bodies can make it an object must move to have been
+// thrown out (verdicts.h, "ejected"), m/s: sqrt(2 g d) (d the fall of its centre of mass from
+// the highest it has been) plus the fastest any point of another body has moved so far plus this
+// margin. The hands move an object at most about 0.35 m/s on the shipped scenes (the Shadow
+// hand's closing; the lift's peak is pi/2 * 6 cm / 1 s = 0.09 m/s), MuJoCo's soft contacts push a
+// resting object out of a millimetre's penetration at centimetres per second, and its push out
+// of a convex hull that starts inside a finger throws objects at tens of metres per second.
+inline constexpr double kEjectMargin = 1.0;
 // The verdict text names the object's final tilt from this many degrees on (grasp.h, "tilted").
 inline constexpr double kTiltShownDeg = 2.0;
+// An object turned by more than this many degrees between the start and the start of the lift
+// was pushed over (verdicts.h), degrees: the hands turn an object they close on by at most about
+// ten degrees on the shipped scenes; a drill knocked over turns by 28-39.
+inline constexpr double kPushedOverDeg = 20.0;
+// The support's penetration by the true meshes past which the run warns (verdicts.h,
+// "support"), m: four times the start check's tolerance, deeper than MuJoCo's soft contacts let
+// a resting object sink.
+inline constexpr double kSupportPenetrationLimit = 2e-3;
 
 struct GraspOptions {
   std::string config_path;  // pair config; empty: SCENE.pairs.json beside the scene
@@ -89,6 +99,13 @@ struct GraspOptions {
   // Called after each closing grasp step with the model, the state after the step's last physics
   // step and the 1-based step number (the study records the poses it replays, src/graspcd/study).
   std::function<void(const mjModel*, const mjData*, int)> on_grasp_step;
+  // After the hold, the six-direction test (six_directions.h): six runs from the held state, the
+  // support taken away, gravity off, the object pulled by its weight along the hand's axes.
+  bool six_directions = false;
+  // Where to write the run record (run_record.h, docs/run-record.md); empty: none. `configuration`
+  // is its header's free text (e.g. "graspcd", "native hull").
+  std::string write_run;
+  std::string configuration;
 };
 
 // One closing grasp step.
@@ -106,13 +123,33 @@ struct GraspStepRecord {
   double object_z = 0;                // object body height after the step, m
 };
 
-// Where and how fast the object left the grasp (grasp.h, "ejected"): the simulated time of the
-// first physics step that saw it, the object's speed then (m/s), and what was seen: "speed"
-// (faster than kEjectSpeed), "below" (below its support) or "away" (out of the scene).
+// Where and how fast the object left the grasp (verdicts.h, "ejected"): the simulated time of the
+// first state that saw it, the object's speed then (m/s), what was seen: "speed" (faster than
+// `limit`, what gravity and the other bodies could give it plus kEjectMargin) or "away" (farther
+// from its start than the scene's extent, other than downwards), and `limit` (m/s; for "away",
+// the extent in m).
 struct Ejection {
   double time = 0;
   double speed = 0;
   std::string cause;
+  double limit = 0;
+};
+
+// When the object passed below where it could rest on its support (verdicts.h, "dropped"): the
+// simulated time and its speed then, m/s.
+struct Fall {
+  double time = 0;
+  double speed = 0;
+};
+
+// One direction of the six-direction test (six_directions.h): its name ("+x" ... "-z"), whether
+// the object still touched the hand at its end (true meshes), how far it moved relative to the
+// hand (m), and whether it passed (touching, and moved less than kSixDirectionsDistance).
+struct DirectionResult {
+  std::string name;
+  bool touching = false;
+  double moved = 0;
+  bool passed = false;
 };
 
 struct GraspResult {
@@ -124,8 +161,10 @@ struct GraspResult {
   // the "touch" patterns of the config's "grasp" section on a driven real hand (registry.h).
   std::vector<std::string> segments;
   std::vector<int> first_contact;  // by segments: grasp step, -1 when never
-  // Two hand geoms touch the object with opposing contact normals before the lift (see above).
+  // Two hand geoms touch the object from opposing sides at the start of the lift, on the true
+  // meshes (true_touch.h): touching_at_lift hand geoms touch it then.
   bool gripped = false;
+  int touching_at_lift = 0;
   // Heights are along -gravity (z for gravity along -z), relative to the support body of a
   // driven real hand (the world on our hands).
   double object_z_initial = 0;
@@ -144,9 +183,13 @@ struct GraspResult {
   // any later step (the largest) and at the end of the hold, degrees.
   double tilt_deg = 0;
   double tilt_final_deg = 0;
+  // Its rotation from the start to the start of the lift, degrees; more than kPushedOverDeg:
+  // pushed over (verdicts.h).
+  double tilt_before_lift_deg = 0;
+  bool pushed_over = false;
   double max_speed = 0;  // the object's largest linear speed over all phases, m/s
-  // The object's largest kinetic energy over all phases (every physics step): 0.5 v^T M v over
-  // the degrees of freedom of its body tree (object_kinetic_energy), J.
+  // The object's largest kinetic energy over all phases (every physics step): the kinetic energy
+  // of its body tree (object_kinetic_energy), J.
   double kinetic_energy_max = 0;
   // The true meshes' penetration over the run, measured once per grasp step whatever geometry
   // collided (true_penetration.h), with GraspOptions::true_penetration; else measures == 0.
@@ -154,6 +197,10 @@ struct GraspResult {
   int noslip_iterations = 0;        // MuJoCo's noslip iterations the run used (GraspOptions)
   bool multiccd = false;            // whether the run's model had mjENBL_MULTICCD on (GraspOptions)
   std::optional<Ejection> ejected;  // the first sign that the object was thrown out, if any
+  // When it passed below where it could rest on its support (2 R + kHeldSlip below its start, R
+  // how far its geoms reach from its origin), if it did; and its lowest height over the run.
+  std::optional<Fall> fell;
+  double lowest_z = 0;
   // The object's largest move (its origin, in the world) from where it was at the start of the
   // squeeze, over the squeeze and the settling, m; more than kSqueezePush: pushed (grasp.h).
   double squeeze_push = 0;
@@ -161,9 +208,30 @@ struct GraspResult {
   // From the start of the lift: the simulated time after which no hand geom touched the object
   // for the rest of the run, s; -1 when one touched it at the end.
   double release_time = -1;
-  // When a gripped object left the hand and fell (grasp.h, "dropped"): release_time; else none.
+  // When the object was dropped (verdicts.h, "dropped"): it left the hand (release_time) and
+  // fell behind the hand's path, or it fell off its support (fell); else none. `drop` says where
+  // it went.
   std::optional<double> dropped_at;
-  std::string reason;  // why not gripped or not held (see above); empty when held
+  std::string drop;
+  std::string reason;  // why it was not held (verdicts.h); empty when held
+  // What the verdict rests on, one phrase: the grip point's rise against the hand's travel, the
+  // drift in the hold, the touch at the start of the lift (verdicts.h).
+  std::string evidence;
+  // What the verdict adds, held or not: the tilt, the push during the squeeze, pushed over, a
+  // closing cut short by --max-steps (verdicts.h).
+  std::vector<std::string> notes;
+  // The race's outcome (study/race_score.py): "held", "held tilted", "dropped", "ejected"; the
+  // judge also "cannot start".
+  std::string outcome;
+  // How the closing ended: "touched" (the hand's rule: every segment or drive touched, or its
+  // limits) or "max_steps" (cut short by GraspOptions::max_steps, `max_steps` grasp steps).
+  std::string closing = "touched";
+  int max_steps = 0;
+  // The support's penetration past kSupportPenetrationLimit, with its cause (verdicts.h); "".
+  std::string support_warning;
+  // The six-direction test (GraspOptions::six_directions): its directions, in order; empty when
+  // not run.
+  std::vector<DirectionResult> directions;
   // The last second of the hold (or the whole hold when shorter), "at rest": the object's largest
   // linear speed (m/s), the deepest contact of an object geom (-dist, m; 0 without contacts), and
   // the whole system's kinetic energy (J, 0.5 qvel^T M qvel) averaged over that window's first
@@ -193,21 +261,6 @@ struct GraspResult {
   GraspCost cost;
 };
 
-// What the verdict of a held object adds: "tilted 12°" for a final tilt of kTiltShownDeg or
-// more, else "".
-std::string tilt_note(const GraspResult& result);
-
-// What the verdict of a held object adds when the squeeze pushed it (grasp.h, "pushed"): "pushed
-// 12.0 cm during the squeeze", else "".
-std::string push_note(const GraspResult& result);
-
-// The verdicts (grasp.h) from the run's measures in `result` (hand_travel, grip_rise, hold_drift,
-// slip_time, ejected, squeeze_push, release_time, object_rise): sets gripped, held,
-// pushed_during_squeeze, dropped_at and reason. `ever_touched`: a segment touched the object in
-// the closing; `touching`: the hand geoms that touched it at the start of the lift; `opposing`:
-// two of them pushed from opposing sides then.
-void judge_grasp(bool ever_touched, int touching, bool opposing, GraspResult& result);
-
 // A manifold choice of `grasp --manifold`: "support", "moment" or "force" (pair_config.h,
 // "reduction"), optionally followed by the contacts per pair, 1 .. mjMAXCONPAIR ("force4"); the
 // count is absent when not given. std::nullopt for anything else.
@@ -224,11 +277,11 @@ const std::array<std::string, kFingerSegments>& finger_segment_names();
 // (mj_energyVel's formula; MuJoCo 2.2 fills d->energy only with the energy flag enabled), J.
 double kinetic_energy(const mjModel* m, const mjData* d);
 
-// The kinetic energy of the body tree of `body` alone: 0.5 v^T M v with v the velocities of the
-// degrees of freedom of that tree (the others zero) and M the joint-space inertia of the last
-// step, J. For a free object (its own kinematic tree) this is its kinetic energy exactly: M has
-// no coupling between separate trees. `scratch` (resized as needed) avoids an allocation per call.
-double object_kinetic_energy(const mjModel* m, const mjData* d, int body,
-                             std::vector<mjtNum>& scratch);
+// The kinetic energy of the body tree of `body` alone: over its bodies, 0.5 m |v|^2 + 0.5 w^T I w
+// with v and w each body's velocity at its centre of mass from the last forward pass's cvel
+// (mj_objectVelocity), J. It reads only the kinematics, never qvel: an mjData after mj_step
+// holds the kinematics of the state before the step but the velocities after it, and the motion
+// watch (motion_watch.h) hands over the state before the step.
+double object_kinetic_energy(const mjModel* m, const mjData* d, int body);
 
 }  // namespace graspcd::grasp

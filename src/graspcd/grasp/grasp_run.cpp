@@ -50,7 +50,6 @@ void GraspRun::advance() {
 }
 
 double GraspRun::object_height() const { return d_->xpos[3 * object_ + 2]; }
-double GraspRun::hand_height() const { return d_->xpos[3 * hand_ + 2]; }
 
 // Grasp step k raises the target of every segment that has not stopped by kGraspStepRad, up to
 // its joint's upper limit, in equal parts over the step's physics steps.

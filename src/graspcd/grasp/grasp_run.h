@@ -23,7 +23,6 @@ class GraspRun : public HandRun {
  private:
   void advance() override;
   double object_height() const override;
-  double hand_height() const override;
   void begin_grasp_step(int k) override;
   void grasp_step_targets(int p, int n) override;
   bool closing_done(int k, const std::vector<bool>& touched, const GraspResult& result) override;

@@ -7,89 +7,13 @@
 #include <utility>
 
 #include "graspcd/core/clock.h"
-#include "graspcd/mujoco/collision_pose.h"
+#include "graspcd/grasp/six_directions.h"
+#include "graspcd/grasp/verdicts.h"
+#include "graspcd/mujoco/mujoco_ptr.h"
 
 namespace graspcd::grasp {
 
 namespace {
-
-// Whether two hand geoms push the object from opposing sides (grasp.h, "gripped"): per hand geom
-// touching an object geom in d's contacts, the sum of its contact normals turned to point from
-// the hand geom into the object (MuJoCo's frame[0..2] points from geom1 to geom2); two geoms whose
-// sums have a negative dot product oppose. Hand geoms: neither the object's body tree, nor the
-// world body (the floor), nor the support's body tree (support_root -1: none).
-struct GripSides {
-  int touching = 0;  // hand geoms touching the object
-  bool opposing = false;
-};
-
-// The hand geom of contact `c` when it is between a hand geom and an object geom (as above), else
-// -1.
-int hand_geom(const mjModel* m, const mjContact& c, const std::vector<char>& is_object_geom,
-              int support_root) {
-  const bool object1 = is_object_geom[static_cast<std::size_t>(c.geom1)] != 0;
-  const bool object2 = is_object_geom[static_cast<std::size_t>(c.geom2)] != 0;
-  if (object1 == object2) return -1;
-  const int hand = object1 ? c.geom2 : c.geom1;
-  const int body = m->geom_bodyid[hand];
-  if (body == 0 || m->body_rootid[body] == support_root) return -1;
-  return hand;
-}
-
-GripSides grip_sides(const mjModel* m, const mjData* d, const std::vector<char>& is_object_geom,
-                     int support_root) {
-  std::vector<std::pair<int, Vec3>> pushes;  // hand geom, summed normal into the object
-  for (int i = 0; i < d->ncon; ++i) {
-    const mjContact& c = d->contact[i];
-    const int hand = hand_geom(m, c, is_object_geom, support_root);
-    if (hand < 0) continue;
-    Vec3 n(c.frame[0], c.frame[1], c.frame[2]);
-    if (c.geom2 == hand) n = -n;  // the frame's normal points from geom1 (the object) to geom2
-    auto at = std::find_if(pushes.begin(), pushes.end(),
-                           [hand](const std::pair<int, Vec3>& p) { return p.first == hand; });
-    if (at == pushes.end()) {
-      pushes.emplace_back(hand, n);
-    } else {
-      at->second += n;
-    }
-  }
-  GripSides out;
-  out.touching = static_cast<int>(pushes.size());
-  for (std::size_t a = 0; a < pushes.size() && !out.opposing; ++a) {
-    for (std::size_t b = a + 1; b < pushes.size(); ++b) {
-      if (pushes[a].second.dot(pushes[b].second) < 0) {
-        out.opposing = true;
-        break;
-      }
-    }
-  }
-  return out;
-}
-
-// The object's grip point (grasp.h, "held"): the mean position of the contacts between hand geoms
-// (as in grip_sides) and object geoms in d's contacts, in the world; nullopt without any.
-std::optional<Vec3> grip_point(const mjModel* m, const mjData* d,
-                               const std::vector<char>& is_object_geom, int support_root) {
-  Vec3 sum(0, 0, 0);
-  int n = 0;
-  for (int i = 0; i < d->ncon; ++i) {
-    const mjContact& c = d->contact[i];
-    if (hand_geom(m, c, is_object_geom, support_root) < 0) continue;
-    sum += Vec3(c.pos[0], c.pos[1], c.pos[2]);
-    ++n;
-  }
-  if (n == 0) return std::nullopt;
-  return sum / n;
-}
-
-// Whether any hand geom (as in grip_sides) touches an object geom in d's contacts.
-bool hand_touches_object(const mjModel* m, const mjData* d, const std::vector<char>& is_object_geom,
-                         int support_root) {
-  for (int i = 0; i < d->ncon; ++i) {
-    if (hand_geom(m, d->contact[i], is_object_geom, support_root) >= 0) return true;
-  }
-  return false;
-}
 
 // Stops the grasp when MuJoCo found a bad number in the state or the controls during the last
 // physics step (grasp.h, "Non-finite state"): it has reset the state or zeroed the controls.
@@ -216,9 +140,9 @@ long HandRun::phase_steps(double seconds) const {
   return std::max(1L, std::lround(seconds / m_->opt.timestep));
 }
 
-// One physics step (the hand's advance, timed), MuJoCo's non-finite check, then the scan of the
-// segment-object contacts, the object's watch and, after the last physics step of each grasp
-// step (of any phase), the true meshes' penetration (outside the timed step).
+// One physics step (the hand's advance, timed), MuJoCo's non-finite check, the scan of the
+// segment-object contacts, then the state before the step (whose kinematics d_ holds after it,
+// motion_watch.h) to the watch, and the state after it to the run record.
 void HandRun::physics_step() {
   const Clock::time_point start = Clock::now();
   advance();
@@ -226,89 +150,21 @@ void HandRun::physics_step() {
   ++physics_steps_;
   throw_if_nonfinite(d_, scene_, phase_, physics_steps_);
   scan_contacts();
-  watch_object();
-  if (true_watch_ && physics_steps_ % grasp_step_length_ == 0) {
-    const CostTimer timer(cost_, CostPart::kTruePenetration);
-    const bool closing = phase_.rfind("grasp step ", 0) == 0;
-    true_watch_->measure(d_, physics_steps_ / grasp_step_length_,
-                         closing ? std::string("the closing") : phase_);
+  if (!before_seen_) {
+    const bool last = before_phase_ != phase_kind_ || before_direction_ != direction_;
+    watch_->observe(d_, before_phase_, before_time_, last, before_direction_);
   }
+  before_seen_ = false;
+  before_phase_ = phase_kind_;
+  before_direction_ = direction_;
+  before_time_ = d_->time;
+  if (record_) record_->step(m_, d_, phase_kind_, grasp_step_, direction_, object_);
 }
 
-// The object at the start (grasp.h, "ejected"): resting on its support, its origin lies at most R
-// above its lowest point, R the farthest any of its geoms reaches from the origin; resting in any
-// pose on a support no lower, the origin lies at most 2 R below where it started. Out of the
-// scene: farther from the start than the scene's extent (MuJoCo's stat.extent), at least 1 m.
-void HandRun::start_watch() {
-  watch_ = ObjectWatch{};
-  for (int k = 0; k < 3; ++k) watch_.start[static_cast<std::size_t>(k)] = d_->xpos[3 * object_ + k];
-  watch_.start_height = object_height();
-  double reach = 0;
-  for (int g = 0; g < m_->ngeom; ++g) {
-    if (!is_object_geom_[static_cast<std::size_t>(g)]) continue;
-    double offset = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double e = d_->geom_xpos[3 * g + k] - d_->xpos[3 * object_ + k];
-      offset += e * e;
-    }
-    reach = std::max(reach, std::sqrt(offset) + m_->geom_rbound[g]);
-  }
-  watch_.drop = 2 * reach + kHeldSlip;
-  watch_.away = std::max(1.0, static_cast<double>(m_->stat.extent));
-}
-
-// After each physics step: the object's speed, whether it has been thrown out (the first time:
-// faster than kEjectSpeed, below its support, out of the scene), and after the start of the lift
-// the angle of its rotation since then (2 acos |q0 . q| for unit quaternions).
-void HandRun::watch_object() {
-  mjtNum velocity[6];
-  mj_objectVelocity(m_, d_, mjOBJ_BODY, object_, velocity, 0);
-  const double speed =
-      std::sqrt(velocity[3] * velocity[3] + velocity[4] * velocity[4] + velocity[5] * velocity[5]);
-  watch_.max_speed = std::max(watch_.max_speed, speed);
-  watch_.kinetic_energy_max =
-      std::max(watch_.kinetic_energy_max, object_kinetic_energy(m_, d_, object_, energy_scratch_));
-  if (!watch_.ejected) {
-    double away = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double e = d_->xpos[3 * object_ + k] - watch_.start[static_cast<std::size_t>(k)];
-      away += e * e;
-    }
-    const char* cause = nullptr;
-    if (speed > kEjectSpeed) {
-      cause = "speed";
-    } else if (object_height() < watch_.start_height - watch_.drop) {
-      cause = "below";
-    } else if (std::sqrt(away) > watch_.away) {
-      cause = "away";
-    }
-    if (cause != nullptr) watch_.ejected = Ejection{d_->time, speed, cause};
-  }
-  if (watch_.contact_on) {
-    if (hand_touches_object(m_, d_, is_object_geom_, support_root())) {
-      watch_.release_time = -1;
-    } else if (watch_.release_time < 0) {
-      watch_.release_time = d_->time;
-    }
-  }
-  if (watch_.tilt_on) {
-    double dot = 0;
-    for (int k = 0; k < 4; ++k) {
-      dot += watch_.quat_lift[static_cast<std::size_t>(k)] * d_->xquat[4 * object_ + k];
-    }
-    watch_.tilt = 2 * std::acos(std::min(1.0, std::abs(dot)));
-    watch_.max_tilt = std::max(watch_.max_tilt, watch_.tilt);
-  }
-}
-
-double HandRun::point_height(const std::array<double, 3>& p) const {
-  const std::array<double, 3> u = up();
-  double h = object_height();
-  for (int k = 0; k < 3; ++k) {
-    h += (p[static_cast<std::size_t>(k)] - d_->xpos[3 * object_ + k]) *
-         u[static_cast<std::size_t>(k)];
-  }
-  return h;
+void HandRun::observe_now() {
+  state_kinematics(m_, d_);
+  watch_->observe(d_, before_phase_, before_time_, true, before_direction_);
+  before_seen_ = true;
 }
 
 // The contacts between a segment's geom and an object geom: the segments they touch, how many,
@@ -340,11 +196,15 @@ mujoco::BridgeStats HandRun::take_stats() {
   return s;
 }
 
-// Runs `steps` physics steps named `name` in messages; at(i) sets the targets before step i (1 to
-// steps), observe() sees the state after each.
+// Runs `steps` physics steps of `phase`; at(i) sets the targets before step i (1 to steps),
+// observe() sees the state after each.
 template <class Targets, class Observe>
-void HandRun::run_phase(const char* name, long steps, Targets at, Observe observe) {
-  phase_ = name;
+void HandRun::run_phase(RunPhase phase, long steps, Targets at, Observe observe) {
+  static const char* const kNames[] = {"the start",         "the closing", "the squeeze",
+                                       "the settling",      "the lift",    "the hold",
+                                       "the six directions"};
+  phase_ = kNames[static_cast<int>(phase)];
+  phase_kind_ = phase;
   for (long i = 1; i <= steps; ++i) {
     at(i);
     physics_step();
@@ -352,19 +212,17 @@ void HandRun::run_phase(const char* name, long steps, Targets at, Observe observ
   }
 }
 
-std::array<double, 3> HandRun::object_in_hand() const {
-  return {d_->xpos[3 * object_] - d_->xpos[3 * hand_],
-          d_->xpos[3 * object_ + 1] - d_->xpos[3 * hand_ + 1],
-          d_->xpos[3 * object_ + 2] - d_->xpos[3 * hand_ + 2]};
-}
-
 // Phase 1, paper section 9 (docs/design.md "Semantics"): grasp steps until the hand says the
 // closing is done; a segment's first contact is the grasp step in which it first touched.
 void HandRun::close(const GraspOptions& options, GraspResult& result) {
   const int n = std::max(1, options.physics_steps_per_grasp_step);
   const std::size_t segments = segments_.size();
+  phase_kind_ = RunPhase::kClose;
+  result.closing = "max_steps";
+  result.max_steps = options.max_steps;
   for (int k = 1; k <= options.max_steps; ++k) {
     phase_ = "grasp step " + std::to_string(k) + " of the closing";
+    grasp_step_ = k;
     begin_grasp_step(k);
     std::vector<bool> touched(segments, false);
     for (int p = 1; p <= n; ++p) {
@@ -380,35 +238,56 @@ void HandRun::close(const GraspOptions& options, GraspResult& result) {
     for (std::size_t s = 0; s < segments; ++s) {
       if (touched[s] && result.first_contact[s] < 0) result.first_contact[s] = k;
     }
-    if (closing_done(k, touched, result)) break;
+    if (closing_done(k, touched, result)) {
+      result.closing = "touched";
+      break;
+    }
   }
   end_closing();
 }
 
-// Phase 4: hold, watching the object against the hand and, in the last second, at rest.
+// Phase 4: hold, watching the object at rest in the last second.
 void HandRun::hold(const GraspOptions& options, GraspResult& result) {
-  const std::array<double, 3> rel0 = object_in_hand();
-  result.hold_min_z = object_height();
-  result.hold_drift = 0;
   const long steps = phase_steps(options.hold_time);
   long step = 0;
   run_phase(
-      "the hold", steps, [](long) {},
-      [&] {
-        watch_rest(m_, d_, object_, is_object_geom_, ++step, steps, result);
-        result.hold_min_z = std::min(result.hold_min_z, object_height());
-        const std::array<double, 3> rel = object_in_hand();
-        const double drift = std::sqrt((rel[0] - rel0[0]) * (rel[0] - rel0[0]) +
-                                       (rel[1] - rel0[1]) * (rel[1] - rel0[1]) +
-                                       (rel[2] - rel0[2]) * (rel[2] - rel0[2]));
-        result.hold_drift = std::max(result.hold_drift, drift);
-        if (result.slip_time < 0 && result.hold_drift >= kHeldSlip) result.slip_time = d_->time;
-      });
+      RunPhase::kHold, steps, [](long) {},
+      [&] { watch_rest(m_, d_, object_, is_object_geom_, ++step, steps, result); });
+}
+
+// The six-direction test (six_directions.h) from the state d_ holds after the hold, which d_
+// holds again after it.
+void HandRun::six_directions() {
+  mujoco::DataPtr held(mj_copyData(nullptr, m_, d_));
+  const mujoco::Registry::PairStates states =
+      registry_ ? registry_->snapshot(d_) : mujoco::Registry::PairStates{};
+  std::array<std::array<double, 3>, kSixDirections> pull{};
+  for (int k = 0; k < kSixDirections; ++k) {
+    pull[static_cast<std::size_t>(k)] = six_direction(d_, hand_, k);
+  }
+  const SixDirectionsModel model(mutable_m_, object_, support_body());
+  const long steps = phase_steps(kSixDirectionsDuration);
+  for (int k = 0; k < kSixDirections; ++k) {
+    mj_copyData(d_, m_, held.get());
+    if (registry_) registry_->restore(d_, states);
+    for (int i = 0; i < 3; ++i) {
+      d_->xfrc_applied[6 * object_ + i] = model.weight() * pull[static_cast<std::size_t>(k)][i];
+    }
+    direction_ = k;
+    before_phase_ = RunPhase::kDirection;
+    before_direction_ = k;
+    before_seen_ = true;  // the hold's last state, seen
+    run_phase(
+        RunPhase::kDirection, steps, [](long) {}, [] {});
+    observe_now();
+  }
+  mj_copyData(d_, m_, held.get());
+  if (registry_) registry_->restore(d_, states);
+  direction_ = -1;
 }
 
 // The run's totals after the hold.
 void HandRun::finish(GraspResult& result) const {
-  result.object_z_final = object_height();
   result.physics_steps = physics_steps_;
   result.sim_time = d_->time;
   result.step_wall_ms =
@@ -427,68 +306,52 @@ void HandRun::finish(GraspResult& result) const {
   result.constraint_buffer_full = d_->warning[mjWARN_CNSTRFULL].number;
 }
 
-// Paper section 9: close, squeeze, settle, lift, hold (grasp.h), then the verdicts.
+// Paper section 9: close, squeeze, settle, lift, hold (grasp.h), the six directions when asked,
+// then the verdicts from the watch's measures.
 void HandRun::run(const GraspOptions& options, GraspResult& result) {
   result.segments = segments_;
   result.first_contact.assign(segments_.size(), -1);
-  result.object_z_initial = object_height();
-  start_watch();
-  grasp_step_length_ = std::max(1, options.physics_steps_per_grasp_step);
-  if (options.true_penetration) {
+  WatchOptions watch;
+  watch.true_penetration = options.true_penetration;
+  watch.sample = std::max(1, options.physics_steps_per_grasp_step);
+  watch.surfaces = surfaces_;
+  watch.cost = &result.cost;
+  {
     const CostTimer timer(&result.cost, CostPart::kTrees);
-    true_watch_ = std::make_unique<TruePenetrationWatch>(truth_ ? truth_ : m_, object_,
-                                                         support_root(), surfaces_);
+    watch_ = std::make_unique<MotionWatch>(m_, truth_ ? truth_ : m_, object_, hand_, support_body(),
+                                           watch);
   }
+  // The start state: the watch sees it with the first step's kinematics, the record now.
+  before_phase_ = RunPhase::kStart;
+  before_time_ = d_->time;
+  if (record_) record_->start(m_, d_);
   // The physics part is the phases' time less the parts measured inside them.
   cost_ = &result.cost;
   const GraspCost before = result.cost;
   const CostInstant phases_start = CostInstant::now();
   close(options, result);
 
-  // Phase 2: squeeze, then settle, watching how far the object is pushed from where it was.
+  // Phase 2: squeeze, then settle.
   begin_squeeze();
   const long squeeze = phase_steps(options.squeeze_time);
   const auto nothing = [] {};
-  const Vec3 before_squeeze(d_->xpos[3 * object_], d_->xpos[3 * object_ + 1],
-                            d_->xpos[3 * object_ + 2]);
-  result.squeeze_push = 0;
-  const auto pushed = [&] {
-    const Vec3 o(d_->xpos[3 * object_], d_->xpos[3 * object_ + 1], d_->xpos[3 * object_ + 2]);
-    result.squeeze_push = std::max(result.squeeze_push, (o - before_squeeze).norm());
-  };
   run_phase(
-      "the squeeze", squeeze, [&](long i) { squeeze_targets(i, squeeze); }, pushed);
+      RunPhase::kSqueeze, squeeze, [&](long i) { squeeze_targets(i, squeeze); }, nothing);
   run_phase(
-      "the settling", phase_steps(options.settle_time), [](long) {}, pushed);
-  result.object_z_gripped = object_height();
-  const GripSides grip = grip_sides(m_, d_, is_object_geom_, support_root());
-  const double hand_at_lift = hand_height();
-  // The grip point in the object's frame (the object's origin without contacts), and its height.
-  const Vec3 origin(d_->xpos[3 * object_], d_->xpos[3 * object_ + 1], d_->xpos[3 * object_ + 2]);
-  const Mat3 rotation = mujoco::from_row_major(d_->xmat + 9 * object_);
-  const Vec3 grip_local =
-      rotation.transpose() *
-      (grip_point(m_, d_, is_object_geom_, support_root()).value_or(origin) - origin);
-  const auto grip_world = [&] {
-    const Vec3 o(d_->xpos[3 * object_], d_->xpos[3 * object_ + 1], d_->xpos[3 * object_ + 2]);
-    const Vec3 p = o + mujoco::from_row_major(d_->xmat + 9 * object_) * grip_local;
-    return std::array<double, 3>{p.x(), p.y(), p.z()};
-  };
-  const double grip_at_lift = point_height(grip_world());
-  for (int k = 0; k < 4; ++k) {
-    watch_.quat_lift[static_cast<std::size_t>(k)] = d_->xquat[4 * object_ + k];
-  }
-  watch_.tilt_on = true;
-  watch_.contact_on = true;
+      RunPhase::kSettle, phase_steps(options.settle_time), [](long) {}, nothing);
 
   // Phase 3: lift.
   begin_lift();
   const long lift = phase_steps(options.lift_time);
   run_phase(
-      "the lift", lift, [&](long i) { lift_targets(i, lift); }, nothing);
+      RunPhase::kLift, lift, [&](long i) { lift_targets(i, lift); }, nothing);
   end_lift();
 
   hold(options, result);
+  observe_now();
+  take_stats();
+  finish(result);
+  if (options.six_directions && mutable_m_ != nullptr) six_directions();
   PartTime physics = CostInstant::now().since(phases_start);
   for (CostPart inside : {CostPart::kTruePenetration, CostPart::kJudge}) {
     physics -= result.cost[inside];
@@ -496,22 +359,8 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   }
   result.cost[CostPart::kPhysics] += physics;
   cost_ = nullptr;
-  take_stats();
-  finish(result);
-  result.hand_travel = hand_height() - hand_at_lift;
-  result.object_rise = result.object_z_final - result.object_z_gripped;
-  result.grip_rise = point_height(grip_world()) - grip_at_lift;
-  constexpr double kDegrees = 180.0 / 3.14159265358979323846;
-  result.tilt_deg = watch_.max_tilt * kDegrees;
-  result.tilt_final_deg = watch_.tilt * kDegrees;
-  result.max_speed = watch_.max_speed;
-  result.kinetic_energy_max = watch_.kinetic_energy_max;
-  if (true_watch_) result.true_penetration = true_watch_->result();
-  result.ejected = watch_.ejected;
-  bool ever_touched = false;
-  for (int step : result.first_contact) ever_touched = ever_touched || step > 0;
-  result.release_time = watch_.release_time;
-  judge_grasp(ever_touched, grip.touching, grip.opposing, result);
+  watch_->fill(result);
+  judge_grasp(result);
 }
 
 }  // namespace graspcd::grasp

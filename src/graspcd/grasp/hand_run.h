@@ -1,9 +1,12 @@
 // One grasp run (grasp.h, run_grasp) on either hand: the phases of paper section 9 (close in grasp
-// steps, squeeze, settle, lift, hold), the physics steps with their contact scan and non-finite
-// check, the MuJoCo layer's statistics and the verdicts. HandRun holds that structure once; a hand
-// says how it moves through the hooks below: our four-finger hand (grasp_run.h, joint targets of
-// the computed-torque controller) and a driven real hand (driven_run.h, the controls of its own
-// actuators). Phase lengths are counted in physics steps: phase_steps converts a phase's seconds.
+// steps, squeeze, settle, lift, hold) and, when asked, the six-direction test (six_directions.h),
+// the physics steps with their contact scan and non-finite check, the MuJoCo layer's statistics,
+// the run record (run_record.h) and the verdicts: every state goes to the motion watch
+// (motion_watch.h), whose measures the one verdict function judges (verdicts.h). HandRun holds
+// that structure once; a hand says how it moves through the hooks below: our four-finger hand
+// (grasp_run.h, joint targets of the computed-torque controller) and a driven real hand
+// (driven_run.h, the controls of its own actuators). Phase lengths are counted in physics steps:
+// phase_steps converts a phase's seconds.
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -16,7 +19,8 @@
 #include <vector>
 
 #include "graspcd/grasp/grasp_result.h"
-#include "graspcd/grasp/true_penetration.h"
+#include "graspcd/grasp/motion_watch.h"
+#include "graspcd/grasp/run_record.h"
 #include "graspcd/mujoco/registry.h"
 
 namespace graspcd::grasp {
@@ -29,14 +33,24 @@ class HandRun {
   HandRun& operator=(const HandRun&) = delete;
 
   int object() const { return object_; }
+  int hand() const { return hand_; }
+  // The body heights are measured from (0: the world).
+  virtual int support_body() const { return 0; }
 
-  // The model whose geoms are the true surfaces the run's penetration is measured on
-  // (true_penetration.h): for a decomposed scene its true_object_model (decomposed_pieces.h);
-  // by default the run's own model. Must outlive the run.
+  // The model whose geoms are the true surfaces the verdicts' touch and the run's penetration
+  // are measured on (true_touch.h, true_penetration.h): for a decomposed scene its
+  // true_object_model (decomposed_pieces.h); by default the run's own model. Must outlive the run.
   void set_truth(const mjModel* truth) { truth_ = truth; }
   // The surfaces of the truth model's geoms (surface_cache.h), kept across runs by the caller
   // (without: the run builds its own). Must outlive the run.
   void set_surfaces(SurfaceCache* surfaces) { surfaces_ = surfaces; }
+  // Where the run's states go (GraspOptions::write_run): the start state, every physics step.
+  // Must outlive the run.
+  void set_record(RunRecordWriter* record) { record_ = record; }
+  // The run's model as the six-direction test changes it for its runs (gravity off, the support
+  // out of collision; restored after): the model the run was built on. Without it the test is
+  // not run.
+  void set_mutable_model(mjModel* m) { mutable_m_ = m; }
 
   // Runs the phases and fills `result`'s grasp fields (the caller fills scene, method, warnings).
   void run(const GraspOptions& options, GraspResult& result);
@@ -44,13 +58,8 @@ class HandRun {
  protected:
   // One physics step's MuJoCo calls (and the control law between them), timed.
   virtual void advance() = 0;
-  // Heights along -gravity (GraspResult), of the object and of the hand.
+  // The object's height along -gravity (GraspStepRecord::object_z).
   virtual double object_height() const = 0;
-  virtual double hand_height() const = 0;
-  // The unit vector along -gravity that heights are measured on.
-  virtual std::array<double, 3> up() const { return {0, 0, 1}; }
-  // The body tree whose geoms are not hand geoms (grip_sides), -1 for none.
-  virtual int support_root() const { return -1; }
 
   // Phase 1, grasp step k: begin_grasp_step(k), then for p = 1..n grasp_step_targets(p, n) before
   // physics step p; after the step's record, whether the closing is done (`touched`: the segments
@@ -97,35 +106,16 @@ class HandRun {
     void add(const mujoco::BridgeStats& s);
   };
 
-  // What the object does over the run (grasp.h, "tilted", "ejected"): its first ejection, its
-  // largest speed, and from the start of the lift its tilt.
-  struct ObjectWatch {
-    std::array<double, 3> start{};  // its position at the start of the grasp
-    double start_height = 0;
-    double drop = 0;  // how far below start_height it can rest on the support, m
-    double away = 0;  // how far from start it can be in the scene, m
-    double max_speed = 0;
-    double kinetic_energy_max = 0;  // the object's, J (object_kinetic_energy)
-    std::optional<Ejection> ejected;
-    bool tilt_on = false;
-    // From the start of the lift: when the object lost its last hand contact, -1 while touched.
-    bool contact_on = false;
-    double release_time = -1;
-    std::array<double, 4> quat_lift{};  // its orientation at the start of the lift
-    double tilt = 0, max_tilt = 0;      // radians
-  };
-
   void physics_step();
-  void start_watch();
-  void watch_object();
-  double point_height(const std::array<double, 3>& p) const;
-  void scan_contacts();
   mujoco::BridgeStats take_stats();
   template <class Targets, class Observe>
-  void run_phase(const char* name, long steps, Targets at, Observe observe);
+  void run_phase(RunPhase phase, long steps, Targets at, Observe observe);
   void close(const GraspOptions& options, GraspResult& result);
   void hold(const GraspOptions& options, GraspResult& result);
-  std::array<double, 3> object_in_hand() const;
+  void six_directions();
+  // The state d_ holds now (after state_kinematics) to the watch as its phase's last.
+  void observe_now();
+  void scan_contacts();
   void finish(GraspResult& result) const;
 
   mujoco::Registry* registry_;
@@ -141,13 +131,23 @@ class HandRun {
   long physics_steps_ = 0;
   std::int64_t wall_ns_ = 0;
   BridgeTotals totals_;
-  ObjectWatch watch_;
-  std::vector<mjtNum> energy_scratch_;
   const mjModel* truth_ = nullptr;
   SurfaceCache* surfaces_ = nullptr;
-  std::unique_ptr<TruePenetrationWatch> true_watch_;
-  GraspCost* cost_ = nullptr;   // the running grasp's (GraspResult::cost)
-  long grasp_step_length_ = 5;  // physics steps per grasp step (GraspOptions)
+  GraspCost* cost_ = nullptr;  // the running grasp's (GraspResult::cost)
+  mjModel* mutable_m_ = nullptr;
+  RunRecordWriter* record_ = nullptr;
+  std::unique_ptr<MotionWatch> watch_;
+  // The physics step under way: its phase, grasp step (the closing's) and direction (the six
+  // directions'); and the state before it, which d_'s kinematics are of after the step: its
+  // phase, direction and time, and whether the watch has seen it already (a direction's first
+  // step starts from the hold's last state).
+  RunPhase phase_kind_ = RunPhase::kStart;
+  int grasp_step_ = 0;
+  int direction_ = -1;
+  RunPhase before_phase_ = RunPhase::kStart;
+  int before_direction_ = -1;
+  double before_time_ = 0;
+  bool before_seen_ = false;
 };
 
 // Looks up a named element of the scene; a missing one breaks the scene contract.

@@ -9,6 +9,7 @@
 #include "graspcd/core/containment.h"
 #include "graspcd/core/penetration.h"
 #include "graspcd/core/sat.h"
+#include "graspcd/grasp/true_surfaces.h"
 #include "graspcd/mujoco/geom_trees.h"
 #include "graspcd/mujoco/primitives.h"
 
@@ -57,19 +58,6 @@ double triangle_within(const ObbTree& tree, const Vec3& p, double cap,
 }
 
 }  // namespace
-
-std::vector<Triangle> geom_local_triangles(const mjModel* m, int g) {
-  std::vector<Triangle> out;
-  const int type = m->geom_type[g];
-  if (type == mjGEOM_MESH && m->geom_dataid[g] >= 0) {
-    out = mujoco::mesh_triangles(m, m->geom_dataid[g]);
-  } else if (mujoco::is_primitive(type)) {
-    const TriangleMesh mesh = mujoco::tessellate_primitive(type, m->geom_size + 3 * g);
-    out.reserve(mesh.faces.size());
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) out.push_back(mesh.triangle(f));
-  }
-  return out;
-}
 
 // MuJoCo 2.2's mesh_graph (built when the model is compiled by qhull, the Quickhull algorithm of
 // Barber, Dobkin and Huhdanpaa, ACM TOMS 22(4), 1996; user_mesh.cc, MakeGraph): at
@@ -235,7 +223,7 @@ const GeomSurface* SurfaceCache::surface(int g) {
   std::unique_ptr<GeomSurface>* s = slot(g, false);
   if (s == nullptr) return nullptr;
   if (!*s) {
-    std::vector<Triangle> local = geom_local_triangles(m_, g);
+    std::vector<Triangle> local = geom_triangles(m_, g);
     if (local.empty()) return nullptr;
     *s = std::make_unique<GeomSurface>(std::move(local));
   }
@@ -256,7 +244,7 @@ bool SurfaceCache::closed(int g) {
   const int mesh = m_->geom_dataid[g];
   const auto known = closed_.find(mesh);
   if (known != closed_.end()) return known->second;
-  const bool c = graspcd::closedness(geom_local_triangles(m_, g)).closed();
+  const bool c = graspcd::closedness(geom_triangles(m_, g)).closed();
   closed_.emplace(mesh, c);
   return c;
 }

@@ -115,10 +115,6 @@ ProbeDepth deepest_probe_inside(const GeomSurface& solid, const GeomSurface& pro
                                 const Pose& pose, double spacing, double floor,
                                 std::vector<Vec3>& placed);
 
-// The triangles of geom g in its frame (a mesh's faces, a primitive's tessellation); empty for
-// planes, height fields and anything else.
-std::vector<Triangle> geom_local_triangles(const mjModel* m, int g);
-
 // The faces of a mesh's convex hull as MuJoCo 2.2 keeps it for its native collision (mesh_graph);
 // empty for a mesh without a graph.
 std::vector<Triangle> mesh_hull_triangles(const mjModel* m, int mesh_id);

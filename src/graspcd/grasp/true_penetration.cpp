@@ -10,6 +10,7 @@
 #include "graspcd/core/obb_tree.h"
 #include "graspcd/core/penetration.h"
 #include "graspcd/core/sat.h"
+#include "graspcd/grasp/true_surfaces.h"
 #include "graspcd/mujoco/collision_pose.h"
 #include "graspcd/mujoco/primitives.h"
 
@@ -30,26 +31,6 @@ struct TruePenetrationWatch::Pair {
 };
 
 namespace {
-
-// "geom 'NAME'", or for an unnamed geom "geom N (mesh 'M' of body 'B')" (its type for a
-// primitive), as the start check names geoms.
-std::string geom_label(const mjModel* m, int g) {
-  const char* name = mj_id2name(m, mjOBJ_GEOM, g);
-  if (name != nullptr && *name != '\0') return "geom '" + std::string(name) + "'";
-  std::string type = mujoco::geom_type_name(m->geom_type[g]);
-  if (m->geom_type[g] == mjGEOM_MESH) {
-    const char* mesh = mj_id2name(m, mjOBJ_MESH, m->geom_dataid[g]);
-    if (mesh != nullptr) type += " '" + std::string(mesh) + "'";
-  }
-  const char* body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]);
-  return "geom " + std::to_string(g) + " (" + type + " of body '" +
-         (body != nullptr ? body : "world") + "')";
-}
-
-bool may_collide(const mjModel* m, int a, int b) {
-  return (m->geom_contype[a] & m->geom_conaffinity[b]) != 0 ||
-         (m->geom_contype[b] & m->geom_conaffinity[a]) != 0;
-}
 
 // Whether geom g has a true surface (surface_cache.h): a mesh with faces, or a primitive.
 bool has_surface(const mjModel* m, int g) {
@@ -116,7 +97,8 @@ TruePenetrationWatch::TruePenetrationWatch(const mjModel* truth, int object_body
   result_.pairs = static_cast<int>(pairs_.size());
 }
 
-void TruePenetrationWatch::measure(const mjData* d, long step, const std::string& phase) {
+void TruePenetrationWatch::measure(const mjData* d, long step, double time,
+                                   const std::string& phase) {
   const mjModel* m = truth_;
   ++result_.measures;
   std::vector<Vec3> placed;
@@ -185,7 +167,7 @@ void TruePenetrationWatch::measure(const mjData* d, long step, const std::string
     if (depth > result_.max) {
       result_.max = depth;
       result_.step = step;
-      result_.time = d->time;
+      result_.time = time;
       result_.phase = phase;
       result_.geom = pair.name;
       result_.side = pair.support ? "support" : "hand";

@@ -3,11 +3,12 @@
 // object went into a hand geom or its support, or one of them into the object, as the true
 // surfaces say.
 //
-// What is measured, once per grasp step (every physics_steps_per_grasp_step physics steps, in
-// every phase): for each object geom and each geom outside the object's body tree that the
-// contype/conaffinity filter lets collide with it (as the start check, start_check.h, sees the
-// scene; for a decomposed scene the true object model, decomposed_pieces.h), when their bounding
-// spheres (geom_rbound) overlap:
+// What is measured, on the run's start state and once per grasp step after it (every
+// physics_steps_per_grasp_step-th state, in every phase; the caller, motion_watch.h, says when):
+// for each object geom and each geom outside the object's body tree that the contype/conaffinity
+// filter lets collide with it (as the start check, start_check.h, sees the scene; for a decomposed
+// scene the true object model, decomposed_pieces.h), when their bounding spheres (geom_rbound)
+// overlap:
 //  - a closed mesh or primitive against another: the deepest probe of each inside the other's
 //    solid, by the exact inside test and the distance to the surface of core/penetration.h
 //    (deepest_point_inside), both ways. Probes are a geom's vertices and points along its edges
@@ -48,15 +49,15 @@ inline constexpr double kTrueProbeSpacing = 1e-3;
 
 struct TruePenetration {
   double max = 0;          // the deepest over the run, m (0: none found in `measures` grasp steps)
-  long step = -1;          // its grasp step, counted over the whole run from 1; -1 when none
+  long step = -1;          // its sample, counted over the whole run from 1 (the start); -1: none
   double time = 0;         // its simulated time, s
-  std::string phase;       // its phase ("the closing", "the squeeze", "the settling", "the lift",
-                           // "the hold")
+  std::string phase;       // its phase ("the start", "the closing", "the squeeze", "the settling",
+                           // "the lift", "the hold")
   std::string geom;        // the geom the object went into or that went into it ("" when none)
   std::string side;        // "hand" or "support" ("" when none)
   double hand_max = 0;     // the deepest against hand geoms, m
   double support_max = 0;  // the deepest against the support (a floor, a table), m
-  long measures = 0;       // grasp steps measured
+  long measures = 0;       // states measured
   int pairs = 0;           // (object geom, other geom) pairs watched, at least one side tested
   // What is measured only one way: "geom 'bowl' (the object) is not closed: only the other
   // geoms' insides are tested, with its probes" (one line per open geom).
@@ -79,9 +80,9 @@ class TruePenetrationWatch {
   TruePenetrationWatch(const TruePenetrationWatch&) = delete;
   TruePenetrationWatch& operator=(const TruePenetrationWatch&) = delete;
 
-  // Measures the state `d` (of the run's model: geom placements by the same ids) after grasp
-  // step `step`, at simulated time d->time, in `phase`.
-  void measure(const mjData* d, long step, const std::string& phase);
+  // Measures the state `d` (of the run's model: geom placements by the same ids), the run's
+  // sample `step`, at simulated time `time`, in `phase`.
+  void measure(const mjData* d, long step, double time, const std::string& phase);
   const TruePenetration& result() const { return result_; }
 
  private:

@@ -160,6 +160,20 @@ const Registry::DataPairState* Registry::find_pair_state(const mjData* d, int pa
 
 void Registry::forget_fronts(const mjData* d) { states_.erase(d); }
 
+Registry::PairStates Registry::snapshot(const mjData* d) const {
+  const auto it = states_.find(d);
+  return it == states_.end() ? PairStates{} : it->second;
+}
+
+void Registry::restore(const mjData* d, const PairStates& states) {
+  if (states.empty()) {
+    states_.erase(d);
+    return;
+  }
+  if (states_.find(d) == states_.end() && states_.size() >= kMaxFrontData) states_.clear();
+  states_.insert_or_assign(d, states);
+}
+
 void Registry::warn(const std::string& code, const std::string& message) {
   warnings_.push_back(message);
   graspcd::warnings().add(code, message);

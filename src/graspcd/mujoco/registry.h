@@ -166,6 +166,13 @@ class Registry {
   void forget_fronts(const mjData* d);
   // Forgets every pair's state on every mjData: detectors, fronts, reused contacts.
   void reset_detectors();
+  // A copy of every pair's state on `d` (empty when `d` has none yet), and its restore onto `d`,
+  // replacing what `d` has (an empty copy: `d` starts afresh): runs that branch from one state
+  // (the grasp's six-direction test) each start with the same detectors, fronts and reused
+  // contacts, so that each branch's contacts are those of the others'.
+  using PairStates = std::vector<DataPairState>;
+  PairStates snapshot(const mjData* d) const;
+  void restore(const mjData* d, const PairStates& states);
   static constexpr std::size_t kMaxFrontData = 64;
 
   // The mesh's faces in the mesh frame (geom_trees.h, mesh_triangles): for tests and the exact

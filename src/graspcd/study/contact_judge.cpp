@@ -81,12 +81,14 @@ struct ContactJudge::Impl {
   std::vector<int> hand_index;  // by geom: index into hand, or -1
   std::vector<JudgedGeom> hand, truth;
   ContactJudgeSummary summary;
+  double inflation = 0;
 };
 
 ContactJudge::ContactJudge(const mjModel* m, const std::string& object_body,
-                           const std::string& support_body)
+                           const std::string& support_body, double inflation)
     : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
+  s.inflation = inflation;
   s.object = mj_name2id(m, mjOBJ_BODY, object_body.c_str());
   if (s.object < 0) throw std::invalid_argument("ContactJudge: no body " + object_body);
   // The support's own geoms are neither hand nor object (contact_judge.h).
@@ -125,13 +127,18 @@ ContactJudge::ContactJudge(const mjModel* m, const std::string& object_body,
 
 ContactJudge::~ContactJudge() = default;
 
-void ContactJudge::judge_step(const mjModel* /*m*/, const mjData* d, int step) {
+void ContactJudge::judge_step(const mjModel* m, const mjData* d, int step) {
+  judge_step(m, d, step, d->contact, d->ncon);
+}
+
+void ContactJudge::judge_step(const mjModel* /*m*/, const mjData* d, int step,
+                              const mjContact* contacts, int n) {
   Impl& s = *impl_;
   ++s.summary.steps;
   std::vector<char> touched(s.hand.size(), 0);
   // Every hand-object contact: its point against both true surfaces.
-  for (int c = 0; c < d->ncon; ++c) {
-    const mjContact& con = d->contact[c];
+  for (int c = 0; c < n; ++c) {
+    const mjContact& con = contacts[c];
     int hand_geom = -1;
     if (s.in_object[static_cast<std::size_t>(con.geom1)]) hand_geom = con.geom2;
     if (s.in_object[static_cast<std::size_t>(con.geom2)]) hand_geom = con.geom1;
@@ -146,7 +153,7 @@ void ContactJudge::judge_step(const mjModel* /*m*/, const mjData* d, int step) {
     for (const JudgedGeom& t : s.truth) {
       to_object = std::min(to_object, t.surface->distance(in_geom_frame(d, t.id, con.pos)));
     }
-    if (to_hand > kPhantomDistance || to_object > kPhantomDistance) {
+    if (to_hand > kPhantomDistance || to_object > kPhantomDistance + s.inflation) {
       ++s.summary.phantom;
       ++s.summary.phantom_by_geom[s.hand[static_cast<std::size_t>(h)].name];
     }
@@ -173,5 +180,20 @@ void ContactJudge::judge_step(const mjModel* /*m*/, const mjData* d, int step) {
 }
 
 const ContactJudgeSummary& ContactJudge::summary() const { return impl_->summary; }
+
+nlohmann::json contact_judge_json(const ContactJudgeSummary& j, double inflation) {
+  const double steps = j.steps > 0 ? j.steps : 1;
+  return {{"steps", j.steps},
+          {"contacts", j.contacts},
+          {"phantom", j.phantom},
+          {"missed", j.missed},
+          {"phantom_by_geom", j.phantom_by_geom},
+          {"missed_by_geom", j.missed_by_geom},
+          {"truth_hits", j.truth_hits},
+          {"contact_error_per_step", static_cast<double>(j.phantom + j.missed) / steps},
+          {"cgal_first_contact", j.cgal_first_contact},
+          {"cgal_first_contact_body", j.cgal_first_contact_body},
+          {"phantom_distance", kPhantomDistance + inflation}};
+}
 
 }  // namespace graspcd::study

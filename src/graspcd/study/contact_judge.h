@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -57,18 +58,28 @@ class ContactJudge {
  public:
   // Throws std::invalid_argument for an object or support body the model does not have, a
   // support that is the object or inside it, or an object without a mesh geom.
+  // `inflation` (m): the object's surface as the judged simulator collides it lies this far
+  // outside the true mesh (a rigid flex's radius): a contact is phantom only beyond
+  // kPhantomDistance plus it.
   ContactJudge(const mjModel* m, const std::string& object_body = "object",
-               const std::string& support_body = "");
+               const std::string& support_body = "", double inflation = 0);
   ~ContactJudge();
   ContactJudge(const ContactJudge&) = delete;
   ContactJudge& operator=(const ContactJudge&) = delete;
 
   void judge_step(const mjModel* m, const mjData* d, int step);
+  // The same with the step's contacts given apart from d (a run record's, placed at d's state).
+  void judge_step(const mjModel* m, const mjData* d, int step, const mjContact* contacts, int n);
   const ContactJudgeSummary& summary() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// The summary as `grasp --judge --json` and `graspcd judge --json` give it ("judge"): the counts,
+// per geom, the contact error per closing step, CGAL's first contacts and the phantom distance
+// used.
+nlohmann::json contact_judge_json(const ContactJudgeSummary& summary, double inflation = 0);
 
 }  // namespace graspcd::study
