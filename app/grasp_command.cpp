@@ -2,17 +2,21 @@
 // (grasp/grasp.h), a user's mesh in a template hand (grasp/object_run.h) or the object as its
 // convex pieces (grasp/decomposed_scene.h); prints the text or the JSON (grasp/grasp_output.h).
 
+#include <cstdint>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "command.h"
 #include "graspcd/grasp/decomposed_scene.h"
 #include "graspcd/grasp/drive_config.h"
 #include "graspcd/grasp/grasp.h"
 #include "graspcd/grasp/grasp_output.h"
+#include "graspcd/grasp/object_batch.h"
 #include "graspcd/grasp/object_run.h"
 #include "graspcd/mujoco/registry.h"
 #include "graspcd/study/contact_judge.h"
@@ -47,6 +51,9 @@ struct GraspCliOptions {
   double load_timeout = grasp::kDefaultLoadTimeout;  // --load-timeout: --object's wait, s
   std::string write_run;        // --write-run FILE: the run record (docs/run-record.md)
   bool six_directions = false;  // --six-directions: the test after the hold
+  int placements = 0;           // --placements N: a batch of N grasps of --object (0: one grasp)
+  std::uint64_t seed = 1;       // --seed S: the batch's placements
+  double max_offset = 0.005;    // --max-offset M: the batch's offsets, m
 };
 
 // The race's judge on model m: the object and the support of the "grasp" section of the pair
@@ -91,10 +98,25 @@ void check_usage(const GraspCliOptions& options, const CLI::App& app) {
         "grasp: --write-run with --object needs --write-scene DIR (the scene the record is "
         "judged on)");
   }
-  if (!options.decomposed.empty() && !options.object.empty()) {
+  const bool batch = app.count("--placements") > 0;
+  if (!options.decomposed.empty() && !options.object.empty() && !batch) {
     throw UsageError(
-        "grasp: --decomposed goes with SCENE (write the --object scene with "
-        "--write-scene first)");
+        "grasp: --decomposed goes with SCENE or with --object and --placements (or write the "
+        "--object scene with --write-scene first)");
+  }
+  for (const char* o : {"--seed", "--max-offset"}) {
+    if (app.count(o) > 0 && !batch)
+      throw UsageError(std::string("grasp: ") + o + " goes with --placements");
+  }
+  if (batch) {
+    if (options.object.empty()) throw UsageError("grasp: --placements goes with --object");
+    for (const char* o : {"--pose", "--offset", "--write-scene", "--fit"}) {
+      if (app.count(o) > 0) {
+        throw UsageError(std::string("grasp: ") + o +
+                         " goes with one grasp, not --placements (a batch draws its placements "
+                         "and keeps one scale)");
+      }
+    }
   }
 }
 
@@ -149,10 +171,150 @@ void write_object(const GraspCliOptions& options, grasp::ObjectRun& run) {
   }
 }
 
+// One line of a batch (JSON Lines, docs/objects.md "A batch of grasps"): the placement, and the
+// grasp's document or why it did not run.
+nlohmann::json batch_line(const grasp::BatchGrasp& b, int index, const grasp::ObjectBatch& batch,
+                          const GraspCliOptions& options, const study::ContactJudge* judge) {
+  static const char* const kOutcomes[] = {"grasped", "skipped", "cannot_start"};
+  const grasp::ObjectPlacement& p = b.placement;
+  nlohmann::json placement = {{"index", index},      {"seed", options.seed},
+                              {"up", p.up},          {"yaw_deg", p.yaw_degrees},
+                              {"offset", p.offset},  {"scale", b.placed.scale},
+                              {"pos", b.placed.pos}, {"quat", b.placed.quat}};
+  nlohmann::json line;
+  if (b.outcome == grasp::BatchOutcome::kGrasped) {
+    grasp::ObjectRunDescription ran = batch.description();
+    ran.scene.scale = b.placed.scale;
+    ran.scene.size = b.placed.size;
+    ran.scene.pos = b.placed.pos;
+    ran.scene.quat = b.placed.quat;
+    line = grasp::grasp_json(b.result, &ran, batch.decomposed(), options.decomposed);
+    if (judge) line["judge"] = study::contact_judge_json(judge->summary());
+  } else {
+    line = {{"scene", b.result.scene}, {"refusal", b.refusal}};
+  }
+  line["outcome"] = kOutcomes[static_cast<int>(b.outcome)];
+  line["placement"] = placement;
+  line["cost"] = grasp::cost_json(b.result.cost);
+  return line;
+}
+
+// The batch's text line of one placement.
+std::string batch_text(const grasp::BatchGrasp& b, int index) {
+  std::ostringstream out;
+  const grasp::ObjectPlacement& p = b.placement;
+  out << "placement " << index << ": up " << p.up << ", yaw " << p.yaw_degrees << " deg, offset "
+      << p.offset[0] << " " << p.offset[1] << " m: ";
+  switch (b.outcome) {
+    case grasp::BatchOutcome::kGrasped:
+      out << (b.result.held ? "held" : "not held");
+      if (!b.result.held) out << " (" << b.result.reason << ")";
+      break;
+    case grasp::BatchOutcome::kSkipped:
+      out << "skipped: " << b.refusal;
+      break;
+    case grasp::BatchOutcome::kCannotStart:
+      out << "cannot start: " << b.refusal;
+      break;
+  }
+  const grasp::PartTime total = b.result.cost.total();
+  out << "; " << total.cpu_s << " s CPU\n";
+  return out.str();
+}
+
+// --placements N: the batch (grasp/object_batch.h), one line per placement as it ends, then the
+// summary.
+void run_batch(const GraspCliOptions& options, const CLI::App& app, grasp::GraspOptions grasp,
+               int* exit_code) {
+  grasp::BatchPlacementOptions draw;
+  draw.count = options.placements;
+  draw.seed = options.seed;
+  draw.max_offset = options.max_offset;
+  if (app.count("--up") > 0) draw.ups = {options.placement.up};
+  if (app.count("--yaw") > 0) draw.yaw_degrees = options.placement.yaw;
+  grasp::ObjectBatchOptions batch_options;
+  batch_options.run = object_run_options(options);
+  grasp::ObjectPlacement base = object_placement(options.placement, options.object);
+  std::vector<grasp::ObjectPlacement> placements;
+  try {
+    placements = grasp::draw_placements(base, draw);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("grasp: ") + e.what());
+  }
+  batch_options.first = placements.front();
+  batch_options.decomposed = options.decomposed;
+  // --judge: a judge per grasp, built on its first closing step.
+  std::unique_ptr<study::ContactJudge> judge;
+  std::string config_path = options.config;
+  if (options.judge) {
+    grasp.on_grasp_step = [&judge, &config_path](const mjModel* m, const mjData* d, int step) {
+      if (!judge) judge = make_judge(m, config_path);
+      judge->judge_step(m, d, step);
+    };
+  }
+  batch_options.grasp = grasp;
+  std::optional<grasp::ObjectBatch> batch;
+  try {
+    batch.emplace(batch_options);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("grasp: ") + e.what());
+  }
+  if (config_path.empty()) config_path = mujoco::pair_config_path(batch->description().scene.scene);
+  int counts[3] = {0, 0, 0};
+  int held = 0;
+  grasp::GraspCost total;
+  for (std::size_t k = 0; k < placements.size(); ++k) {
+    judge.reset();
+    grasp::BatchGrasp b = batch->grasp(placements[k]);
+    ++counts[static_cast<int>(b.outcome)];
+    if (b.outcome == grasp::BatchOutcome::kGrasped && b.result.held) ++held;
+    grasp::CostTimer write(&b.result.cost, grasp::CostPart::kWrite);
+    const int index = static_cast<int>(k);
+    if (options.json) {
+      nlohmann::json line = batch_line(b, index, *batch, options, judge.get());
+      write.stop();
+      line["cost"] = grasp::cost_json(b.result.cost);
+      std::cout << line.dump() << std::endl;
+    } else {
+      const std::string text = batch_text(b, index);
+      write.stop();
+      std::cout << text << std::flush;
+    }
+    total += b.result.cost;
+  }
+  const int grasped = counts[static_cast<int>(grasp::BatchOutcome::kGrasped)];
+  const int skipped = counts[static_cast<int>(grasp::BatchOutcome::kSkipped)];
+  const int cannot = counts[static_cast<int>(grasp::BatchOutcome::kCannotStart)];
+  if (options.json) {
+    nlohmann::json summary = {{"outcome", "summary"},
+                              {"object", options.object},
+                              {"hand", batch->description().hand},
+                              {"seed", options.seed},
+                              {"placements", options.placements},
+                              {"grasped", grasped},
+                              {"skipped", skipped},
+                              {"cannot_start", cannot},
+                              {"held", held},
+                              {"cost", grasp::cost_json(total)}};
+    add_envelope(summary);
+    std::cout << summary.dump() << std::endl;
+  } else {
+    std::cout << "# batch of " << options.placements << " placements (seed " << options.seed
+              << "): " << grasped << " grasped, " << skipped << " skipped, " << cannot
+              << " cannot start, " << held << " held\n"
+              << grasp::cost_text(total);
+  }
+  if (options.require_held && held < grasped) *exit_code = 1;
+}
+
 void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_code) {
   finish_method_options(options.method);
   check_usage(options, app);
   grasp::GraspOptions grasp = grasp_options(options, app);
+  if (app.count("--placements") > 0) {
+    run_batch(options, app, grasp, exit_code);
+    return;
+  }
   std::optional<grasp::ObjectRun> object;
   if (!options.object.empty()) {
     write_object(options, object.emplace(object_run_options(options)));
@@ -186,19 +348,25 @@ void run_grasp_command(GraspCliOptions& options, const CLI::App& app, int* exit_
   }
   const grasp::ObjectRunDescription* ran = object ? &object->description() : nullptr;
   const grasp::DecomposedScene* pieces = decomposed ? &*decomposed : nullptr;
+  // The output's own building is the cost's "write" part, measured up to the cost itself.
+  grasp::CostTimer write(&result.cost, grasp::CostPart::kWrite);
   if (options.json) {
     nlohmann::json doc = grasp::grasp_json(result, ran, pieces, options.decomposed);
     if (judge) doc["judge"] = study::contact_judge_json(judge->summary());
+    write.stop();
+    doc["cost"] = grasp::cost_json(result.cost);
     add_envelope(doc);
     std::cout << doc.dump(2) << '\n';
   } else {
-    std::cout << grasp::grasp_text(result, ran, pieces, options.quiet);
+    std::ostringstream text;
+    text << grasp::grasp_text(result, ran, pieces, options.quiet);
     if (judge) {
       const study::ContactJudgeSummary j = judge->summary();
-      std::cout << "# judged by CGAL over " << j.steps << " closing steps: " << j.contacts
-                << " hand-object contacts, " << j.phantom << " phantom, " << j.missed
-                << " missed\n";
+      text << "# judged by CGAL over " << j.steps << " closing steps: " << j.contacts
+           << " hand-object contacts, " << j.phantom << " phantom, " << j.missed << " missed\n";
     }
+    write.stop();
+    std::cout << text.str() << grasp::cost_text(result.cost);
   }
   if (options.require_held && !result.held) *exit_code = 1;
 }
@@ -226,6 +394,9 @@ Command add_grasp_command(CLI::App& parent) {
         "file; with --drive, a hand file"},
        {Placement::kUp, "--object: the file axis that points up: x, y, z, -x, -y, -z"},
        {Placement::kYaw, "--object: then a turn about the up direction, degrees"},
+       {Placement::kOffset,
+        "--object: then moved across gravity from the hand's centre by DX DY m (along the "
+        "world x axis made perpendicular to up, and up x that)"},
        {Placement::kPose,
         "--object: the object's rotation as a quaternion W X Y Z (instead of --up, --yaw)"},
        {Placement::kWriteScene,
@@ -247,8 +418,21 @@ Command add_grasp_command(CLI::App& parent) {
          "takes about 20 s of CPU to compile one of 200,000")
       ->check(positive_number())
       ->capture_default_str();
+  app->add_option("--placements", options->placements,
+                  "--object: a batch of N grasps, each a placement drawn from --seed (the up axis "
+                  "among the six unless --up, the yaw in [0, 360) unless --yaw, an offset within "
+                  "--max-offset): the scene compiled once, one line per placement (JSON Lines "
+                  "with --json), then a summary")
+      ->check(integer_in_range(1, 1000000));
+  app->add_option("--seed", options->seed, "--placements: the seed of the placements")
+      ->capture_default_str();
+  app->add_option("--max-offset", options->max_offset,
+                  "--placements: the largest offset across gravity from the hand's centre, m")
+      ->check(number_in_range(0.0, kMaxOffset))
+      ->capture_default_str();
   app->add_flag("--require-held", options->require_held,
-                "Exit with code 1 when the object was not held");
+                "Exit with code 1 when the object was not held (--placements: when any grasp "
+                "that ran was not)");
   add_method_options(*app, options->method, MethodDefaults::kSceneConfig);
   app->add_flag("--native", options->native,
                 "MuJoCo's own collision (convex hulls) instead of graspcd's callback");

@@ -1,7 +1,7 @@
 // The options that place a user's mesh in a template scene (grasp/object_scene.h): --scale, --fit,
-// --hand, --up, --yaw and, for one object, --pose and --write-scene. `graspcd grasp --object` and
-// `graspcd validate --objects` add them with add_placement_options and check them with
-// check_placement_options; each command keeps its own help texts.
+// --hand, --up, --yaw and, for one object, --pose, --offset and --write-scene. `graspcd grasp
+// --object` and `graspcd validate --objects` add them with add_placement_options and check them
+// with check_placement_options; each command keeps its own help texts.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -19,17 +19,20 @@ struct PlacementOptions {
   std::string hand = "project";
   std::string up = "z";
   double yaw = 0;
-  std::vector<double> pose;  // --pose W X Y Z
-  std::string write_scene;   // --write-scene DIR: keep the generated scene there
+  std::vector<double> pose;    // --pose W X Y Z
+  std::vector<double> offset;  // --offset DX DY: across gravity from the support point, m
+  std::string write_scene;     // --write-scene DIR: keep the generated scene there
 };
 
 // The range of --scale: file units to metres, from micrometres to kilometres per unit (beyond it
 // the placed coordinates would overflow or vanish).
 inline constexpr double kMinScale = 1e-6;
 inline constexpr double kMaxScale = 1e3;
+// The range of --offset's numbers, m.
+inline constexpr double kMaxOffset = 1.0;
 
 // One of the options, with its help text (the command's own).
-enum class Placement { kScale, kFit, kHand, kUp, kYaw, kPose, kWriteScene };
+enum class Placement { kScale, kFit, kHand, kUp, kYaw, kPose, kOffset, kWriteScene };
 struct PlacementOption {
   Placement option;
   std::string help;
@@ -37,7 +40,8 @@ struct PlacementOption {
 
 // Adds the given options to `app` in the given order (a command's --help lists them so), with
 // their checks: --scale in [kMinScale, kMaxScale], --yaw in [-360, 360], --pose four finite
-// numbers (each named: "--yaw: Value nan is not a finite number").
+// numbers, --offset two in [-kMaxOffset, kMaxOffset] (each named: "--yaw: Value nan is not a finite
+// number").
 void add_placement_options(CLI::App& app, PlacementOptions& options,
                            const std::vector<PlacementOption>& added);
 

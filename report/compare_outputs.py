@@ -30,7 +30,7 @@ relative path below AFTER; a file missing from AFTER is a difference) or two JSO
 before comparing, at any depth:
   - timings: keys ending in _ms, _ns, _us, seconds or _wall_ms, keys starting with ms_per_
     (grasp's ms_per_physics_step), and lists named repeats_ms or step_ns_median;
-    "detection_ns"-style counters of time;
+    "detection_ns"-style counters of time; a grasp's "cost" (CPU and wall seconds per part);
   - where and when it ran: "created", "machine", "build", "jobs";
   - provenance: the envelope's "graspcd" object and its "warnings" array when empty (docs/design.md,
     "The command line");
@@ -52,7 +52,7 @@ from pathlib import Path
 
 TIMING_KEY = re.compile(
     r"(_ms|_ns|_us|seconds|_wall_ms|^repeats_ms|^step_ns_median|_ns_.*|^ms_per_.*)$")
-DROPPED_KEYS = {"created", "machine", "build", "jobs", "graspcd"}
+DROPPED_KEYS = {"created", "machine", "build", "jobs", "graspcd", "cost"}
 CHECKOUT_PATH = re.compile(r"[^\s'\"]*/(mjcf|data)/")
 
 

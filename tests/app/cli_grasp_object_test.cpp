@@ -1,6 +1,8 @@
 // `graspcd grasp --object FILE`: a new mesh fitted into the template hand's scene, its units,
 // scale, orientation and start checks, and the real hands.
 // Runs the real `graspcd` binary (GRASPCD_EXE); helpers in cli_helpers.h.
+#include <cmath>
+
 #include "app/cli_helpers.h"
 
 namespace {
@@ -117,6 +119,58 @@ TEST_F(CliTest, GraspObjectKeepsTheFilesUnitsByDefault) {
   EXPECT_NEAR(doc["object"]["size"][0].get<double>(), 0.05, 1e-12);
   EXPECT_NEAR(doc["object"]["size"][1].get<double>(), 0.04, 1e-12);
   EXPECT_NEAR(doc["object"]["size"][2].get<double>(), 0.06, 1e-12);
+}
+
+// --placements: JSON Lines, one line per placement with its recorded placement, then the summary;
+// the same seed gives the same placements; the options a batch cannot take are usage errors.
+TEST_F(CliTest, GraspPlacementsWritesOneLinePerPlacementAndASummary) {
+  const std::string box = write("box_m.obj", user_box_in_metres());
+  const std::string args =
+      "grasp --object " + box + " --max-steps 2 --placements 2 --seed 5 --up z";
+  const Result r = run(args + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> out = lines(r.out);
+  ASSERT_EQ(out.size(), 3u) << r.out;
+  int grasped = 0;
+  for (int k = 0; k < 2; ++k) {
+    const nlohmann::json line = nlohmann::json::parse(out[static_cast<std::size_t>(k)]);
+    EXPECT_EQ(line["placement"]["index"], k);
+    EXPECT_EQ(line["placement"]["seed"], 5);
+    EXPECT_EQ(line["placement"]["up"], "z");
+    EXPECT_LE(std::hypot(line["placement"]["offset"][0].get<double>(),
+                         line["placement"]["offset"][1].get<double>()),
+              0.005);
+    ASSERT_TRUE(line.contains("cost")) << line;
+    if (line["outcome"] == "grasped") {
+      ++grasped;
+      EXPECT_TRUE(line.contains("held")) << line;
+      EXPECT_EQ(line["object"]["pos"], line["placement"]["pos"]);
+    } else {
+      EXPECT_EQ(line["outcome"], "skipped") << line;
+      EXPECT_TRUE(line.contains("refusal")) << line;
+    }
+  }
+  const nlohmann::json summary = nlohmann::json::parse(out[2]);
+  EXPECT_EQ(summary["outcome"], "summary");
+  EXPECT_EQ(summary["placements"], 2);
+  EXPECT_EQ(summary["grasped"], grasped);
+  EXPECT_EQ(summary["grasped"].get<int>() + summary["skipped"].get<int>() +
+                summary["cannot_start"].get<int>(),
+            2);
+  // The first compiled line holds the compile; the same seed the same placements.
+  EXPECT_GT(nlohmann::json::parse(out[0])["cost"]["parts"]["compile"]["cpu_s"].get<double>(), 0);
+  const Result again = run(args + " --json");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(nlohmann::json::parse(lines(again.out)[1])["placement"],
+            nlohmann::json::parse(out[1])["placement"]);
+  for (const std::string& bad : {std::string(" --fit"), std::string(" --pose 1 0 0 0"),
+                                 std::string(" --write-scene ") + (dir_ / "kept").string()}) {
+    const Result refused = run(args + bad);
+    EXPECT_EQ(refused.exit_code, 2) << bad;
+    EXPECT_EQ(lines(refused.err).size(), 1u) << bad << ": " << refused.err;
+  }
+  const Result scene = run("grasp " + shipped_scene("example1") + " --placements 2");
+  EXPECT_EQ(scene.exit_code, 2);
 }
 
 // A closed mesh whose faces all point inward is turned right way out with one warning naming the

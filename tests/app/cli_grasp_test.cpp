@@ -12,7 +12,7 @@ TEST_F(CliTest, GraspPrintsAHeaderOneLinePerGraspStepAndASummary) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   const std::vector<std::string> out = lines(r.out);
-  ASSERT_EQ(out.size(), 1u + 8u + 3u) << r.out;
+  ASSERT_EQ(out.size(), 1u + 8u + 4u) << r.out;
   EXPECT_EQ(out[0], "step contacts detection_ns box_tests triangle_tests object_z segments");
   const std::regex step_line(R"(^(\d+) \d+ \d+ \d+ \d+ -?\d+\.\d{6} \S+$)");
   for (int k = 1; k <= 8; ++k) {
@@ -31,6 +31,11 @@ TEST_F(CliTest, GraspPrintsAHeaderOneLinePerGraspStepAndASummary) {
   EXPECT_EQ(out[10].find("(gripped)"), std::string::npos) << out[10];
   EXPECT_EQ(out[11].rfind("# detection ns ", 0), 0u) << out[11];
   EXPECT_NE(out[11].find(" 0 non-finite skips"), std::string::npos) << out[11];
+  // Where its time went: the parts that took some, and the time before the first physics step.
+  EXPECT_EQ(out[12].rfind("# cost ", 0), 0u) << out[12];
+  EXPECT_NE(out[12].find(" compile "), std::string::npos) << out[12];
+  EXPECT_NE(out[12].find(" physics "), std::string::npos) << out[12];
+  EXPECT_NE(out[12].find(" s CPU before the first physics step"), std::string::npos) << out[12];
 }
 
 TEST_F(CliTest, GraspJsonIsOneDocumentWithTheSameRecords) {
@@ -41,6 +46,15 @@ TEST_F(CliTest, GraspJsonIsOneDocumentWithTheSameRecords) {
   EXPECT_EQ(doc.at("method"), "perceptron");
   EXPECT_EQ(doc.at("native"), false);
   ASSERT_EQ(doc.at("steps").size(), 5u);
+  // Where its time went, per part; the parts sum to the whole.
+  const nlohmann::json& cost = doc.at("cost");
+  double parts = 0;
+  for (const char* part : {"scene", "compile", "trees", "placement", "start_check", "physics",
+                           "true_penetration", "judge", "write"}) {
+    parts += cost.at("parts").at(part).at("cpu_s").get<double>();
+  }
+  EXPECT_GT(cost.at("parts").at("physics").at("cpu_s").get<double>(), 0);
+  EXPECT_NEAR(parts, cost.at("cpu_s").get<double>(), 1e-9);
   EXPECT_EQ(doc.at("steps")[4].at("step"), 5);
   EXPECT_TRUE(doc.at("steps")[0].contains("detection_ns"));
   EXPECT_EQ(doc.at("first_contact").size(), 12u);
@@ -154,10 +168,10 @@ TEST_F(CliTest, GraspQuietPrintsOnlyTheHeaderAndTheVerdict) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   const std::vector<std::string> out = lines(r.out);
-  ASSERT_EQ(out.size(), 3u) << r.out;
+  ASSERT_EQ(out.size(), 4u) << r.out;
   for (const std::string& line : out) EXPECT_EQ(line.rfind("# ", 0), 0u) << line;
   const std::vector<std::string> all = lines(full.out);
-  ASSERT_EQ(all.size(), 1u + 8u + 3u) << full.out;
+  ASSERT_EQ(all.size(), 1u + 8u + 4u) << full.out;
   // The verdict is the same run's (the detection times differ from run to run).
   EXPECT_EQ(out[0], all[9]);
   EXPECT_EQ(out[1], all[10]);
@@ -166,7 +180,7 @@ TEST_F(CliTest, GraspQuietPrintsOnlyTheHeaderAndTheVerdict) {
   const Result object = run("grasp --object " + box + " --max-steps 2 --quiet");
   ASSERT_EQ(object.exit_code, 0) << object.err;
   const std::vector<std::string> object_out = lines(object.out);
-  ASSERT_EQ(object_out.size(), 4u) << object.out;
+  ASSERT_EQ(object_out.size(), 5u) << object.out;
   EXPECT_EQ(object_out[0].rfind("# object " + box + " at scale 1 (given)", 0), 0u) << object_out[0];
   EXPECT_EQ(object_out[2].rfind("# gripped no; held no", 0), 0u) << object_out[2];
 
@@ -207,7 +221,7 @@ TEST_F(CliTest, GraspSaysWhenTheSqueezePushedAHeldObject) {
   const Result text = run(args + " --quiet");
   ASSERT_EQ(text.exit_code, 0) << text.err;
   const std::vector<std::string> out = lines(text.out);
-  ASSERT_EQ(out.size(), 4u) << text.out;
+  ASSERT_EQ(out.size(), 5u) << text.out;
   EXPECT_EQ(out[2].rfind("# gripped yes; held yes, pushed 1.", 0), 0u) << out[2];
   EXPECT_NE(out[2].find(" cm during the squeeze; object z "), std::string::npos) << out[2];
 }

@@ -73,17 +73,16 @@ double point_box_distance(const Vec3& p, const Obb& b) {
   return (local.cwiseAbs() - b.half).cwiseMax(0.0).norm();
 }
 
-// The distance from p to the nearest triangle of the tree, or any value <= `enough` once the
-// search finds a triangle at most `enough` away (the caller then no longer needs it). Branch and
-// bound on the node boxes (a bounding volume hierarchy's closest-point query, Ericson (2005),
-// 6.6): a node whose box lies farther than the nearest triangle so far cannot hold a nearer one
-// (a box holds its triangles; the comparison leaves a margin for the box's rounding), the nearer
-// child first. The triangles the bound keeps are those the linear scan would find nearest, so the
-// distance is the scan's minimum.
+}  // namespace
+
+// Why the bound is safe: a box holds its triangles, so a triangle is no nearer than its boxes (the
+// comparison leaves a margin for the box's rounding): the triangles the bound keeps are those the
+// linear scan would find nearest.
 double nearest_surface_distance(const ObbTree& tree, const Vec3& p, double enough,
                                 std::vector<std::int32_t>& stack) {
   const std::vector<ObbNode>& nodes = tree.nodes();
   const std::vector<Triangle>& triangles = tree.triangles();
+  if (nodes.empty()) return std::numeric_limits<double>::infinity();
   const double slack = 1e-9 * (1 + nodes.front().box.half.maxCoeff());
   double nearest = std::numeric_limits<double>::infinity();
   stack.assign(1, 0);
@@ -115,8 +114,6 @@ double nearest_surface_distance(const ObbTree& tree, const Vec3& p, double enoug
   }
   return nearest;
 }
-
-}  // namespace
 
 VertexPenetration deepest_point_inside(const ObbTree& solid, const std::vector<Vec3>& points,
                                        double stop_above) {

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -26,6 +27,14 @@ namespace graspcd {
 // point": the Voronoi regions of the vertices, then of the edges, then the face, by barycentric
 // coordinates; a degenerate triangle falls back to its three edges as segments (5.1.2).
 double point_triangle_distance(const Vec3& p, const Triangle& t);
+
+// The distance from p to the nearest triangle of `tree` (its closed triangles), or some value at
+// most `enough` as soon as the search finds a triangle at most `enough` away (the caller then
+// needs no more: the search stops there). Branch and bound on the node boxes (a bounding volume
+// hierarchy's closest-point query, Ericson (2005), 6.6), the nearer child first; a result above
+// `enough` is the linear scan's minimum exactly. `stack` is scratch.
+double nearest_surface_distance(const ObbTree& tree, const Vec3& p, double enough,
+                                std::vector<std::int32_t>& stack);
 
 struct VertexPenetration {
   double depth = 0;  // the deepest inside point's distance to the surface, m (0: none inside)

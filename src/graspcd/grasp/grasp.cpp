@@ -1,9 +1,13 @@
 #include "graspcd/grasp/grasp.h"
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "graspcd/grasp/decomposed_pieces.h"
 #include "graspcd/grasp/drive_config.h"
@@ -12,6 +16,7 @@
 #include "graspcd/grasp/hand_run.h"
 #include "graspcd/grasp/run_record.h"
 #include "graspcd/grasp/start_check.h"
+#include "graspcd/grasp/surface_cache.h"
 #include "graspcd/grasp/true_surfaces.h"
 #include "graspcd/grasp/verdicts.h"
 #include "graspcd/io/warnings.h"
@@ -28,26 +33,35 @@ namespace {
 // The start rule (grasp.h, start_check.h) as bad input naming the scene: the scene itself, its
 // object's true meshes (for a decomposed scene, the model with the object as it was) checked by
 // check_start_state; then, under native collision, the geometry MuJoCo collides (the hulls of
-// the meshes, or of the pieces) by check_hull_start.
+// the meshes, or of the pieces) by check_hull_start. The refusal, or none when the start is valid.
 // `truth`: the model with the true object (true_object_model) for a decomposed scene, else null.
-// `open`: the open meshes reported elsewhere (the hand's, the served ones).
-void throw_if_bad_start(const mjModel* m, const mjData* d, int object, const std::string& scene,
-                        const GraspOptions& options, const mjModel* truth, const OpenMeshes& open) {
+// `open`: the open meshes reported elsewhere (the hand's, the served ones). `surfaces`: the geoms'
+// surfaces (the same geometry in `m` and `truth`).
+GraspScene::Refusal start_refusal(const mjModel* m, const mjData* d, int object,
+                                  const std::string& scene, const GraspOptions& options,
+                                  const mjModel* truth, const OpenMeshes& open,
+                                  SurfaceCache* surfaces) {
   const bool decomposed = truth != nullptr;
   const mujoco::SceneNames& names = options.names;
-  const std::string problem = check_start_state(decomposed ? truth : m, d, object, names, open);
+  const std::string problem =
+      check_start_state(decomposed ? truth : m, d, object, names, open, surfaces);
   if (!problem.empty()) {
-    throw names.refusal(scene, 0, "the start state is not valid: " + problem + names.start_note);
+    return {names.refusal(scene, 0, "the start state is not valid: " + problem + names.start_note),
+            false,
+            {}};
   }
-  if (!options.native) return;
-  const std::string hull = check_hull_start(m, d, object, names);
+  if (!options.native) return {};
+  const std::string hull = check_hull_start(m, d, object, names, surfaces);
   if (!hull.empty()) {
-    throw names.refusal(scene, 0,
-                        std::string("cannot start with ") +
-                            (decomposed ? "--decomposed" : "--native") + ": " + hull +
-                            " (a limit of the " + (decomposed ? "pieces" : "hull") +
-                            ", not of the scene; graspcd's contacts start this scene)");
+    return {names.refusal(scene, 0,
+                          std::string("cannot start with ") +
+                              (decomposed ? "--decomposed" : "--native") + ": " + hull +
+                              " (a limit of the " + (decomposed ? "pieces" : "hull") +
+                              ", not of the scene; graspcd's contacts start this scene)"),
+            true,
+            {}};
   }
+  return {};
 }
 
 // The pair config of a grasp: its "grasp" section (drive_config.h) when it has one and, unless
@@ -173,63 +187,142 @@ std::string support_cause(const mjModel* m, const mujoco::Registry* registry, in
 
 }  // namespace
 
-// Paper section 9 (the grasp) with the computed-torque law of section 7, eq. (12)-(16); the
-// phases are described in grasp.h.
-GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options) {
-  // MuJoCo's errors name the scene (mujoco_messages.h).
-  const mujoco::ScopedMujocoErrors mujoco_errors(scene_path, options.names);
-  const auto model = mujoco::load_model(scene_path, options.names);
-  if (options.noslip_iterations) model->opt.noslip_iterations = *options.noslip_iterations;
+// What a scene keeps from one grasp to the next. Declared in the order it is built: destroyed
+// the other way round, the attachment before the registry, the registry before the model.
+struct GraspScene::Loaded {
+  Loaded(const std::string& scene_path, const GraspOptions& options)
+      : errors(scene_path, options.names) {}
+  // MuJoCo's errors name the scene (mujoco_messages.h) while the scene lives.
+  mujoco::ScopedMujocoErrors errors;
+  mujoco::ModelPtr model;
+  mujoco::ModelPtr truth;  // a decomposed scene's true object, else null
+  std::unique_ptr<SurfaceCache> surfaces;
+  std::unique_ptr<mujoco::ScopedInstall> install_guard;
+  GraspConfig config;
+  std::string config_path;
+  // Declared after the registry, so that it detaches before the registry goes, on a throw too.
+  mujoco::Attachment attached;
+  mujoco::DataPtr data;
+  bool fresh = true;  // data as mj_makeData left it: no reset needed before the first grasp
+};
+
+GraspScene::GraspScene(const std::string& scene_path, const GraspOptions& options)
+    : options_(options),
+      scene_path_(scene_path),
+      loaded_(std::make_unique<Loaded>(scene_path, options)) {
+  Loaded& l = *loaded_;
+  CostTimer compile(&setup_cost_, CostPart::kCompile);
+  l.model = mujoco::load_model(scene_path, options.names);
+  mjModel* m = l.model.get();
+  if (options.noslip_iterations) m->opt.noslip_iterations = *options.noslip_iterations;
   if (options.multiccd) {
     if (*options.multiccd) {
-      model->opt.enableflags |= mjENBL_MULTICCD;
+      m->opt.enableflags |= mjENBL_MULTICCD;
     } else {
-      model->opt.enableflags &= ~static_cast<int>(mjENBL_MULTICCD);
+      m->opt.enableflags &= ~static_cast<int>(mjENBL_MULTICCD);
     }
   }
-  const mjModel* m = model.get();
   // A decomposed scene's true object (its start and its penetration are the true meshes').
   bool decomposed = false;
   for (int g = 0; g < m->ngeom && !decomposed; ++g) decomposed = is_piece(m, g);
-  const mujoco::ModelPtr truth = decomposed ? true_object_model(m) : nullptr;
+  if (decomposed) l.truth = true_object_model(m);
+  compile.stop();
 
-  const std::string config_path =
+  const CostTimer trees(&setup_cost_, CostPart::kTrees);
+  l.surfaces = std::make_unique<SurfaceCache>(m);
+  l.config_path =
       options.config_path.empty() ? mujoco::pair_config_path(scene_path) : options.config_path;
-  std::unique_ptr<mujoco::ScopedInstall> install_guard;
-  GraspConfig loaded = load_grasp_config(m, config_path, options);
-  std::unique_ptr<mujoco::Registry>& registry = loaded.registry;
-  const mujoco::RegistryConfig& config = loaded.registry_config;
-  const std::optional<DriveConfig>& drive = loaded.drive;
-  // Declared after the registry, so that it detaches before the registry goes, on a throw too.
-  mujoco::Attachment attached;
-  if (registry) {
-    install_guard = std::make_unique<mujoco::ScopedInstall>();
-    attached = mujoco::attach(*registry);
+  l.config = load_grasp_config(m, l.config_path, options);
+  if (l.config.registry) {
+    l.install_guard = std::make_unique<mujoco::ScopedInstall>();
+    l.attached = mujoco::attach(*l.config.registry);
   }
-  GraspResult result;
-  if (registry) result.warnings = registry->warnings();
+  l.data.reset(mj_makeData(m));
+}
 
-  mujoco::DataPtr data(mj_makeData(m));
-  mjData* d = data.get();
-  result.scene = scene_path;
+GraspScene::~GraspScene() = default;
+
+mjModel* GraspScene::model() { return loaded_->model.get(); }
+
+void GraspScene::place_free_body(int body, const std::array<double, 3>& pos,
+                                 const std::array<double, 4>& quat) {
+  mjModel* m = loaded_->model.get();
+  const int joint = m->body_jntadr[body];
+  if (m->nkey > 0 || m->body_jntnum[body] != 1 || m->jnt_type[joint] != mjJNT_FREE) {
+    throw std::invalid_argument(
+        "place_free_body: the body must have one free joint and the scene no keyframe");
+  }
+  const CostTimer timer(&setup_cost_, CostPart::kPlacement);
+  // The compiler's normalisation (user_util.cc, mjuu_normvec): each component over the norm.
+  std::array<double, 4> q = quat;
+  const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (!(norm >= mjMINVAL)) throw std::invalid_argument("place_free_body: a zero quaternion");
+  for (double& x : q) x /= norm;
+  const int adr = m->jnt_qposadr[joint];
+  for (mjModel* model : {m, loaded_->truth.get()}) {
+    if (model == nullptr) continue;
+    for (int k = 0; k < 3; ++k) {
+      model->body_pos[3 * body + k] = pos[static_cast<std::size_t>(k)];
+      model->qpos0[adr + k] = model->qpos_spring[adr + k] = pos[static_cast<std::size_t>(k)];
+    }
+    for (int k = 0; k < 4; ++k) {
+      model->body_quat[4 * body + k] = q[static_cast<std::size_t>(k)];
+      model->qpos0[adr + 3 + k] = model->qpos_spring[adr + 3 + k] = q[static_cast<std::size_t>(k)];
+    }
+  }
+  // What the compiler computes from qpos0 (the constants that depend on the configuration), on
+  // the scene's data, which the next grasp resets.
+  mj_setConst(m, loaded_->data.get());
+  loaded_->fresh = false;
+}
+
+GraspResult GraspScene::grasp() {
+  Refusal refusal;
+  std::optional<GraspResult> result = grasp_if_valid(&refusal);
+  if (!result) throw *refusal.error;
+  return std::move(*result);
+}
+
+// Paper section 9 (the grasp) with the computed-torque law of section 7, eq. (12)-(16); the
+// phases are described in grasp.h.
+std::optional<GraspResult> GraspScene::grasp_if_valid(Refusal* refusal) {
+  Loaded& l = *loaded_;
+  const GraspOptions& options = options_;
+  const mjModel* m = l.model.get();
+  mjData* d = l.data.get();
+  mujoco::Registry* registry = l.config.registry.get();
+  GraspResult result;
+  result.cost = setup_cost_;  // the scene's own parts go with its first grasp
+  setup_cost_ = GraspCost{};
+  if (registry) result.warnings = registry->warnings();
+  result.scene = scene_path_;
   result.native = options.native;
-  result.method = options.native ? "native" : method_name(config.method);
+  result.method = options.native ? "native" : method_name(l.config.registry_config.method);
   result.noslip_iterations = m->opt.noslip_iterations;
   result.multiccd = (m->opt.enableflags & mjENBL_MULTICCD) != 0;
 
   // A hand driven through its own actuators (the config's "grasp" section), or ours.
   std::unique_ptr<HandRun> run;
-  if (drive) {
-    run = std::make_unique<DrivenRun>(m, d, registry.get(), *drive, scene_path,
-                                      options.names.file(config_path));
+  if (l.config.drive) {
+    run = std::make_unique<DrivenRun>(m, d, registry, *l.config.drive, scene_path_,
+                                      options.names.file(l.config_path));
   } else {
-    run = std::make_unique<GraspRun>(m, d, registry.get(), options, scene_path);
+    run = std::make_unique<GraspRun>(m, d, registry, options, scene_path_);
   }
+  // A grasp after the first starts from a state as mj_makeData makes it, and the served pairs
+  // forget what they carried over from the last one.
+  if (!l.fresh) {
+    const CostTimer timer(&result.cost, CostPart::kPlacement);
+    mj_resetData(m, d);
+    if (registry) registry->forget_fronts(d);
+  }
+  l.fresh = false;
+  const bool decomposed = l.truth != nullptr;
   // The run record (GraspOptions::write_run), written whole or not at all; a refused start and a
   // simulation gone non-finite end it with their message.
   std::unique_ptr<RunRecordWriter> record;
   if (!options.write_run.empty()) {
-    const std::string scene = decomposed ? options.names.scene : scene_path;
+    const std::string scene = decomposed ? options.names.scene : scene_path_;
     record = std::make_unique<RunRecordWriter>(
         options.write_run, record_header(m, *run, options, scene, decomposed),
         decomposed ? record_geom_ids(m) : std::vector<int>{});
@@ -247,24 +340,28 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
               << ", where the grasp starts, has time=\"" << m->key_time[0]
               << "\": the grasp's clock starts at the keyframe's time and cannot start before 0 "
                  "(give time=\"0\" or leave it out)";
-      throw options.names.refusal(scene_path, 0, message.str());
+      throw options.names.refusal(scene_path_, 0, message.str());
     }
     mj_resetDataKeyframe(m, d, 0);
   }
+  CostTimer start_check(&result.cost, CostPart::kStartCheck);
   mj_forward(m, d);
   OpenMeshes open;
-  if (drive) open.hand_body = mj_name2id(m, mjOBJ_BODY, drive->hand.c_str());
+  if (l.config.drive) open.hand_body = mj_name2id(m, mjOBJ_BODY, l.config.drive->hand.c_str());
   if (registry) {
-    open.served = [&registry](int g) { return registry->geom_tree(g) != nullptr; };
+    open.served = [registry](int g) { return registry->geom_tree(g) != nullptr; };
   }
-  try {
-    throw_if_bad_start(m, d, run->object(), scene_path, options, truth.get(), open);
-  } catch (const io::InputError& e) {
-    if (record) record->end({"", "cannot start", e.what()});
-    throw;
+  *refusal = start_refusal(m, d, run->object(), scene_path_, options, l.truth.get(), open,
+                           l.surfaces.get());
+  start_check.stop();
+  if (refusal->error) {
+    if (record) record->end({"", "cannot start", refusal->error->what()});
+    refusal->cost = result.cost;
+    return std::nullopt;
   }
-  if (truth) run->set_truth(truth.get());
-  run->set_mutable_model(model.get());
+  if (l.truth) run->set_truth(l.truth.get());
+  run->set_surfaces(l.surfaces.get());
+  run->set_mutable_model(l.model.get());
   if (registry) registry->reset_stats();
   try {
     run->run(options, result);
@@ -274,16 +371,19 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   }
   if (record) record->end({result.closing, "ok", ""});
   if (options.true_penetration) {
-    result.support_warning = support_warning(
-        result, support_cause(m, registry.get(), run->object(), run->support_body()));
+    result.support_warning =
+        support_warning(result, support_cause(m, registry, run->object(), run->support_body()));
     if (!result.support_warning.empty()) {
       graspcd::warnings().add("support_penetration",
-                              options.names.file(scene_path) + ": " + result.support_warning);
+                              options.names.file(scene_path_) + ": " + result.support_warning);
     }
   }
-  attached.release();
-  registry.reset();  // before the model goes
   return result;
+}
+
+GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options) {
+  GraspScene scene(scene_path, options);
+  return scene.grasp();
 }
 
 }  // namespace graspcd::grasp

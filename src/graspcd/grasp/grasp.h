@@ -38,12 +38,64 @@
 // the simulation went non-finite ..." naming the phase, the step and the warning.
 #pragma once
 
+#include <array>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "graspcd/grasp/grasp_result.h"
 #include "graspcd/mujoco/model_loading.h"
 
 namespace graspcd::grasp {
+
+// A scene loaded once and grasped from its start as often as asked: a batch of grasps of one
+// object in one hand (object_batch.h) compiles the model, builds the trees and the surfaces once,
+// and moves the object between grasps. Each grasp starts from the state mj_makeData makes (the
+// first keyframe when the scene has one), its served pairs' state forgotten, so that a grasp gives
+// what run_grasp gives on the scene as it stands. The scene's own cost (compile, trees) goes with
+// its first grasp (GraspResult::cost). Not thread-safe; one thread grasps a scene. Throws as
+// run_grasp does.
+class GraspScene {
+ public:
+  GraspScene(const std::string& scene_path, const GraspOptions& options);
+  ~GraspScene();
+  GraspScene(const GraspScene&) = delete;
+  GraspScene& operator=(const GraspScene&) = delete;
+
+  const std::string& scene() const { return scene_path_; }
+  const GraspOptions& options() const { return options_; }
+  mjModel* model();
+
+  // Moves the start of `body`, which has one free joint, to `pos` and `quat` (w x y z, a unit
+  // quaternion) as if the scene had been compiled with the body there: its body_pos, body_quat,
+  // qpos0 (and qpos_spring) and the constants MuJoCo computes from qpos0 (mj_setConst). The
+  // model is then the one the compiler makes of the scene with that body's pos and quat (the
+  // quaternion normalised as the compiler does; a decomposed scene's true object moved alike).
+  // Its time is the next grasp's "placement" part. Throws std::invalid_argument for another
+  // body, and in a scene with a keyframe (which sets the start).
+  void place_free_body(int body, const std::array<double, 3>& pos,
+                       const std::array<double, 4>& quat);
+
+  // The grasp from the start. A refused start throws the io::InputError naming the scene.
+  GraspResult grasp();
+  // Why a start was refused: its error, and whether only the geometry MuJoCo collides refused it
+  // (`hull`: --native's hulls, --decomposed's pieces; the true meshes' start is valid) or the
+  // true meshes did.
+  struct Refusal {
+    std::optional<io::InputError> error;
+    bool hull = false;
+    GraspCost cost;  // the time it took (with the scene's own parts on a first grasp)
+  };
+  // The same, but a refused start returns none and says why in `refusal`.
+  std::optional<GraspResult> grasp_if_valid(Refusal* refusal);
+
+ private:
+  struct Loaded;
+  GraspOptions options_;
+  std::string scene_path_;
+  GraspCost setup_cost_;
+  std::unique_ptr<Loaded> loaded_;
+};
 
 // Loads `scene_path` and runs the grasp. Throws io::InputError for a missing or bad scene or pair
 // config, a refused start and an error of MuJoCo's, each naming its file (as options.names has

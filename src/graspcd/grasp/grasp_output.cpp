@@ -147,6 +147,36 @@ json object_json(const ObjectRunDescription& object) {
 
 }  // namespace
 
+nlohmann::json cost_json(const GraspCost& cost) {
+  const auto part = [](const PartTime& t) {
+    return json{{"cpu_s", t.cpu_s}, {"wall_s", t.wall_s}};
+  };
+  json parts = json::object();
+  for (std::size_t i = 0; i < kCostParts; ++i) parts[kCostPartKeys[i]] = part(cost.parts[i]);
+  const PartTime total = cost.total();
+  return {{"cpu_s", total.cpu_s},
+          {"wall_s", total.wall_s},
+          {"before_first_step", part(cost.before_first_step())},
+          {"parts", parts}};
+}
+
+std::string cost_text(const GraspCost& cost) {
+  const PartTime total = cost.total();
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(3) << "# cost " << total.cpu_s << " s CPU ("
+      << total.wall_s << " s wall):";
+  const char* separator = " ";
+  for (std::size_t i = 0; i < kCostParts; ++i) {
+    if (cost.parts[i].cpu_s <= 0 && cost.parts[i].wall_s <= 0) continue;
+    std::string name = kCostPartKeys[i];
+    for (char& c : name) c = c == '_' ? ' ' : c;
+    out << separator << name << ' ' << cost.parts[i].cpu_s;
+    separator = ", ";
+  }
+  out << " s CPU; " << cost.before_first_step().cpu_s << " s CPU before the first physics step\n";
+  return out.str();
+}
+
 json verdict_json(const GraspResult& r) {
   json directions = json::array();
   int passed = 0;
@@ -282,6 +312,7 @@ json grasp_json(const GraspResult& r, const ObjectRunDescription* object,
               {"first_contact", first_contact_json(r)}};
   doc.update(verdict_json(r));
   doc.update(run_json(r));
+  doc["cost"] = cost_json(r.cost);
   if (object) doc["object"] = object_json(*object);
   if (decomposed) {
     doc["decomposed"] = {{"dir", decomposed_dir},

@@ -16,6 +16,7 @@
 
 #include "graspcd/core/contact_manifold.h"
 #include "graspcd/core/separators.h"
+#include "graspcd/grasp/grasp_cost.h"
 #include "graspcd/grasp/true_penetration.h"
 #include "graspcd/io/input_error.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
@@ -258,6 +259,8 @@ struct GraspResult {
   std::uint64_t reused_calls = 0;     // served calls answered by reused contacts, all phases
   // The registry's warnings (registry.h, Registry::warnings()), one line each.
   std::vector<std::string> warnings;
+  // Where the grasp's time went, per part (grasp_cost.h).
+  GraspCost cost;
 };
 
 // A manifold choice of `grasp --manifold`: "support", "moment" or "force" (pair_config.h,

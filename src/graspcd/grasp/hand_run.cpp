@@ -231,7 +231,10 @@ void HandRun::close(const GraspOptions& options, GraspResult& result) {
       for (std::size_t s = 0; s < segments; ++s) touched[s] = touched[s] || touching_[s];
     }
     add_step_record(k, contacts_, touching_, take_stats(), object_height(), result);
-    if (options.on_grasp_step) options.on_grasp_step(m_, d_, k);
+    if (options.on_grasp_step) {
+      const CostTimer timer(cost_, CostPart::kJudge);
+      options.on_grasp_step(m_, d_, k);
+    }
     for (std::size_t s = 0; s < segments; ++s) {
       if (touched[s] && result.first_contact[s] < 0) result.first_contact[s] = k;
     }
@@ -312,12 +315,21 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   WatchOptions watch;
   watch.true_penetration = options.true_penetration;
   watch.sample = std::max(1, options.physics_steps_per_grasp_step);
-  watch_ = std::make_unique<MotionWatch>(m_, truth_ ? truth_ : m_, object_, hand_, support_body(),
-                                         watch);
+  watch.surfaces = surfaces_;
+  watch.cost = &result.cost;
+  {
+    const CostTimer timer(&result.cost, CostPart::kTrees);
+    watch_ = std::make_unique<MotionWatch>(m_, truth_ ? truth_ : m_, object_, hand_, support_body(),
+                                           watch);
+  }
   // The start state: the watch sees it with the first step's kinematics, the record now.
   before_phase_ = RunPhase::kStart;
   before_time_ = d_->time;
   if (record_) record_->start(m_, d_);
+  // The physics part is the phases' time less the parts measured inside them.
+  cost_ = &result.cost;
+  const GraspCost before = result.cost;
+  const CostInstant phases_start = CostInstant::now();
   close(options, result);
 
   // Phase 2: squeeze, then settle.
@@ -341,6 +353,13 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   take_stats();
   finish(result);
   if (options.six_directions && mutable_m_ != nullptr) six_directions();
+  PartTime physics = CostInstant::now().since(phases_start);
+  for (CostPart inside : {CostPart::kTruePenetration, CostPart::kJudge}) {
+    physics -= result.cost[inside];
+    physics += before[inside];
+  }
+  result.cost[CostPart::kPhysics] += physics;
+  cost_ = nullptr;
   watch_->fill(result);
   judge_grasp(result);
 }

@@ -41,6 +41,9 @@ class HandRun {
   // are measured on (true_touch.h, true_penetration.h): for a decomposed scene its
   // true_object_model (decomposed_pieces.h); by default the run's own model. Must outlive the run.
   void set_truth(const mjModel* truth) { truth_ = truth; }
+  // The surfaces of the truth model's geoms (surface_cache.h), kept across runs by the caller
+  // (without: the run builds its own). Must outlive the run.
+  void set_surfaces(SurfaceCache* surfaces) { surfaces_ = surfaces; }
   // Where the run's states go (GraspOptions::write_run): the start state, every physics step.
   // Must outlive the run.
   void set_record(RunRecordWriter* record) { record_ = record; }
@@ -130,6 +133,8 @@ class HandRun {
   double start_time_ = 0;  // MuJoCo's clock at the start: the first keyframe's time, else 0
   BridgeTotals totals_;
   const mjModel* truth_ = nullptr;
+  SurfaceCache* surfaces_ = nullptr;
+  GraspCost* cost_ = nullptr;  // the running grasp's (GraspResult::cost)
   mjModel* mutable_m_ = nullptr;
   RunRecordWriter* record_ = nullptr;
   std::unique_ptr<MotionWatch> watch_;

@@ -115,7 +115,8 @@ MotionWatch::MotionWatch(const mjModel* m, const mjModel* truth, int object, int
   const int support_root = support > 0 ? m->body_rootid[support] : -1;
   touch_ = std::make_unique<TrueTouch>(truth, object, support_root, options.touch_tolerance);
   if (options.true_penetration) {
-    penetration_ = std::make_unique<TruePenetrationWatch>(truth, object, support_root);
+    penetration_ =
+        std::make_unique<TruePenetrationWatch>(truth, object, support_root, options.surfaces);
   }
   extent_ = std::max(1.0, static_cast<double>(m->stat.extent));
 }
@@ -209,6 +210,7 @@ void MotionWatch::sample_penetration(const mjData* d, RunPhase phase, double t) 
   const long index = states_ - 1;
   const long every = std::max(1, options_.sample);
   if (!penetration_ || index % every != 0) return;
+  const CostTimer timer(options_.cost, CostPart::kTruePenetration);
   penetration_->measure(d, index / every + 1, t, penetration_phase(phase));
 }
 

@@ -44,6 +44,11 @@ struct WatchOptions {
   // (GraspOptions::true_penetration; the judge always does).
   bool true_penetration = false;
   int sample = 5;
+  // The surfaces of the truth model's geoms, kept by the caller across runs (surface_cache.h;
+  // null: the watch builds its own), and where the measure's time goes (its true_penetration
+  // part; null: nowhere).
+  SurfaceCache* surfaces = nullptr;
+  GraspCost* cost = nullptr;
 };
 
 class MotionWatch {

@@ -114,6 +114,7 @@ ObjectRun::ObjectRun(const ObjectRunOptions& options) : options_(options) {
 }
 
 const ObjectScene& ObjectRun::write(const ObjectPlacement& placement) {
+  const CostTimer timer(&cost_, CostPart::kScene);
   // A hand file with a drive: its template written first, in the run's folder (removed with it).
   const HandTemplate hand =
       options_.hand.drive.empty()
@@ -169,6 +170,7 @@ GraspResult ObjectRun::grasp(GraspOptions options) {
   }
   keep();
   result.scene = description_.kept ? description_.scene.scene : description_.file;
+  result.cost += cost_;
   return result;
 }
 

@@ -61,12 +61,15 @@ class ObjectRun {
 
   // Writes the scene of `placement` (its file: the run's) into the folder; its messages name the
   // files as ObjectScene::names has them, the pair config of a kept scene as DIR/STEM.pairs.json.
-  // Throws io::InputError naming a bad mesh or template; std::invalid_argument for a bad `up`.
+  // Its time is the grasp's "scene" part (grasp_cost.h). Throws io::InputError naming a bad mesh
+  // or template; std::invalid_argument for a bad `up`.
   const ObjectScene& write(const ObjectPlacement& placement);
 
   const std::string& scene() const { return description_.scene.scene; }
   const mujoco::SceneNames& names() const { return description_.scene.names; }
   const ObjectRunDescription& description() const { return description_; }
+  // The time of write(): the "scene" part (grasp_cost.h).
+  const GraspCost& cost() const { return cost_; }
 
   // For an object of kLargeObjectFaces or more: one line saying that the grasp will wait (and
   // for how long at most, with load_timeout), to print before grasp(); else "".
@@ -84,6 +87,7 @@ class ObjectRun {
   std::optional<io::RemoveIfEmpty> created_;  // DIR, when this run created it
   io::CleanupGuard folder_;                   // the temporary or private folder
   ObjectRunDescription description_;
+  GraspCost cost_;  // the scene's writing
 };
 
 }  // namespace graspcd::grasp

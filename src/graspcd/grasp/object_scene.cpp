@@ -476,8 +476,9 @@ ObjectScene place_object(const TriangleMesh& mesh, const ObjectPlacement& placem
     out.size_hint = size_hint(mesh, placement, extent, s, room, fit_fraction, hand);
   }
   const Vec3 centre = 0.5 * s * (lo + hi);
-  const Vec3 pos =
-      room.support + (kSupportGap - s * lo[2]) * f.up - centre[0] * f.e1 - centre[1] * f.e2;
+  const Vec3 pos = room.support + (kSupportGap - s * lo[2]) * f.up +
+                   (placement.offset[0] - centre[0]) * f.e1 +
+                   (placement.offset[1] - centre[1]) * f.e2;
   out.pos = {pos.x(), pos.y(), pos.z()};
   out.quat = {q.w(), q.x(), q.y(), q.z()};
   return out;
@@ -665,8 +666,12 @@ std::string scene_header(const HandTemplate& hand, const ObjectPlacement& placem
            << " degrees about it";
   }
   header << ";\n    its lowest point " << short_number(kSupportGap)
-         << " m above the support point (" << numbers(support.data(), 3)
-         << "), centred on it across gravity";
+         << " m above the support point (" << numbers(support.data(), 3) << "), centred on it";
+  if (placement.offset[0] != 0 || placement.offset[1] != 0) {
+    header << " moved " << short_number(placement.offset[0]) << ", "
+           << short_number(placement.offset[1]) << " m";
+  }
+  header << " across gravity";
   if (out.support_raised > 0) {
     header << ";\n    the support raised " << short_number(out.support_raised)
            << " m toward the hand, whose reach (graspcd_reach) the object is shorter than";
@@ -809,6 +814,40 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTempl
                {},
                out.size_hint.empty() ? "" : "; " + out.size_hint};
   return out;
+}
+
+struct ObjectPlacer::Read {
+  TriangleMesh mesh;
+  io::MeshStats stats;
+  tinyxml2::XMLDocument doc;
+  TemplateParts parts;
+  GravityFrame frame;
+  TemplateRoom room;
+  std::string file;
+  std::string template_path;
+  double fit_fraction = 1;
+};
+
+ObjectPlacer::ObjectPlacer(const std::string& file, const HandTemplate& hand)
+    : read_(std::make_unique<Read>()) {
+  Read& r = *read_;
+  r.file = file;
+  r.template_path = hand.scene;
+  r.fit_fraction = hand.fit_fraction;
+  r.mesh = read_object_mesh(file, &r.stats);
+  r.parts = read_template(r.doc, r.template_path);
+  r.frame = gravity_frame(r.parts.root, r.template_path);
+  r.room = template_room(r.parts, hand.fit, r.template_path);
+}
+
+ObjectPlacer::~ObjectPlacer() = default;
+
+ObjectScene ObjectPlacer::place(const ObjectPlacement& placement) const {
+  const Read& r = *read_;
+  ObjectPlacement p = placement;
+  p.file = r.file;
+  return place_object(r.mesh, p, r.fit_fraction, r.frame, r.room, r.parts, r.template_path,
+                      r.stats);
 }
 
 }  // namespace graspcd::grasp

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +38,9 @@ struct ObjectPlacement {
   std::string up = "z";  // the file axis pointing up: x, y, z, -x, -y or -z
   double yaw_degrees = 0;                     // then a turn about the up direction
   std::optional<std::array<double, 4>> pose;  // w x y z: the object's rotation, instead of up/yaw
+  // Then moved across gravity from the support point by this, m: along e1 (the world x axis made
+  // perpendicular to up; y when up is near x) and e2 = up x e1.
+  std::array<double, 2> offset{};
 };
 
 // The marker line of a generated scene's header comment: graspcd recognises its own scenes by it
@@ -91,5 +95,24 @@ std::vector<TemplateProblem> template_problems(const std::string& template_path)
 // the contract; std::invalid_argument for a bad `up`.
 ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTemplate& hand,
                                const std::string& dir);
+
+// The places write_object_scene gives one mesh in one hand, without writing a scene: the mesh
+// and the template are read once, then each placement's scale, size, pos and quat (and units
+// hint) come out exactly as write_object_scene's (the other fields empty). Used by a batch of
+// grasps (object_batch.h), which compiles one scene and moves its object. Throws as
+// write_object_scene does.
+class ObjectPlacer {
+ public:
+  ObjectPlacer(const std::string& file, const HandTemplate& hand);
+  ~ObjectPlacer();
+  ObjectPlacer(const ObjectPlacer&) = delete;
+  ObjectPlacer& operator=(const ObjectPlacer&) = delete;
+  // `placement.file` is ignored (the placer's file is placed).
+  ObjectScene place(const ObjectPlacement& placement) const;
+
+ private:
+  struct Read;
+  std::unique_ptr<Read> read_;
+};
 
 }  // namespace graspcd::grasp

@@ -3,18 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <optional>
+#include <memory>
 #include <vector>
 
 #include "graspcd/core/containment.h"
-#include "graspcd/core/obb_tree.h"
-#include "graspcd/core/penetration.h"
 #include "graspcd/grasp/decomposed_pieces.h"
 #include "graspcd/io/limit_text.h"
 #include "graspcd/io/warnings.h"
 #include "graspcd/mujoco/collision_pose.h"
 #include "graspcd/mujoco/primitives.h"
-#include "graspcd/mujoco/registry.h"
 
 namespace graspcd::grasp {
 
@@ -68,80 +65,6 @@ std::string piece_name(const mjModel* m, int g, const mujoco::SceneNames* names)
   return out;
 }
 
-// A geom's surface in the world: its triangles, their tree, whether it bounds a solid, and the
-// points that probe the other geom's solid: its vertices and points along its edges at most
-// kStartPenetration apart (an edge can cross a solid with both its ends outside).
-struct WorldSurface {
-  ObbTree tree;
-  Closedness closedness;
-  std::vector<Vec3> probes;
-};
-
-// The faces of a mesh's convex hull as MuJoCo 2.2 keeps it for its native collision (mesh_graph,
-// built when the model is compiled by qhull, the Quickhull algorithm of Barber, Dobkin and
-// Huhdanpaa, ACM TOMS 22(4), 1996; user_mesh.cc, MakeGraph): at mesh_graphadr, the
-// ints numvert, numface, then vert_edgeadr[numvert], vert_globalid[numvert],
-// edge_localid[numvert + 3 numface] and face_globalid[3 numface], the faces' vertices as indices
-// into the mesh's vertices. Empty for a mesh without a graph.
-std::vector<Triangle> hull_triangles(const mjModel* m, int mesh_id) {
-  const int adr = m->mesh_graphadr[mesh_id];
-  if (adr < 0) return {};
-  const int* graph = m->mesh_graph + adr;
-  const int numvert = graph[0];
-  const int numface = graph[1];
-  const int* face_globalid = graph + 2 + 3 * numvert + 3 * numface;
-  const int vadr = m->mesh_vertadr[mesh_id];
-  std::vector<Triangle> out(static_cast<std::size_t>(numface));
-  for (int f = 0; f < numface; ++f) {
-    Triangle& t = out[static_cast<std::size_t>(f)];
-    for (int k = 0; k < 3; ++k) {
-      const float* v = m->mesh_vert + 3 * (vadr + face_globalid[3 * f + k]);
-      t.v[static_cast<std::size_t>(k)] = Vec3(v[0], v[1], v[2]);
-    }
-  }
-  return out;
-}
-
-// `hull`: a mesh geom's surface is its convex hull (hull_triangles; its faces when it has none).
-std::optional<WorldSurface> world_surface(const mjModel* m, const mjData* d, int g,
-                                          bool hull = false) {
-  std::vector<Triangle> local;
-  const int type = m->geom_type[g];
-  if (type == mjGEOM_MESH) {
-    if (hull) local = hull_triangles(m, m->geom_dataid[g]);
-    if (local.empty()) local = mujoco::Registry::mesh_triangles(m, m->geom_dataid[g]);
-  } else if (mujoco::is_primitive(type)) {
-    const TriangleMesh mesh = mujoco::tessellate_primitive(type, m->geom_size + 3 * g);
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) local.push_back(mesh.triangle(f));
-  }
-  if (local.empty()) return std::nullopt;
-  const Pose pose{mujoco::from_row_major(d->geom_xmat + 9 * g), mujoco::geom_position(d, g)};
-  std::vector<Triangle> world;
-  world.reserve(local.size());
-  WorldSurface out;
-  out.probes.reserve(3 * local.size());
-  for (const Triangle& t : local) {
-    world.push_back(apply_pose(pose, t));
-    const Triangle& w = world.back();
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& a = w.v[static_cast<std::size_t>(k)];
-      const Vec3& b = w.v[static_cast<std::size_t>((k + 1) % 3)];
-      out.probes.push_back(a);
-      const int n = static_cast<int>(std::ceil((b - a).norm() / kStartPenetration));
-      for (int i = 1; i < n; ++i) out.probes.push_back(a + (b - a) * (static_cast<double>(i) / n));
-    }
-  }
-  // MuJoCo gives each face fresh vertices, and each edge is walked from both faces: one copy of
-  // each point is enough to test.
-  std::sort(out.probes.begin(), out.probes.end(), [](const Vec3& a, const Vec3& b) {
-    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-  });
-  out.probes.erase(std::unique(out.probes.begin(), out.probes.end()), out.probes.end());
-  out.tree = ObbTree::build(std::move(world));
-  out.closedness = closedness(out.tree);
-  return out;
-}
-
 // Whether geom `g`'s body is `body` or lies below it.
 bool in_subtree(const mjModel* m, int g, int body) {
   if (body < 0) return false;
@@ -191,33 +114,45 @@ std::string inside_hull(const mjModel* m, int hull_geom, const std::string& what
          depth_mm(depth) + " inside at the start";
 }
 
+// The place of geom b in geom a's frame.
+Pose pose_in(const mjData* d, int a, int b) { return mujoco::relative_pose(d, a, b); }
+
 }  // namespace
 
 std::string check_start_state(const mjModel* m, const mjData* d, int object_body,
-                              const mujoco::SceneNames& names, const OpenMeshes& open) {
+                              const mujoco::SceneNames& names, const OpenMeshes& open,
+                              SurfaceCache* surfaces) {
+  std::unique_ptr<SurfaceCache> own;
+  if (surfaces == nullptr) surfaces = (own = std::make_unique<SurfaceCache>(m)).get();
   const int root = m->body_rootid[object_body];
   const auto in_object = [&](int g) { return m->body_rootid[m->geom_bodyid[g]] == root; };
   std::vector<char> warned(static_cast<std::size_t>(m->ngeom), 0);
+  std::vector<Vec3> placed;
   for (int o = 0; o < m->ngeom; ++o) {
     if (!in_object(o) || (m->geom_contype[o] == 0 && m->geom_conaffinity[o] == 0)) continue;
-    std::optional<WorldSurface> object;  // built at the first geom near it
+    const GeomSurface* object = nullptr;  // found at the first geom near it
     for (int g = 0; g < m->ngeom; ++g) {
       if (in_object(g) || !may_collide(m, o, g)) continue;
       const int type = m->geom_type[g];
       if (type == mjGEOM_HFIELD) continue;
       if (type != mjGEOM_PLANE && far_apart(m, d, o, g)) continue;
-      if (!object) {
-        object = world_surface(m, d, o);
-        if (!object) return "";  // a plane or height field as the object: nothing to check
+      if (object == nullptr) {
+        object = surfaces->surface(o);
+        if (object == nullptr)
+          return "";  // a plane or height field as the object: nothing to check
       }
       const std::string what = geom_name(m, o) + " of the object";
       if (type == mjGEOM_PLANE) {
-        // The plane's solid is the half-space below it (its z axis points out).
+        // The plane's solid is the half-space below it (its z axis points out); a triangle lies
+        // deepest below it at a vertex.
         const Mat3 R = mujoco::from_row_major(d->geom_xmat + 9 * g);
         const Vec3 normal = R.col(2);
         const Vec3 at = mujoco::geom_position(d, g);
+        const Pose pose{mujoco::from_row_major(d->geom_xmat + 9 * o), mujoco::geom_position(d, o)};
         double depth = 0;
-        for (const Vec3& v : object->probes) depth = std::max(depth, -normal.dot(v - at));
+        for (const Vec3& v : object->vertices()) {
+          depth = std::max(depth, -normal.dot(apply_pose(pose, v) - at));
+        }
         if (depth > kStartPenetration) {
           return what + " lies " + depth_mm(depth) + " below the plane " + geom_name(m, g) +
                  " (at most " + millimetres(kStartPenetration) +
@@ -225,18 +160,22 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
         }
         continue;
       }
-      const std::optional<WorldSurface> other = world_surface(m, d, g);
-      if (!other) continue;
-      const bool object_closed = object->closedness.closed();
-      const bool other_closed = other->closedness.closed();
+      const GeomSurface* other = surfaces->surface(g);
+      if (other == nullptr) continue;
+      const bool object_closed = object->closed();
+      const bool other_closed = other->closed();
+      // In the object's frame: the other geom placed there.
+      const Pose other_in_object = pose_in(d, o, g);
       if (object_closed && other_closed) {
-        const MeshContainment c = mesh_containment(object->tree, object->closedness, Pose{},
-                                                   other->tree, other->closedness);
+        const MeshContainment c =
+            mesh_containment(object->tree(), object->closedness(), other_in_object, other->tree(),
+                             other->closedness());
         if (c.a_inside_b) return what + " lies wholly inside " + geom_name(m, g);
         if (c.b_inside_a) return geom_name(m, g) + " lies wholly inside the object (" + what + ")";
       }
       if (other_closed) {
-        const VertexPenetration p = deepest_point_inside(other->tree, object->probes);
+        const ProbeDepth p = deepest_probe_inside(*other, *object, pose_in(d, g, o),
+                                                  kStartPenetration, kStartPenetration, placed);
         if (p.depth > kStartPenetration) {
           return what + " penetrates " + geom_name(m, g) + " by " + depth_mm(p.depth) +
                  " (at most " + millimetres(kStartPenetration) + " allowed)";
@@ -245,7 +184,8 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
         warn_open(m, g, warned, names, open);
       }
       if (object_closed) {
-        const VertexPenetration p = deepest_point_inside(object->tree, other->probes);
+        const ProbeDepth p = deepest_probe_inside(*object, *other, other_in_object,
+                                                  kStartPenetration, kStartPenetration, placed);
         if (p.depth > kStartPenetration) {
           return geom_name(m, g) + " penetrates the object (" + what + ") by " + depth_mm(p.depth) +
                  " (at most " + millimetres(kStartPenetration) + " allowed)";
@@ -259,12 +199,15 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
 }
 
 std::string check_hull_start(const mjModel* m, const mjData* d, int object_body,
-                             const mujoco::SceneNames& names) {
+                             const mujoco::SceneNames& names, SurfaceCache* surfaces) {
+  std::unique_ptr<SurfaceCache> own;
+  if (surfaces == nullptr) surfaces = (own = std::make_unique<SurfaceCache>(m)).get();
   const int root = m->body_rootid[object_body];
   const auto in_object = [&](int g) { return m->body_rootid[m->geom_bodyid[g]] == root; };
+  std::vector<Vec3> placed;
   for (int o = 0; o < m->ngeom; ++o) {
     if (!in_object(o) || (m->geom_contype[o] == 0 && m->geom_conaffinity[o] == 0)) continue;
-    std::optional<WorldSurface> object;  // built at the first geom near it
+    const GeomSurface* object = nullptr;  // found at the first geom near it
     for (int g = 0; g < m->ngeom; ++g) {
       if (in_object(g) || !may_collide(m, o, g)) continue;
       const bool object_mesh = m->geom_type[o] == mjGEOM_MESH;
@@ -273,12 +216,12 @@ std::string check_hull_start(const mjModel* m, const mjData* d, int object_body,
       if (!object_mesh && !other_mesh) continue;
       if (!mujoco::is_primitive(m->geom_type[g]) && !other_mesh) continue;
       if (far_apart(m, d, o, g)) continue;
-      if (!object) {
-        object = world_surface(m, d, o, true);
-        if (!object) return "";
+      if (object == nullptr) {
+        object = surfaces->hull(o);
+        if (object == nullptr) return "";
       }
-      const std::optional<WorldSurface> other = world_surface(m, d, g, true);
-      if (!other) continue;
+      const GeomSurface* other = surfaces->hull(g);
+      if (other == nullptr) continue;
       // A hull is convex and closed. The object's hull around the other geom first (a finger in
       // a bowl's cavity or a handle's hole), then the other's hull around the object. A mesh's
       // probes are its hull's: MuJoCo collides two meshes hull against hull.
@@ -286,14 +229,16 @@ std::string check_hull_start(const mjModel* m, const mjData* d, int object_body,
         if (is_piece(m, geom)) return piece_name(m, geom, &names);
         return m->geom_type[geom] == mjGEOM_MESH ? "the hull of " + name : name;
       };
-      if (object_mesh && object->closedness.closed()) {
-        const VertexPenetration p = deepest_point_inside(object->tree, other->probes);
+      if (object_mesh && object->closed()) {
+        const ProbeDepth p = deepest_probe_inside(*object, *other, pose_in(d, o, g),
+                                                  kStartPenetration, kStartPenetration, placed);
         if (p.depth > kStartPenetration) {
           return inside_hull(m, o, probed(g, geom_name(m, g)), p.depth, names);
         }
       }
-      if (other_mesh && other->closedness.closed()) {
-        const VertexPenetration p = deepest_point_inside(other->tree, object->probes);
+      if (other_mesh && other->closed()) {
+        const ProbeDepth p = deepest_probe_inside(*other, *object, pose_in(d, g, o),
+                                                  kStartPenetration, kStartPenetration, placed);
         if (p.depth > kStartPenetration) {
           return inside_hull(m, g, probed(o, geom_name(m, o) + " of the object"), p.depth, names);
         }

@@ -6,8 +6,9 @@
 // What is checked, at the initial state (after mj_forward): every geom of the object's body tree
 // against every other geom the contype/conaffinity filter lets collide with it (explicit <pair>
 // elements are not read), skipping pairs whose bounding spheres (geom_rbound) are farther apart
-// than kStartPenetration. The geoms' surfaces are MuJoCo's own float vertices placed in the world
-// (meshes: mesh_face, not the hull; primitives: the MuJoCo layer's tessellations, primitives.h).
+// than kStartPenetration. The geoms' surfaces are MuJoCo's own float vertices in the geoms' frames
+// (meshes: mesh_face, not the hull; primitives: the MuJoCo layer's tessellations, primitives.h;
+// surface_cache.h), one geom placed in the other's frame by the state.
 //  - A plane (the floor): the depth of the object's lowest vertex below it.
 //  - Anything else: the depth inside the other's closed solid of each vertex of one geom and of
 //    points along its edges at most kStartPenetration apart, both ways (exact inside test,
@@ -25,6 +26,7 @@
 #include <functional>
 #include <string>
 
+#include "graspcd/grasp/surface_cache.h"
 #include "graspcd/mujoco/scene_names.h"
 
 namespace graspcd::grasp {
@@ -47,9 +49,11 @@ struct OpenMeshes {
 // valid. `object_body` is the object's body id; `d` holds the initial state after mj_forward.
 // `names` words the warnings of a scene graspcd wrote (a mesh of the hand called the hand's).
 // An open mesh near the object is the warning "start_check_open" (what lies inside it is not
-// checked), but for those `open` leaves out.
+// checked), but for those `open` leaves out. `surfaces`: the geoms' surfaces (surface_cache.h),
+// kept by the caller across grasps of one model (null: built for this check).
 std::string check_start_state(const mjModel* m, const mjData* d, int object_body,
-                              const mujoco::SceneNames& names = {}, const OpenMeshes& open = {});
+                              const mujoco::SceneNames& names = {}, const OpenMeshes& open = {},
+                              SurfaceCache* surfaces = nullptr);
 
 // The start as MuJoCo's native collision sees it (--native, and the pieces of --decomposed, which
 // are mesh geoms collided natively): every mesh geom is its convex hull (MuJoCo 2.2's mesh_graph,
@@ -59,14 +63,11 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
 // geom's inside the object's hull, then the object's inside the other's hull. The first depth
 // beyond kStartPenetration as one message, "MuJoCo collides mesh 'bowl' as its convex hull, which
 // geom 'left_pad' lies 18.3 mm inside at the start" (a mesh's probes are named "the hull of geom
-// ..."), or "" when none. A piece of a decomposed scene is convex and is named as the piece it is,
-// with its file from `names` (SceneNames::pieces): "geom 'table' lies 3.6 mm inside piece 0 of
-// mesh 'object_mesh' (can/textured_piece_0.obj) at the start". A start that passes
-// check_start_state and fails this one is a limit of the hull (or of the pieces), not of the
-// scene. Primitives against primitives, planes and height fields are left to check_start_state,
-// which sees them as MuJoCo collides them. Every depth is printed with enough decimals to differ
-// from kStartPenetration.
-std::string check_hull_start(const mjModel* m, const mjData* d, int object_body,
-                             const mujoco::SceneNames& names = {});
+// An open mesh near the object is the warning "start_check_open" (what lies inside it is not
+// checked), but for those `open` leaves out. `surfaces`: the geoms' surfaces (surface_cache.h),
+// kept by the caller across grasps of one model (null: built for this check).
+std::string check_start_state(const mjModel* m, const mjData* d, int object_body,
+                              const mujoco::SceneNames& names = {}, const OpenMeshes& open = {},
+                              SurfaceCache* surfaces = nullptr);
 
 }  // namespace graspcd::grasp

@@ -16,20 +16,6 @@
 
 namespace graspcd::grasp {
 
-// A geom's true surface in its own frame: its tree, whether it bounds a solid, its vertices (each
-// once) and its probes (vertices and edge points at most kTrueProbeSpacing apart, each once),
-// grouped by the tree's triangles: the probes of triangle k (in the tree's leaf order) are
-// probes[probe_start[k], probe_start[k + 1]), so that a query takes only those of the leaves
-// whose boxes meet the other solid's box.
-struct TruePenetrationWatch::Surface {
-  ObbTree tree;
-  bool closed = false;
-  std::vector<Vec3> vertices;
-  std::vector<Vec3> probes;
-  std::vector<std::size_t> probe_start;
-  double radius = 0;  // the farthest probe from the geom's origin, m
-};
-
 // An object geom and a geom it may collide with: which ways are tested.
 struct TruePenetrationWatch::Pair {
   int object = -1, other = -1;
@@ -44,59 +30,27 @@ struct TruePenetrationWatch::Pair {
   double last_depth = 0;
 };
 
+namespace {
+
+// Whether geom g has a true surface (surface_cache.h): a mesh with faces, or a primitive.
+bool has_surface(const mjModel* m, int g) {
+  const int type = m->geom_type[g];
+  if (type == mjGEOM_MESH) return m->geom_dataid[g] >= 0 && m->mesh_facenum[m->geom_dataid[g]] > 0;
+  return mujoco::is_primitive(type);
+}
+
+}  // namespace
+
 TruePenetrationWatch::~TruePenetrationWatch() = default;
 
-TruePenetrationWatch::TruePenetrationWatch(const mjModel* truth, int object_body, int support_root)
-    : surfaces_(static_cast<std::size_t>(truth->ngeom)), truth_(truth) {
+TruePenetrationWatch::TruePenetrationWatch(const mjModel* truth, int object_body, int support_root,
+                                           SurfaceCache* surfaces)
+    : own_surfaces_(surfaces ? nullptr : std::make_unique<SurfaceCache>(truth)),
+      surfaces_(surfaces ? surfaces : own_surfaces_.get()),
+      truth_(truth) {
   const mjModel* m = truth;
   const int root = m->body_rootid[object_body];
   const auto in_object = [&](int g) { return m->body_rootid[m->geom_bodyid[g]] == root; };
-  const auto surface = [&](int g) -> Surface* {
-    std::unique_ptr<Surface>& s = surfaces_[static_cast<std::size_t>(g)];
-    if (s) return s.get();
-    std::vector<Triangle> local = geom_triangles(m, g);
-    if (local.empty()) return nullptr;
-    s = std::make_unique<Surface>();
-    s->tree = ObbTree::build(std::move(local));
-    s->closed = closedness(s->tree).closed();
-    // Each probe once, kept with the first triangle (in leaf order) that has it.
-    std::vector<std::pair<Vec3, std::size_t>> probes;
-    const std::vector<Triangle>& triangles = s->tree.triangles();
-    for (std::size_t f = 0; f < triangles.size(); ++f) {
-      const Triangle& t = triangles[f];
-      for (int k = 0; k < 3; ++k) {
-        const Vec3& a = t.v[static_cast<std::size_t>(k)];
-        const Vec3& b = t.v[static_cast<std::size_t>((k + 1) % 3)];
-        probes.emplace_back(a, f);
-        s->vertices.push_back(a);
-        const int n = static_cast<int>(std::ceil((b - a).norm() / kTrueProbeSpacing));
-        for (int i = 1; i < n; ++i) {
-          probes.emplace_back(a + (b - a) * (static_cast<double>(i) / n), f);
-        }
-      }
-    }
-    const auto less = [](const Vec3& a, const Vec3& b) {
-      return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-    };
-    std::sort(s->vertices.begin(), s->vertices.end(), less);
-    s->vertices.erase(std::unique(s->vertices.begin(), s->vertices.end()), s->vertices.end());
-    std::sort(probes.begin(), probes.end(), [&less](const auto& a, const auto& b) {
-      return less(a.first, b.first) || (a.first == b.first && a.second < b.second);
-    });
-    probes.erase(std::unique(probes.begin(), probes.end(),
-                             [](const auto& a, const auto& b) { return a.first == b.first; }),
-                 probes.end());
-    std::stable_sort(probes.begin(), probes.end(),
-                     [](const auto& a, const auto& b) { return a.second < b.second; });
-    s->probe_start.assign(triangles.size() + 1, 0);
-    for (const auto& [p, f] : probes) {
-      s->probes.push_back(p);
-      ++s->probe_start[f + 1];
-    }
-    for (std::size_t f = 0; f < triangles.size(); ++f) s->probe_start[f + 1] += s->probe_start[f];
-    for (const Vec3& p : s->probes) s->radius = std::max(s->radius, p.norm());
-    return s.get();
-  };
   std::vector<char> partial(static_cast<std::size_t>(m->ngeom), 0);
   for (int o = 0; o < m->ngeom; ++o) {
     if (!in_object(o) || (m->geom_contype[o] == 0 && m->geom_conaffinity[o] == 0)) continue;
@@ -108,28 +62,28 @@ TruePenetrationWatch::TruePenetrationWatch(const mjModel* truth, int object_body
       pair.name = geom_label(m, g);
       const int body = m->geom_bodyid[g];
       pair.support = body == 0 || m->body_rootid[body] == support_root;
-      const Surface* object = surface(o);
       const int type = m->geom_type[g];
-      if (object == nullptr) break;  // a plane or height field as the object: nothing to probe
+      if (!has_surface(m, o)) break;  // a plane or height field as the object: nothing to probe
       if (type == mjGEOM_PLANE) {
         pair.plane = true;
       } else {
-        const Surface* other = surface(g);
-        if (other == nullptr) {
+        if (!has_surface(m, g)) {
           result_.unmeasured.push_back(pair.name + " (a " + mujoco::geom_type_name(type) +
                                        ") is not measured against the object");
           continue;
         }
-        pair.object_in_other = other->closed;
-        pair.other_in_object = object->closed;
-        if (!other->closed && !object->closed) {
+        const bool object_closed = surfaces_->closed(o);
+        const bool other_closed = surfaces_->closed(g);
+        pair.object_in_other = other_closed;
+        pair.other_in_object = object_closed;
+        if (!other_closed && !object_closed) {
           result_.unmeasured.push_back(pair.name + " and the object's " + geom_label(m, o) +
                                        " are both open meshes: not measured");
           continue;
         }
-        for (const int open : {o, g}) {
-          const Surface* s = surfaces_[static_cast<std::size_t>(open)].get();
-          if (s->closed || partial[static_cast<std::size_t>(open)]) continue;
+        for (const auto& [open, closed] :
+             {std::pair{o, object_closed}, std::pair{g, other_closed}}) {
+          if (closed || partial[static_cast<std::size_t>(open)]) continue;
           partial[static_cast<std::size_t>(open)] = 1;
           result_.partial.push_back(
               geom_label(m, open) + (open == o ? " (the object)" : "") +
@@ -148,68 +102,57 @@ void TruePenetrationWatch::measure(const mjData* d, long step, double time,
   const mjModel* m = truth_;
   ++result_.measures;
   std::vector<Vec3> placed;
-  std::vector<std::int32_t> stack;
   for (Pair& pair : pairs_) {
     const int o = pair.object;
     const int g = pair.other;
-    const Surface& object = *surfaces_[static_cast<std::size_t>(o)];
+    double& side = pair.support ? result_.support_max : result_.hand_max;
     double depth = 0;
     if (pair.plane) {
       // The plane's solid is the half-space below it (its z axis points out).
       const Vec3 normal = mujoco::from_row_major(d->geom_xmat + 9 * g).col(2);
       const Vec3 at = mujoco::geom_position(d, g);
       const Pose pose{mujoco::from_row_major(d->geom_xmat + 9 * o), mujoco::geom_position(d, o)};
+      const GeomSurface& object = *surfaces_->surface(o);
+      // The vertices lie in their box along the geom's axes: none lies deeper than its deepest
+      // corner, and one no deeper than the side's deepest so far changes nothing.
+      const Vec3 n = pose.R.transpose() * normal;
+      const double corner = -normal.dot(apply_pose(pose, object.aligned_center()) - at) +
+                            n.cwiseAbs().dot(object.aligned_half());
+      if (corner <= side) continue;
       // A triangle's depth below a plane is deepest at a vertex.
-      for (const Vec3& p : object.vertices) {
+      for (const Vec3& p : object.vertices()) {
         depth = std::max(depth, -normal.dot(apply_pose(pose, p) - at));
       }
     } else {
       const double gap = (mujoco::geom_position(d, o) - mujoco::geom_position(d, g)).norm() -
                          m->geom_rbound[o] - m->geom_rbound[g];
       if (gap > 0) continue;
-      const Surface& other = *surfaces_[static_cast<std::size_t>(g)];
+      const GeomSurface& object = *surfaces_->surface(o);
+      const GeomSurface& other = *surfaces_->surface(g);
       // A pair that moved too little since its last measure to pass the deepest of its side is
       // not measured again: a probe's depth (its distance to the surface inside, 0 outside) moves
       // no more than the probe, and the probes of the other geom in the object's frame, and of
-      // the object in the other's, moved at most |R1 - R0|_F r + |dt| (r the probes' radius), so
-      // the pair's depth is at most its last plus that (exact: the maxima are those of measuring
-      // every time).
+      // the object in the other's, moved at most |R1 - R0|_F r + |dt| (r the surfaces' radius, a
+      // probe lying between vertices), so the pair's depth is at most its last bound plus that
+      // (exact: the maxima are those of measuring every time).
       const Pose now = mujoco::relative_pose(d, o, g);
       if (pair.measured) {
         const Pose& was = pair.last;
         const double turn = (now.R - was.R).norm();  // Frobenius, at least the spectral norm
-        const double moved = std::max(
-            turn * other.radius + (now.t - was.t).norm(),
-            turn * object.radius + (now.R.transpose() * now.t - was.R.transpose() * was.t).norm());
-        const double side = pair.support ? result_.support_max : result_.hand_max;
+        const double moved =
+            std::max(turn * other.radius() + (now.t - was.t).norm(),
+                     turn * object.radius() +
+                         (now.R.transpose() * now.t - was.R.transpose() * was.t).norm());
         if (pair.last_depth + moved + 1e-9 < side) continue;
       }
-      // The deepest of `probed`'s probes inside `solid`, `p` placing probed in solid's frame: only
-      // the probes of the probed tree's leaves whose boxes meet the solid's root box.
-      const auto deepest = [&placed, &stack](const Surface& solid, const Surface& probed,
-                                             const Pose& p) {
-        const Pose inverse{p.R.transpose(), -(p.R.transpose() * p.t)};
-        const Obb solid_box = transform(inverse, solid.tree.root().box);
-        const std::vector<ObbNode>& nodes = probed.tree.nodes();
-        placed.clear();
-        stack.assign(1, 0);
-        while (!stack.empty()) {
-          const std::int32_t index = stack.back();
-          stack.pop_back();
-          const ObbNode& node = nodes[static_cast<std::size_t>(index)];
-          if (sat_disjoint(node.box, solid_box)) continue;
-          if (!node.is_leaf()) {
-            stack.push_back(node.right);
-            stack.push_back(index + 1);
-            continue;
-          }
-          const auto first = static_cast<std::size_t>(node.first);
-          const auto last = first + static_cast<std::size_t>(node.count);
-          for (std::size_t i = probed.probe_start[first]; i < probed.probe_start[last]; ++i) {
-            placed.push_back(apply_pose(p, probed.probes[i]));
-          }
-        }
-        return placed.empty() ? 0.0 : deepest_point_inside(solid.tree, placed).depth;
+      // Only the probes that could lie deeper than the side's deepest so far are tested
+      // (deepest_probe_inside); the pair's bound keeps what the others could reach.
+      double bound = 0;
+      const auto deepest = [&](const GeomSurface& solid, const GeomSurface& probed, const Pose& p) {
+        const ProbeDepth found =
+            deepest_probe_inside(solid, probed, p, kTrueProbeSpacing, side, placed);
+        bound = std::max(bound, found.bound);
+        return found.depth;
       };
       // relative_pose(d, a, b) places b in a's frame.
       if (pair.object_in_other) {
@@ -218,9 +161,8 @@ void TruePenetrationWatch::measure(const mjData* d, long step, double time,
       if (pair.other_in_object) depth = std::max(depth, deepest(object, other, now));
       pair.measured = true;
       pair.last = now;
-      pair.last_depth = depth;
+      pair.last_depth = bound;
     }
-    double& side = pair.support ? result_.support_max : result_.hand_max;
     side = std::max(side, depth);
     if (depth > result_.max) {
       result_.max = depth;

@@ -24,8 +24,11 @@
 // can pass through it between two samples and leave only a shallow depth; the ejection verdict
 // (grasp.h) catches such a run. A plane has no thickness to pass: the depth below it stays.
 // A pair that moved too little since its last measure to pass the deepest of its side found so
-// far is not measured again (a depth moves no more than the probes do): the maxima, their step
-// and geom are those of measuring every pair at every grasp step.
+// far is not measured again (a depth moves no more than the probes do), and in a pair measured
+// only the probes that could lie deeper than that are tested (a probe inside a solid lies no
+// deeper than it lies inside the solid's bounding box): the maxima, their step and geom are those
+// of measuring every probe of every pair at every grasp step. The surfaces come from a
+// SurfaceCache (surface_cache.h), each built the first time a pair needs it.
 // Each measured geom is the hand's (any body but the world and the support's body tree) or the
 // support's (the world body: a floor; the support body tree of a driven hand). The deepest over
 // the run, its grasp step, time, phase and geom, and the deepest per side.
@@ -36,6 +39,8 @@
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "graspcd/grasp/surface_cache.h"
 
 namespace graspcd::grasp {
 
@@ -67,7 +72,10 @@ class TruePenetrationWatch {
   // are watched (the run's model, or for a decomposed scene its true_object_model: same geom
   // ids). `object_body`: the object's body (its body tree is the object); `support_root`: the
   // root of the support's body tree, -1 for none (the world body is always the support).
-  TruePenetrationWatch(const mjModel* truth, int object_body, int support_root);
+  // `surfaces`: the surfaces of `truth`'s geoms, kept by the caller across runs (null: the watch
+  // keeps its own).
+  TruePenetrationWatch(const mjModel* truth, int object_body, int support_root,
+                       SurfaceCache* surfaces = nullptr);
   ~TruePenetrationWatch();
   TruePenetrationWatch(const TruePenetrationWatch&) = delete;
   TruePenetrationWatch& operator=(const TruePenetrationWatch&) = delete;
@@ -78,9 +86,9 @@ class TruePenetrationWatch {
   const TruePenetration& result() const { return result_; }
 
  private:
-  struct Surface;
   struct Pair;
-  std::vector<std::unique_ptr<Surface>> surfaces_;  // by geom id, null for geoms not watched
+  std::unique_ptr<SurfaceCache> own_surfaces_;
+  SurfaceCache* surfaces_;
   std::vector<Pair> pairs_;
   const mjModel* truth_;
   TruePenetration result_;
