@@ -44,7 +44,8 @@ std::vector<ObjectPlacement> draw_placements(const ObjectPlacement& base,
     const double radius = uniform(rng);
     ObjectPlacement p = base;
     p.pose.reset();
-    p.up = ups[std::min(ups.size() - 1, static_cast<std::size_t>(side * static_cast<double>(ups.size())))];
+    p.up = ups[std::min(ups.size() - 1,
+                        static_cast<std::size_t>(side * static_cast<double>(ups.size())))];
     p.yaw_degrees = options.yaw_degrees ? *options.yaw_degrees : 360 * yaw;
     const double r = options.max_offset * std::sqrt(radius);
     p.offset = {r * std::cos(2 * M_PI * angle), r * std::sin(2 * M_PI * angle)};
@@ -79,7 +80,8 @@ ObjectBatch::ObjectBatch(const ObjectBatchOptions& options) {
   std::string scene_path = s.run.scene();
   {
     const CostTimer timer(&s.pending, CostPart::kScene);
-    s.placer = std::make_unique<ObjectPlacer>(options.run.file, options.run.hand);
+    s.placer = std::make_unique<ObjectPlacer>(options.run.file, options.run.hand,
+                                              s.run.description().scene.support_raised);
     if (!options.decomposed.empty()) {
       s.decomposed = write_decomposed_scene(scene_path, options.decomposed);
       s.remove_decomposed = io::CleanupGuard(s.decomposed->scene);

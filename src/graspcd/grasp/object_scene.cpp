@@ -180,7 +180,7 @@ TemplateParts find_template_parts(tinyxml2::XMLDocument& doc, const std::string&
                                   std::vector<TemplateProblem>& problems) {
   const auto lacks = [&](const tinyxml2::XMLElement* at, const std::string& what,
                          const std::string& how) {
-    problems.push_back({static_cast<std::size_t>(std::max(0, line_of(at))), what, how});
+    problems.push_back({static_cast<std::size_t>(std::max(0, line_of(at))), what, how, {}});
   };
   TemplateParts t;
   t.root = doc.RootElement();
@@ -732,9 +732,11 @@ std::vector<TemplateProblem> template_problems(const std::string& template_path)
   try {
     gravity_frame(t.root, template_path);
   } catch (const io::InputError& e) {
-    problems.push_back({e.line(), e.message(),
+    problems.push_back({e.line(),
+                        e.message(),
                         "give <option gravity=\"GX GY GZ\"/> pointing from the hand to the "
-                        "support (along it the object hangs from the hand)"});
+                        "support (along it the object hangs from the hand)",
+                        {}});
   }
   return problems;
 }
@@ -826,11 +828,15 @@ struct ObjectPlacer::Read {
   std::string file;
   std::string template_path;
   double fit_fraction = 1;
+  double support_raised = 0;
+  std::string hand;  // HandTemplate::mesh_owner(), for the size hint
 };
 
-ObjectPlacer::ObjectPlacer(const std::string& file, const HandTemplate& hand)
+ObjectPlacer::ObjectPlacer(const std::string& file, const HandTemplate& hand, double support_raised)
     : read_(std::make_unique<Read>()) {
   Read& r = *read_;
+  r.support_raised = support_raised;
+  r.hand = hand.mesh_owner();
   r.file = file;
   r.template_path = hand.scene;
   r.fit_fraction = hand.fit_fraction;
@@ -846,8 +852,13 @@ ObjectScene ObjectPlacer::place(const ObjectPlacement& placement) const {
   const Read& r = *read_;
   ObjectPlacement p = placement;
   p.file = r.file;
-  return place_object(r.mesh, p, r.fit_fraction, r.frame, r.room, r.parts, r.template_path,
-                      r.stats);
+  ObjectScene out = place_object(r.mesh, p, r.fit_fraction, r.frame, r.room, r.parts,
+                                 r.template_path, r.stats, r.hand);
+  for (std::size_t i = 0; i < 3; ++i) {
+    out.pos[i] += r.support_raised * r.frame.up[static_cast<Eigen::Index>(i)];
+  }
+  out.support_raised = r.support_raised;
+  return out;
 }
 
 }  // namespace graspcd::grasp

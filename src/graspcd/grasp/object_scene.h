@@ -99,11 +99,13 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTempl
 // The places write_object_scene gives one mesh in one hand, without writing a scene: the mesh
 // and the template are read once, then each placement's scale, size, pos and quat (and units
 // hint) come out exactly as write_object_scene's (the other fields empty). Used by a batch of
-// grasps (object_batch.h), which compiles one scene and moves its object. Throws as
+// grasps (object_batch.h), which compiles one scene and moves its object. `support_raised`: the
+// raise the compiled scene gave its support (ObjectScene::support_raised, graspcd_reach): every
+// placement stands on that support, raised by it whatever its own height. Throws as
 // write_object_scene does.
 class ObjectPlacer {
  public:
-  ObjectPlacer(const std::string& file, const HandTemplate& hand);
+  ObjectPlacer(const std::string& file, const HandTemplate& hand, double support_raised = 0);
   ~ObjectPlacer();
   ObjectPlacer(const ObjectPlacer&) = delete;
   ObjectPlacer& operator=(const ObjectPlacer&) = delete;

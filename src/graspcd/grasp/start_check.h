@@ -63,11 +63,15 @@ std::string check_start_state(const mjModel* m, const mjData* d, int object_body
 // geom's inside the object's hull, then the object's inside the other's hull. The first depth
 // beyond kStartPenetration as one message, "MuJoCo collides mesh 'bowl' as its convex hull, which
 // geom 'left_pad' lies 18.3 mm inside at the start" (a mesh's probes are named "the hull of geom
-// An open mesh near the object is the warning "start_check_open" (what lies inside it is not
-// checked), but for those `open` leaves out. `surfaces`: the geoms' surfaces (surface_cache.h),
-// kept by the caller across grasps of one model (null: built for this check).
-std::string check_start_state(const mjModel* m, const mjData* d, int object_body,
-                              const mujoco::SceneNames& names = {}, const OpenMeshes& open = {},
-                              SurfaceCache* surfaces = nullptr);
+// ..."), or "" when none. A piece of a decomposed scene is convex and is named as the piece it is,
+// with its file from `names` (SceneNames::pieces): "geom 'table' lies 3.6 mm inside piece 0 of
+// mesh 'object_mesh' (can/textured_piece_0.obj) at the start". A start that passes
+// check_start_state and fails this one is a limit of the hull (or of the pieces), not of the
+// scene. Primitives against primitives, planes and height fields are left to check_start_state,
+// which sees them as MuJoCo collides them. Every depth is printed with enough decimals to differ
+// from kStartPenetration. `surfaces` as for check_start_state.
+std::string check_hull_start(const mjModel* m, const mjData* d, int object_body,
+                             const mujoco::SceneNames& names = {},
+                             SurfaceCache* surfaces = nullptr);
 
 }  // namespace graspcd::grasp
