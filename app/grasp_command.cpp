@@ -43,6 +43,7 @@ struct GraspCliOptions {
   bool force = false;          // --force: --write-scene may replace files graspcd did not write
   int noslip = 0;              // --noslip N: MuJoCo's noslip iterations (default: the scene's)
   bool multiccd = false;       // --multiccd: MuJoCo's multi-point convex collision for the run
+  int timestep_divisor = 1;    // --timestep-divisor K: the scene's step / K, K x the steps
 };
 
 // --judge: per closing grasp step, phantom and missed contacts (contact_judge.h).
@@ -118,6 +119,7 @@ grasp::GraspOptions grasp_options(const GraspCliOptions& options, const CLI::App
   }
   if (app.count("--noslip") > 0) grasp.noslip_iterations = options.noslip;
   if (app.count("--multiccd") > 0) grasp.multiccd = options.multiccd;
+  grasp.timestep_divisor = options.timestep_divisor;
   grasp.true_penetration = true;  // every run of the command measures it
   if (app.count("--method") > 0) grasp.method = options.method.method;
   if (app.count("--cap") > 0) grasp.cap = options.method.cap;
@@ -216,6 +218,9 @@ Command add_grasp_command(CLI::App& parent) {
        {Placement::kYaw, "--object: then a turn about the up direction, degrees"},
        {Placement::kPose,
         "--object: the object's rotation as a quaternion W X Y Z (instead of --up, --yaw)"},
+       {Placement::kOffset,
+        "--object: then moved DX DY metres across gravity from the hand's centre (the support "
+        "point; for the templates: along the world x and y)"},
        {Placement::kWriteScene,
         "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder and keep "
         "it (default: a temporary folder, removed)"}});
@@ -246,6 +251,12 @@ Command add_grasp_command(CLI::App& parent) {
                 "MuJoCo's multi-point convex collision (mjENBL_MULTICCD) for what MuJoCo "
                 "collides itself: --native's hulls, --decomposed's pieces, the pairs graspcd "
                 "does not serve (--multiccd=false: off; default: the scene's flag, MuJoCo's off)");
+  app->add_option("--timestep-divisor", options->timestep_divisor,
+                  "The scene's time step divided by K, with K times the physics steps per grasp "
+                  "step, so that the drive is the same in time (a finer run of the same grasp; "
+                  "JSON timestep and physics_steps_per_grasp_step record what ran)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   app->add_option("--max-steps", options->max_steps, "Most closing grasp steps")
       ->check(positive_number())
       ->capture_default_str();

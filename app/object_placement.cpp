@@ -25,6 +25,8 @@ const char* name_of(Placement p) {
       return "--yaw";
     case Placement::kPose:
       return "--pose";
+    case Placement::kOffset:
+      return "--offset";
     case Placement::kWriteScene:
       return "--write-scene";
   }
@@ -32,8 +34,9 @@ const char* name_of(Placement p) {
 }
 
 bool is_placement(const std::string& name) {
-  for (Placement p : {Placement::kScale, Placement::kFit, Placement::kHand, Placement::kUp,
-                      Placement::kYaw, Placement::kPose, Placement::kWriteScene}) {
+  for (Placement p :
+       {Placement::kScale, Placement::kFit, Placement::kHand, Placement::kUp, Placement::kYaw,
+        Placement::kPose, Placement::kOffset, Placement::kWriteScene}) {
     if (name == name_of(p)) return true;
   }
   return false;
@@ -65,6 +68,11 @@ void add_placement_options(CLI::App& app, PlacementOptions& options,
         app.add_option(name, options.pose, a.help)
             ->expected(4)
             ->check(number_in_range(-1e300, 1e300));
+        break;
+      case Placement::kOffset:
+        app.add_option(name, options.offset, a.help)
+            ->expected(2)
+            ->check(number_in_range(-1.0, 1.0));
         break;
       case Placement::kWriteScene:
         app.add_option(name, options.write_scene, a.help);
@@ -99,6 +107,7 @@ grasp::ObjectPlacement object_placement(const PlacementOptions& options, const s
   placement.fit = options.fit;
   placement.up = options.up;
   placement.yaw_degrees = options.yaw;
+  if (options.offset.size() == 2) placement.offset = {options.offset[0], options.offset[1]};
   if (!options.pose.empty()) {
     // Scaled by its largest component first, so that a tiny quaternion (1e-300 0 0 0) normalises
     // rather than underflow to zero.

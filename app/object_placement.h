@@ -19,8 +19,9 @@ struct PlacementOptions {
   std::string hand = "project";
   std::string up = "z";
   double yaw = 0;
-  std::vector<double> pose;  // --pose W X Y Z
-  std::string write_scene;   // --write-scene DIR: keep the generated scene there
+  std::vector<double> pose;    // --pose W X Y Z
+  std::vector<double> offset;  // --offset DX DY, m
+  std::string write_scene;     // --write-scene DIR: keep the generated scene there
 };
 
 // The range of --scale: file units to metres, from micrometres to kilometres per unit (beyond it
@@ -29,7 +30,7 @@ inline constexpr double kMinScale = 1e-6;
 inline constexpr double kMaxScale = 1e3;
 
 // One of the options, with its help text (the command's own).
-enum class Placement { kScale, kFit, kHand, kUp, kYaw, kPose, kWriteScene };
+enum class Placement { kScale, kFit, kHand, kUp, kYaw, kPose, kOffset, kWriteScene };
 struct PlacementOption {
   Placement option;
   std::string help;

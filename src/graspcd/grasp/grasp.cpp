@@ -1,5 +1,6 @@
 #include "graspcd/grasp/grasp.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -86,10 +87,16 @@ GraspConfig load_grasp_config(const mjModel* m, const std::string& config_path,
 
 // Paper section 9 (the grasp) with the computed-torque law of section 7, eq. (12)-(16); the
 // phases are described in grasp.h.
-GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options) {
+GraspResult run_grasp(const std::string& scene_path, const GraspOptions& given) {
   // MuJoCo's errors name the scene (mujoco_messages.h).
-  const mujoco::ScopedMujocoErrors mujoco_errors(scene_path, options.names);
-  const auto model = mujoco::load_model(scene_path, options.names);
+  const mujoco::ScopedMujocoErrors mujoco_errors(scene_path, given.names);
+  const auto model = mujoco::load_model(scene_path, given.names);
+  // A finer step, the drive the same in time: K times the physics steps per grasp step; the
+  // squeeze, lift and hold count their steps from the time step (hand_run.h).
+  GraspOptions options = given;
+  const int divisor = std::max(1, given.timestep_divisor);
+  model->opt.timestep /= divisor;
+  options.physics_steps_per_grasp_step = given.physics_steps_per_grasp_step * divisor;
   if (options.noslip_iterations) model->opt.noslip_iterations = *options.noslip_iterations;
   if (options.multiccd) {
     if (*options.multiccd) {
@@ -126,6 +133,8 @@ GraspResult run_grasp(const std::string& scene_path, const GraspOptions& options
   result.native = options.native;
   result.method = options.native ? "native" : method_name(config.method);
   result.noslip_iterations = m->opt.noslip_iterations;
+  result.timestep = m->opt.timestep;
+  result.physics_steps_per_grasp_step = options.physics_steps_per_grasp_step;
   result.multiccd = (m->opt.enableflags & mjENBL_MULTICCD) != 0;
 
   // A hand driven through its own actuators (the config's "grasp" section), or ours.

@@ -307,8 +307,9 @@ ObjectScene place_object(const TriangleMesh& mesh, const ObjectPlacement& placem
     warnings().add("mesh_units", placement.file + ": " + out.units_hint, "mesh");
   }
   const Vec3 centre = 0.5 * s * (lo + hi);
-  const Vec3 pos =
-      room.support + (kSupportGap - s * lo[2]) * f.up - centre[0] * f.e1 - centre[1] * f.e2;
+  const Vec3 pos = room.support + (kSupportGap - s * lo[2]) * f.up +
+                   (placement.offset[0] - centre[0]) * f.e1 +
+                   (placement.offset[1] - centre[1]) * f.e2;
   out.pos = {pos.x(), pos.y(), pos.z()};
   out.quat = {q.w(), q.x(), q.y(), q.z()};
   return out;
@@ -452,7 +453,11 @@ std::string scene_header(const std::string& template_path, const std::string& ha
   }
   header << ";\n    its lowest point " << short_number(kSupportGap)
          << " m above the support point (" << numbers(support.data(), 3)
-         << "), centred on it across gravity.\n"
+         << "), centred on it across gravity"
+         << (placement.offset[0] != 0 || placement.offset[1] != 0
+                 ? ", then moved " + numbers(placement.offset.data(), 2) + " m across it"
+                 : std::string())
+         << ".\n"
          << "  The object's mesh is in " << stem
          << ".meshes/ beside this file (with links to the hand's meshes when the hand has a mesh\n"
             "  folder); the hand's files are named by absolute paths. The folder can be moved or "

@@ -8,7 +8,8 @@
 //    STEM.converted.obj;
 //  - the object turned (the file's `up` axis against gravity, then `yaw` about it, or `pose`),
 //    scaled (given, or fitted to the template's room) and placed with its lowest point
-//    kSupportGap above the support point, centred on it across gravity;
+//    kSupportGap above the support point, centred on it across gravity (then moved by the
+//    placement's offset);
 //  - every other path made absolute, a meshdir made STEM.meshes/ holding links to the hand's
 //    meshes, so that the scene's folder can be moved;
 //  - <size nconmax njmax> raised to at least 1000 and 4000, the template's comments replaced by
@@ -35,6 +36,9 @@ struct ObjectPlacement {
   std::string up = "z";  // the file axis pointing up: x, y, z, -x, -y or -z
   double yaw_degrees = 0;                     // then a turn about the up direction
   std::optional<std::array<double, 4>> pose;  // w x y z: the object's rotation, instead of up/yaw
+  // Then moved across gravity from the support point, m, along the gravity frame's two axes
+  // across it (the world x made perpendicular to up, then up x that; for a z-up template: x, y).
+  std::array<double, 2> offset{};
 };
 
 // The marker line of a generated scene's header comment: graspcd recognises its own scenes by it
