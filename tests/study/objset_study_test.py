@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The object-set study run for real (study/run_objset.py driving graspcd): two objects, two
 seeded placements each, in two configurations (graspcd and MuJoCo's hull) with the Robotiq, as
-two shards run with two workers and merged; then one shard run again: the same placements, the
-same verdicts (reproduced from the seed). Also the reference's rule as it ran: a quarter of the
+two shards run with two workers and merged; then one placement run again as a shard of another
+split: the same placement, the same verdicts (reproduced from the seed). Also the reference's rule as it ran: a quarter of the
 scene's time step and four times the physics steps (half of each for its convergence run), and
 the placement's offset written into the scene.
 
@@ -26,7 +26,7 @@ GRASPCD, MODELS, WORK = (os.path.abspath(a) for a in sys.argv[1:4])
 RUNNER = os.path.join(STUDY, "run_objset.py")
 # Two small objects of the models folder, scaled into the Robotiq's room.
 OBJECTS = ("objects/mujoco/cube_cup.obj scale=0.5 name=cup",
-           "objects/prl_assets/plastic_glass_visual.obj scale=0.4 up=x name=glass")
+           "objects/prl_assets/plastic_bowl_visual.obj scale=0.35 name=bowl")
 ARGS = ("--hands", "robotiq", "--grasps", "2", "--seed", "3", "--configurations",
         "graspcd,native hull", "--workers", "2")
 
@@ -110,13 +110,14 @@ class ObjsetStudy(unittest.TestCase):
         self.assertIn(f"file axis {p['up']} up", header)
         self.assertIn("then moved", header)
 
-    def test_a_shard_run_again_gives_the_same_placements_and_verdicts(self):
+    def test_a_placement_run_again_gives_the_same_placement_and_verdicts(self):
         again = os.path.join(WORK, "again", "objset.json")
-        r = runner(GRASPCD, "--list", self.list, *ARGS, "--shard", "1/2", "--out", again)
+        r = runner(GRASPCD, "--list", self.list, *ARGS, "--shard", "3/4", "--out", again)
         self.assertEqual(r.returncode, 0, r.stderr)
-        with open(os.path.join(WORK, "again", "objset.shard-1-of-2.json")) as f:
+        with open(os.path.join(WORK, "again", "objset.shard-3-of-4.json")) as f:
             doc = json.load(f)
-        mine = [p for p in self.doc["placements"] if p["index"] % 2 == 1]
+        self.assertEqual(doc["plan"]["id"], self.doc["plan"]["id"])
+        mine = [p for p in self.doc["placements"] if p["index"] == 3]
         self.assertEqual(verdicts(doc), verdicts({"placements": mine}))
 
 
