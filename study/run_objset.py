@@ -27,7 +27,8 @@ Each placement runs, in order (each its own `graspcd grasp` process; grasp() bel
 place that runs one):
   reference       `grasp --object ... --write-scene WORK/scenes/... --exact --timestep-divisor 4`
                   (study/objset_rates.py: the reference rule); a start it refuses is a skipped
-                  placement, counted, and nothing else runs on it;
+                  placement, counted, and nothing else runs on it; a reference that fails
+                  otherwise is recorded with its message, and nothing else runs on it either;
   reference half  the written scene, `--exact --timestep-divisor 2`: the reference's convergence;
   then, with --judge (CGAL's phantom and missed contacts at every closing step), each
   configuration --configurations selects (comma-separated names or fnmatch patterns; default all):
@@ -341,8 +342,11 @@ def run_placement(graspcd, plan, p, work, patterns):
     if g is None:
         if is_start_refusal(message):
             record.update(skipped=True, message=message)
-            return record
-        raise Refusal(message)
+        else:
+            # The reference failed (e.g. the simulation went non-finite): recorded with its
+            # message, and nothing to compare the configurations with.
+            record["runs"][objset_rates.REFERENCE] = refused_record(message, cost)
+        return record
     record["runs"][objset_rates.REFERENCE] = run_record(g, cost)
     stem = os.path.splitext(os.path.basename(obj["file"]))[0]
     scene = os.path.join(scene_dir, stem + ".xml")
