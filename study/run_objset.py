@@ -30,8 +30,8 @@ place that runs one):
                   placement, counted, and nothing else runs on it; a reference that fails
                   otherwise is recorded with its message, and nothing else runs on it either;
   reference half  the written scene, `--exact --timestep-divisor 2`: the reference's convergence;
-  then, with --judge (CGAL's phantom and missed contacts at every closing step), each
-  configuration --configurations selects (comma-separated names or fnmatch patterns; default all):
+  then, with --judge (CGAL's phantom and missed contacts at every closing step; --no-judge
+  leaves it out, and the counts with it), each configuration --configurations selects (comma-separated names or fnmatch patterns; default all):
   graspcd         graspcd's contacts as the pair config says (reusing a pair's within 20 um);
   graspcd exact   graspcd's exact contacts every step (--exact);
   native hull, native hull multiccd
@@ -200,13 +200,13 @@ def placement(seed, obj, hand, k):
     return {"object": obj["name"], "hand": hand, "k": k, "up": up, "yaw": yaw, "offset": offset}
 
 
-def make_plan(objects, hands, grasps, seed, configurations):
+def make_plan(objects, hands, grasps, seed, configurations, judge=True):
     placements = [placement(seed, o, h, k) for o in objects for h in hands for k in range(grasps)]
     for i, p in enumerate(placements):
         p["index"] = i
     plan = {"seed": seed, "grasps": grasps, "hands": hands, "configurations": configurations,
-            "objects": objects, "placements": placements}
-    key = json.dumps({k: plan[k] for k in ("seed", "grasps", "hands", "configurations")}
+            "judge": judge, "objects": objects, "placements": placements}
+    key = json.dumps({k: plan[k] for k in ("seed", "grasps", "hands", "configurations", "judge")}
                      | {"objects": [o["name"] for o in objects], "placements": placements},
                      sort_keys=True)
     plan["id"] = hashlib.sha256(key.encode()).hexdigest()[:16]
@@ -329,7 +329,7 @@ def selected(name, patterns):
     return patterns is None or any(fnmatch.fnmatchcase(name, p) for p in patterns)
 
 
-def run_placement(graspcd, plan, p, work, patterns):
+def run_placement(graspcd, plan, p, work, patterns, judge=True):
     obj = next(o for o in plan["objects"] if o["name"] == p["object"])
     scene_dir = os.path.join(work, "scenes", f"{p['object']}-{p['hand']}-{p['k']}")
     object_args = ["--object", obj["file"], "--hand", p["hand"], "--up", p["up"], "--yaw",
@@ -352,21 +352,22 @@ def run_placement(graspcd, plan, p, work, patterns):
     scene = os.path.join(scene_dir, stem + ".xml")
     routes = [(objset_rates.REFERENCE_HALF,
                objset_rates.reference_options(objset_rates.REFERENCE_HALF_DIVISOR))]
-    routes += [("graspcd", ["--judge"]), ("graspcd exact", ["--judge", "--exact"]),
-               ("native hull", ["--judge", "--native"]),
-               ("native hull multiccd", ["--judge", "--native", "--multiccd"])]
+    judged = ["--judge"] if judge else []
+    routes += [("graspcd", judged), ("graspcd exact", judged + ["--exact"]),
+               ("native hull", judged + ["--native"]),
+               ("native hull multiccd", judged + ["--native", "--multiccd"])]
     for name, extra in routes:
         if name == objset_rates.REFERENCE_HALF or selected(name, patterns):
             record["runs"][name] = one_run(graspcd, [scene, *extra])
     if selected("published pieces", patterns) and obj["pieces"]:
         folder = published_pieces(obj, work)
         record["runs"]["published pieces"] = one_run(
-            graspcd, [scene, "--judge", "--decomposed", folder])
+            graspcd, [scene, *judged, "--decomposed", folder])
     if selected(f"vhacd-{VHACD_PIECES}", patterns):
         folder, message = vhacd(graspcd, obj, work)
         record["runs"][f"vhacd-{VHACD_PIECES}"] = (
             refused_record(message, {"cpu_s": None, "wall_s": None}) if folder is None else
-            one_run(graspcd, [scene, "--judge", "--decomposed", folder]))
+            one_run(graspcd, [scene, *judged, "--decomposed", folder]))
     return record
 
 
@@ -437,6 +438,9 @@ def main():
     parser.add_argument("--hands", default=",".join(HANDS))
     parser.add_argument("--configurations", help="names or fnmatch patterns (default: all of "
                         + ", ".join(CONFIGURATIONS) + ")")
+    parser.add_argument("--no-judge", action="store_true",
+                        help="the configurations without --judge: no phantom and missed contacts"
+                        " (on meshes of 16k faces the judge is most of a grasp's CPU)")
     parser.add_argument("--shard", help="I/N: the placements whose index is I modulo N")
     parser.add_argument("--workers", type=int, default=os.cpu_count())
     parser.add_argument("--merge", nargs="+", metavar="SHARD", help="join shard files")
@@ -476,7 +480,8 @@ def main():
                     raise Refusal(f"--only: no object {n!r} in the set")
             objects = [o for o in objects if o["name"] in names]
         check_meshes(args.graspcd, objects)
-        plan = make_plan(objects, hands, args.grasps, args.seed, configurations)
+        plan = make_plan(objects, hands, args.grasps, args.seed, configurations,
+                         not args.no_judge)
         mine = shard_of(plan["placements"], shard)
         out = args.out
         if args.shard:
@@ -492,8 +497,8 @@ def main():
         doc["complete"] = False
         doc["planned"] = len(mine)
         with concurrent.futures.ThreadPoolExecutor(args.workers) as pool:
-            futures = [pool.submit(run_placement, args.graspcd, plan, p, work, patterns)
-                       for p in mine]
+            futures = [pool.submit(run_placement, args.graspcd, plan, p, work, patterns,
+                                   not args.no_judge) for p in mine]
             for n, future in enumerate(concurrent.futures.as_completed(futures), 1):
                 try:
                     r = future.result()
