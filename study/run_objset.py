@@ -319,6 +319,7 @@ def vhacd(graspcd, obj, work):
             if os.path.exists(manifest):  # made meanwhile by another process: keep that one
                 shutil.rmtree(tmp)
             else:
+                shutil.rmtree(folder, ignore_errors=True)  # a decomposition left unfinished
                 os.rename(tmp, folder)
     return folder, None
 
