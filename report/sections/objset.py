@@ -16,14 +16,17 @@ NOT_CLOSED = ("005_tomato_soup_can", "006_mustard_bottle", "007_tuna_fish_can",
 
 
 def pct(x):
-    return opt(None if x is None else 100 * x, ".0f")
+    """A share as a whole percentage ("40%"), "-" for none."""
+    return "-" if x is None else f"{100 * x:.0f}%"
 
 
 def mm(x):
     return opt(None if x is None else 1000 * x, ".2f")
 
 
-def objset_section(doc, fig_dir, fig_rel):
+def objset_section(doc, fig_dir, fig_rel, judged=None):
+    """The section from the run `doc`; `judged`, a second run with the judge when `doc` ran
+    without it (run_objset.py --no-judge), adds its own table."""
     r = objset_rates.rates(doc)
     lines = []
     w = lines.append
@@ -66,9 +69,13 @@ def objset_section(doc, fig_dir, fig_rel):
       " hold a finger) counts it as its \"cannot start\". The reference's convergence: the same"
       " grasp at half the step changed the held verdict in"
       f" {r['convergence']['changed']} of {r['convergence']['compared']} placements"
-      f" ({pct(r['convergence']['share'])}%). Every other configuration runs with the judge"
-      " (`grasp --judge`: phantom and missed contacts per closing grasp step, CGAL on the true"
-      " meshes). Objects that fit a hand at true size (at least one placement started): "
+      f" ({pct(r['convergence']['share'])}). "
+      + ("Every other configuration ran with the judge (`grasp --judge`: phantom and missed"
+         " contacts per closing grasp step, CGAL on the true meshes)."
+         if plan.get("judge", True) else
+         "The configurations ran without the judge (`--no-judge`: no phantom and missed"
+         " contacts in this run's table).")
+      + " Objects that fit a hand at true size (at least one placement started): "
       + "; ".join(f"{h} {f['fit']} of {f['objects']}" for h, f in r["fits"].items()) + ".")
     w("")
     partial = [o for o, x in r["objects"].items() if x["partial"]]
@@ -80,30 +87,25 @@ def objset_section(doc, fig_dir, fig_rel):
       " column leaves them out. Their verdicts count as any other's. In this run: "
       + (", ".join(partial) if partial else "none of them") + ".")
     w("")
-    w("| configuration | placements | starts | held | disagrees | held, ref. drops |"
-      " dropped, ref. holds | hand pen. median / p99 / max (mm) | closed only max (mm) |"
-      " partial | phantom / step | missed / step | CPU s per grasp (median) |"
-      " ms per physics step | grasps per CPU minute |")
-    w("|" + "---|" * 15)
-    for name, c in r["configurations"].items():
-        p = c["penetration"]
-        per_min = None if not c["cpu_s_median"] else 60 / c["cpu_s_median"]
-        w(f"| {name} | {c['placements']} | {pct(c['starts'])}% | {pct(c['held'])}% |"
-          f" {pct(c['disagree'])}% | {pct(c['held_ref_drops'])}% |"
-          f" {pct(c['dropped_ref_holds'])}% | {mm(p['median'])} / {mm(p['p99'])} /"
-          f" {mm(p['max'])} | {mm(c['penetration_closed']['max'])} | {c['partial_runs']} |"
-          f" {opt(c['phantom_per_step'], '.2f')} | {opt(c['missed_per_step'], '.2f')} |"
-          f" {opt(c['cpu_s_median'], '.1f')} | {opt(c['ms_per_physics_step'], '.3f')} |"
-          f" {opt(per_min, '.1f')} |")
-    w("")
+    lines.extend(rates_table(r))
+    if judged is not None:
+        jr = objset_rates.rates(judged)
+        jp = judged["plan"]
+        w(f"With the judge (`objset-judged.json`: `{' '.join(judged.get('command', []))}`;"
+          f" {len(judged['placements'])} of its {len(jp['placements'])} placements"
+          + ("" if judged.get("complete", True) else ", taken before the run's end")
+          + f", {jr['skipped']} skipped at the start): objects"
+          f" {', '.join(o['name'] for o in jp['objects'])}, hands {', '.join(jp['hands'])}.")
+        w("")
+        lines.extend(rates_table(jr))
     w("Held in six directions: " + ("; ".join(
-        f"{n} {pct(c['six'])}%" for n, c in r["configurations"].items() if c["six"] is not None)
+        f"{n} {pct(c['six'])}" for n, c in r["configurations"].items() if c["six"] is not None)
         or "not measured in this run (the grasp had no six-direction test when it ran).") + "")
     w("")
     draw_figure(r, fig_dir)
     w(f"![verdict disagreement against CPU per grasp]({fig_rel}/objset_disagreement.png)")
     w("")
-    w("Per object (each configuration: held / disagrees with the reference, % of the"
+    w("Per object (each configuration: held / disagrees with the reference, shares of the"
       " placements it started; \"-\": none started):")
     w("")
     names = [n for n in doc["configurations"]]
@@ -114,6 +116,30 @@ def objset_section(doc, fig_dir, fig_rel):
                  for c in (x["configurations"][n] for n in names)]
         w(f"| {o}{' (partial)' if x['partial'] else ''} | {x['placements']} | {x['skipped']} | "
           + " | ".join(cells) + " |")
+    return lines
+
+
+
+def rates_table(r):
+    """One row per configuration: its rates over the set."""
+    lines = []
+    w = lines.append
+    w("| configuration | placements | starts | held | disagrees | held, ref. drops |"
+      " dropped, ref. holds | hand pen. median / p99 / max (mm) | closed only max (mm) |"
+      " partial | phantom / step | missed / step | CPU s per grasp (median) |"
+      " ms per physics step | grasps per CPU minute |")
+    w("|" + "---|" * 15)
+    for name, c in r["configurations"].items():
+        p = c["penetration"]
+        per_min = None if not c["cpu_s_median"] else 60 / c["cpu_s_median"]
+        w(f"| {name} | {c['placements']} | {pct(c['starts'])} | {pct(c['held'])} |"
+          f" {pct(c['disagree'])} | {pct(c['held_ref_drops'])} |"
+          f" {pct(c['dropped_ref_holds'])} | {mm(p['median'])} / {mm(p['p99'])} /"
+          f" {mm(p['max'])} | {mm(c['penetration_closed']['max'])} | {c['partial_runs']} |"
+          f" {opt(c['phantom_per_step'], '.2f')} | {opt(c['missed_per_step'], '.2f')} |"
+          f" {opt(c['cpu_s_median'], '.1f')} | {opt(c['ms_per_physics_step'], '.3f')} |"
+          f" {opt(per_min, '.1f')} |")
+    w("")
     return lines
 
 
