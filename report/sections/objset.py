@@ -146,19 +146,23 @@ def rates_table(r):
 def draw_figure(r, fig_dir):
     """One point per configuration: disagreement with the reference against median CPU seconds
     per grasp."""
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    for name, c in r["configurations"].items():
-        if name.startswith(objset_rates.REFERENCE) or c["cpu_s_median"] is None \
-                or c["disagree"] is None:
-            continue
-        ax.scatter([c["cpu_s_median"]], [100 * c["disagree"]], s=40)
-        ax.annotate(name, (c["cpu_s_median"], 100 * c["disagree"]), fontsize=7,
-                    xytext=(4, 4), textcoords="offset points")
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    markers = "osD^vP*X"
+    top = 10.0
+    shown = [(n, c) for n, c in r["configurations"].items()
+             if not n.startswith(objset_rates.REFERENCE) and c["cpu_s_median"] is not None
+             and c["disagree"] is not None]
+    for i, (name, c) in enumerate(shown):
+        top = max(top, 100 * c["disagree"] + 5)
+        ax.scatter([c["cpu_s_median"]], [100 * c["disagree"]], s=50, marker=markers[i % 8],
+                   alpha=0.8, label=f"{name} ({c['compared']} grasps)")
+    ax.set_ylim(-2, top)
     ref = r["configurations"].get(objset_rates.REFERENCE)
     if ref and ref["cpu_s_median"]:
-        ax.axvline(ref["cpu_s_median"], color="#999999", linestyle=":", linewidth=1)
-        ax.text(ref["cpu_s_median"], ax.get_ylim()[1], " reference", fontsize=7, va="top",
-                color="#666666")
+        ax.axvline(ref["cpu_s_median"], color="#999999", linestyle=":", linewidth=1,
+                   label="the reference's CPU per grasp")
+    # The legend beside the axes, never over the points.
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     ax.set_xscale("log")
     ax.set_xlabel("CPU seconds per grasp (median, log)")
     ax.set_ylabel("verdict differs from the reference (% of started grasps)")
