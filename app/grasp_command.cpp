@@ -54,6 +54,7 @@ struct GraspCliOptions {
   int placements = 0;           // --placements N: a batch of N grasps of --object (0: one grasp)
   std::uint64_t seed = 1;       // --seed S: the batch's placements
   double max_offset = 0.005;    // --max-offset M: the batch's offsets, m
+  int timestep_divisor = 1;     // --timestep-divisor K: the scene's step / K, K x the steps
 };
 
 // The race's judge on model m: the object and the support of the "grasp" section of the pair
@@ -140,6 +141,7 @@ grasp::GraspOptions grasp_options(const GraspCliOptions& options, const CLI::App
   }
   if (app.count("--noslip") > 0) grasp.noslip_iterations = options.noslip;
   if (app.count("--multiccd") > 0) grasp.multiccd = options.multiccd;
+  grasp.timestep_divisor = options.timestep_divisor;
   grasp.true_penetration = true;  // every run of the command measures it
   grasp.write_run = options.write_run;
   grasp.six_directions = options.six_directions;
@@ -399,6 +401,9 @@ Command add_grasp_command(CLI::App& parent) {
         "world x axis made perpendicular to up, and up x that)"},
        {Placement::kPose,
         "--object: the object's rotation as a quaternion W X Y Z (instead of --up, --yaw)"},
+       {Placement::kOffset,
+        "--object: then moved DX DY metres across gravity from the hand's centre (the support "
+        "point; for the templates: along the world x and y)"},
        {Placement::kWriteScene,
         "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder and keep "
         "it (default: a temporary folder, removed)"}});
@@ -464,6 +469,12 @@ Command add_grasp_command(CLI::App& parent) {
                 "MuJoCo's multi-point convex collision (mjENBL_MULTICCD) for what MuJoCo "
                 "collides itself: --native's hulls, --decomposed's pieces, the pairs graspcd "
                 "does not serve (--multiccd=false: off; default: the scene's flag, MuJoCo's off)");
+  app->add_option("--timestep-divisor", options->timestep_divisor,
+                  "The scene's time step divided by K, with K times the physics steps per grasp "
+                  "step, so that the drive is the same in time (a finer run of the same grasp; "
+                  "JSON timestep and physics_steps_per_grasp_step record what ran)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   app->add_option("--max-steps", options->max_steps, "Most closing grasp steps")
       ->transform(positive_integer())
       ->capture_default_str();

@@ -51,6 +51,8 @@ const char* const kGraspHelp =
     "partial, unmeasured} (see below), noslip_iterations, multiccd, ejected ({t, speed, "
     "cause}: when, how fast and why the object was seen thrown out, cause speed, below or "
     "away; null when not), detection_ns_close, detection_ns_total, physics_steps, sim_time, "
+    "timestep and physics_steps_per_grasp_step (s, and the steps per grasp step: "
+    "--timestep-divisor), "
     "ms_per_physics_step, max_contacts, mean_contacts (finger-object contacts per physics "
     "step), max_pair_contacts (the most one geom pair had in a step), rest (the hold's last "
     "second: the object's max_speed in m/s, its deepest contact max_penetration in m, the "

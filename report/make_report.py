@@ -8,7 +8,8 @@ OUT_DIR/stress.json (`graspcd stress --json`, the numerical stress suite) and
 OUT_DIR/perf.json (`./run perf`, graspcd against FCL and MuJoCo),
 OUT_DIR/contacts.json (report/contacts_solver.py, what MuJoCo's solver gets) and
 OUT_DIR/race.json, else the cached report/data/race.json (study/run_race.py, graspcd
-against the hull and convex decompositions), writes
+against the hull and convex decompositions), OUT_DIR/objset.json, else report/data/objset.json
+(study/run_objset.py, the object-set study), writes
 OUT_DIR/REPORT.md and OUT_DIR/figures/*.png. Every number in the report comes from those files; the text around a
 number is chosen by comparing numbers, never written in advance. Each section of REPORT.md is a
 module of report/sections/ (its figures drawn there too); this script reads the files and puts the
@@ -30,6 +31,7 @@ from sections.box_hand import box_hand_section  # noqa: E402  (report/sections/,
 from sections.contacts import contacts_section  # noqa: E402
 from sections.differences import differences_section  # noqa: E402
 from sections.heading import heading  # noqa: E402
+from sections.objset import objset_section  # noqa: E402
 from sections.performance import perf_section  # noqa: E402
 from sections.race import race_section  # noqa: E402
 from sections.real_hands import real_models_section  # noqa: E402
@@ -112,6 +114,19 @@ def main():
                     required=False)
     if race is not None:
         text = before_reproduce(text, race_section(race, fig_dir, args.figures))
+    # The object set, OUT_DIR/objset.json of study/run_objset.py, else the committed run,
+    # report/data/objset.json.
+    objset = load(os.path.join(args.out_dir, "objset.json"), required=False)
+    if objset is None:
+        objset = load(os.path.join(os.path.dirname(os.path.abspath(__file__)), "data",
+                                   "objset.json"), required=False)
+    if objset is not None:
+        # A run with the judge beside one without it (run_objset.py --no-judge): its own table.
+        judged = load(os.path.join(args.out_dir, "objset-judged.json"), required=False)
+        if judged is None and not os.path.exists(os.path.join(args.out_dir, "objset.json")):
+            judged = load(os.path.join(os.path.dirname(os.path.abspath(__file__)), "data",
+                                       "objset-judged.json"), required=False)
+        text = before_reproduce(text, objset_section(objset, fig_dir, args.figures, judged))
     # The pictures of the grasps and the trees, from OUT_DIR/trajectories when present.
     text = draw_figures.insert_section(text, args.out_dir, fig_dir, args.figures)
     with open(os.path.join(args.out_dir, "REPORT.md"), "w", encoding="utf-8") as f:

@@ -15,6 +15,9 @@ serves every test of this file:
     with the refused object still completes, the merge exits 2 as the unsharded run does, and the
     merged rows equal the unsharded `validate --objects` run's (skipped with a message when
     MODELS_DIR is absent).
+  - the object-set study: cluster/objset.sbatch on one small object of MODELS_DIR, two
+    placements with the Robotiq in graspcd's configuration, as a 2-task array and its merge; the
+    merged placements and verdicts equal an unsharded run's (skipped when MODELS_DIR is absent).
 The cluster failing to start fails the test with the daemon's log; it never skips.
 """
 
@@ -196,6 +199,37 @@ class SlurmTest(unittest.TestCase):
         self.assertIn("shard 1 of 2 (objects.shard-1-of-2.json) is missing", r.stderr)
         self.assertIn(a["objects"][1], r.stderr)
         self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+
+    def test_object_set_study_through_slurm_equals_one_unsharded_run(self):
+        cup = os.path.join(MODELS, "objects", "mujoco", "cube_cup.obj")
+        if not os.path.isfile(cup):
+            self.skipTest(f"{cup} is absent: the real objects are not here")
+        listed = os.path.join(WORK, "objset-objects.txt")
+        with open(listed, "w") as f:
+            f.write(f"{cup} scale=0.5 name=cup\n")
+        args = f"--list {listed} --hands robotiq --grasps 2 --seed 5 --configurations graspcd"
+        whole = os.path.join(WORK, "objset-whole", "objset.json")
+        r = subprocess.run(["/usr/bin/python3", os.path.join(SOURCE, "study", "run_objset.py"),
+                            GRASPCD, *args.split(), "--workers", "1", "--out", whole],
+                           capture_output=True, text=True, timeout=600)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        parts = os.path.join(WORK, "objset-parts")
+        merge, states = self.array_and_merge("cluster/objset.sbatch",
+                                             {"OUT": parts, "OBJSET_ARGS": args})
+        self.assertEqual(len(states), 3, states)
+        self.assert_completed(states)
+        a = load(whole)
+        b = load(os.path.join(parts, "objset.json"))
+        self.assertEqual(b["merged_from"], 2)
+        self.assertEqual(a["plan"], b["plan"])
+
+        def verdicts(doc):
+            return [(p["index"], bool(p.get("skipped")),
+                     {k: (v["outcome"], v.get("held")) for k, v in p.get("runs", {}).items()})
+                    for p in doc["placements"]]
+
+        self.assertEqual(verdicts(a), verdicts(b))
+        self.assertEqual(len(a["placements"]), 2)
 
 
 if __name__ == "__main__":

@@ -1,5 +1,6 @@
 #include "graspcd/grasp/grasp.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -214,6 +215,11 @@ GraspScene::GraspScene(const std::string& scene_path, const GraspOptions& option
   CostTimer compile(&setup_cost_, CostPart::kCompile);
   l.model = mujoco::load_model(scene_path, options.names);
   mjModel* m = l.model.get();
+  // A finer step, the drive the same in time: K times the physics steps per grasp step; the
+  // squeeze, lift and hold count their steps from the time step (hand_run.h).
+  const int divisor = std::max(1, options.timestep_divisor);
+  m->opt.timestep /= divisor;
+  options_.physics_steps_per_grasp_step = options.physics_steps_per_grasp_step * divisor;
   if (options.noslip_iterations) m->opt.noslip_iterations = *options.noslip_iterations;
   if (options.multiccd) {
     if (*options.multiccd) {
@@ -299,6 +305,8 @@ std::optional<GraspResult> GraspScene::grasp_if_valid(Refusal* refusal) {
   result.native = options.native;
   result.method = options.native ? "native" : method_name(l.config.registry_config.method);
   result.noslip_iterations = m->opt.noslip_iterations;
+  result.timestep = m->opt.timestep;
+  result.physics_steps_per_grasp_step = options.physics_steps_per_grasp_step;
   result.multiccd = (m->opt.enableflags & mjENBL_MULTICCD) != 0;
 
   // A hand driven through its own actuators (the config's "grasp" section), or ours.

@@ -116,6 +116,8 @@ json run_json(const GraspResult& r) {
           {"detection_ns_total", r.detection_ns_total},
           {"physics_steps", r.physics_steps},
           {"sim_time", r.sim_time},
+          {"timestep", r.timestep},
+          {"physics_steps_per_grasp_step", r.physics_steps_per_grasp_step},
           {"ms_per_physics_step", r.step_wall_ms},
           {"max_contacts", r.max_contacts},
           {"mean_contacts", r.mean_contacts},

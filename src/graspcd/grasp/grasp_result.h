@@ -72,6 +72,10 @@ struct GraspOptions {
   // 5 steps of 2 ms per grasp step: a target ramp of 0.3 rad/s, tracked with the velocity
   // feed-forward within a few 1e-4 rad at omega = 40 rad/s.
   int physics_steps_per_grasp_step = 5;
+  // The scene's time step divided by this, and this many times the physics steps per grasp step,
+  // so that the drive is the same in time (a finer run of the same grasp: the object-set study's
+  // reference runs at 4). 1: the scene's step.
+  int timestep_divisor = 1;
   double omega = 40;  // eq. (15) critically damped, rad/s: kp = omega^2, kv = 2 omega
   double squeeze = 0.12;
   double squeeze_time = 0.1;
@@ -247,6 +251,8 @@ struct GraspResult {
   // Simulated seconds, all phases. The times of the events above (slip_time, release_time, the
   // ejection's) are MuJoCo's clock, which starts at the first keyframe's time (grasp.h).
   double sim_time = 0;
+  double timestep = 0;  // MuJoCo's time step the run took, s (the scene's / timestep_divisor)
+  int physics_steps_per_grasp_step = 0;
   long physics_steps = 0;
   double step_wall_ms = 0;  // mean wall time per physics step (mj_step1 + control + mj_step2)
   std::uint64_t detection_ns_close = 0;  // summed over the closing grasp steps

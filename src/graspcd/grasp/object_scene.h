@@ -8,7 +8,8 @@
 //    STEM.converted.obj;
 //  - the object turned (the file's `up` axis against gravity, then `yaw` about it, or `pose`),
 //    scaled (given, or fitted to the template's room) and placed with its lowest point
-//    kSupportGap above the support point, centred on it across gravity;
+//    kSupportGap above the support point, centred on it across gravity (then moved by the
+//    placement's offset);
 //  - every other path made absolute, a meshdir made STEM.meshes/ holding links to the hand's
 //    meshes, so that the scene's folder can be moved;
 //  - <size nconmax njmax> raised to at least 1000 and 4000, the template's comments replaced by
