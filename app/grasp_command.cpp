@@ -401,9 +401,6 @@ Command add_grasp_command(CLI::App& parent) {
         "world x axis made perpendicular to up, and up x that)"},
        {Placement::kPose,
         "--object: the object's rotation as a quaternion W X Y Z (instead of --up, --yaw)"},
-       {Placement::kOffset,
-        "--object: then moved DX DY metres across gravity from the hand's centre (the support "
-        "point; for the templates: along the world x and y)"},
        {Placement::kWriteScene,
         "--object: write the scene (FILE's stem .xml and .pairs.json) into this folder and keep "
         "it (default: a temporary folder, removed)"}});
