@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "graspcd/grasp/grasp.h"
+#include "graspcd/grasp/verdicts.h"
 #include "helpers/command_test.h"
 
 namespace graspcd::grasp {
