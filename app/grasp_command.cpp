@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -427,6 +428,7 @@ Command add_grasp_command(CLI::App& parent) {
                   "with --json), then a summary")
       ->check(integer_in_range(1, 1000000));
   app->add_option("--seed", options->seed, "--placements: the seed of the placements")
+      ->transform(decimal_integer(0, std::numeric_limits<std::uint64_t>::max()))
       ->capture_default_str();
   app->add_option("--max-offset", options->max_offset,
                   "--placements: the largest offset across gravity from the hand's centre, m")
@@ -470,7 +472,7 @@ Command add_grasp_command(CLI::App& parent) {
                   "The scene's time step divided by K, with K times the physics steps per grasp "
                   "step, so that the drive is the same in time (a finer run of the same grasp; "
                   "JSON timestep and physics_steps_per_grasp_step record what ran)")
-      ->check(CLI::Range(1, 64))
+      ->transform(integer_in_range(1, 64))
       ->capture_default_str();
   app->add_option("--max-steps", options->max_steps, "Most closing grasp steps")
       ->transform(positive_integer())

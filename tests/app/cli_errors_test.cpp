@@ -253,7 +253,7 @@ TEST_F(CliTest, OptionAndSubcommandErrorsAreShortAndRight) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err,
             "graspcd: unknown subcommand 'tritr' (expected one of: tritri, boxbox, meshpair, "
-            "grasp, study, stress, validate, trajectory, decompose, hand)\n");
+            "grasp, study, stress, validate, trajectory, decompose, hand, judge)\n");
   const std::string scene = copy_scene(dir_ / "s", "example1", "", "");
   const std::string config = (dir_ / "s" / "example1.pairs.json").string();
   std::ofstream(config, std::ios::trunc) << "{\n  \"pairs\": [\n  }\n";

@@ -149,9 +149,7 @@ TEST_F(RingStartTest, PiecesAreCheckedByTheirOwnHulls) {
   // Halves: each hull is closed by the plane through the axis, which the 8 mm finger crosses.
   const auto [truth, hull] = check(2);
   EXPECT_EQ(truth, "");
-  EXPECT_EQ(hull,
-            "MuJoCo collides mesh 'ring__piece_0' as its convex hull, which geom 'finger' lies "
-            "4.0 mm inside at the start");
+  EXPECT_EQ(hull, "geom 'finger' lies 4.0 mm inside piece 0 of mesh 'ring' at the start");
 }
 
 }  // namespace

@@ -97,9 +97,10 @@ TEST_F(StartRule, TheDecomposedRingIsRefusedByThePiecesHulls) {
     // The halves meet in the plane y = 0, which each half's hull closes: finger 2's middle
     // segment straddles it, 8 mm wide.
     EXPECT_EQ(e.message(), "with " + pieces +
-                               ": cannot start with --decomposed: MuJoCo collides mesh "
-                               "'can__piece_0' as its convex hull, which the hull of geom "
-                               "'finger2_B' lies 8.0 mm inside at the start (a limit of the "
+                               ": cannot start with --decomposed: the hull of geom 'finger2_B' "
+                               "lies 8.0 mm inside piece 0 of mesh 'can' (" +
+                               pieces +
+                               "/piece_0.obj) at the start (a limit of the "
                                "pieces, not of the scene; graspcd's contacts start this scene)");
   }
 }

@@ -85,7 +85,10 @@ TEST_F(RunJudgeTest, AGraspJudgedFromItsOwnRecordHasItsVerdictsAndEditsChangeThe
 
   // The hold edited: the object sinks to 2 cm below where the hand holds it, and stays there
   // (between the fingers, still touching them): it slipped, the race's "dropped".
-  const auto [qpos, qvel] = object_joint(scene);
+  // (Plain names, not a structured binding: the lambdas below capture them.)
+  const std::pair<int, int> joint = object_joint(scene);
+  const int qpos = joint.first;
+  const int qvel = joint.second;
   std::vector<json> lines = read_lines(options.write_run);
   std::vector<json> sunk = lines;
   edit_hold(sunk, [&](int i, int n, json& j) {

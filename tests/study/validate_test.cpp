@@ -142,7 +142,9 @@ TEST_P(ShippedScene, EveryMethodAgreesWithCgalAtEveryStep) {
   const ValidationReport report = graspcd::study::validate_scene(scene, specs);
   ASSERT_EQ(report.methods.size(), specs.size());
   EXPECT_GT(report.steps, 20);
-  EXPECT_TRUE(report.gripped) << "the grasp closes on every finger";
+  // Gripped is two hand geoms touching from opposing sides on the true meshes (docs/design.md,
+  // "Semantics"); example 3's hand carries the cup on fingers that all touch it from one side.
+  EXPECT_EQ(report.gripped, name != "example3") << "the grasp closes on the object";
   EXPECT_FALSE(report.missed_any());
   for (const auto& table : report.methods) {
     ASSERT_FALSE(table.rows.empty()) << table.method;

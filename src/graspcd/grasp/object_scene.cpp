@@ -718,6 +718,18 @@ void save_scene(tinyxml2::XMLDocument& doc, const std::string& template_path,
   std::ofstream(out.pairs, std::ios::binary) << in.rdbuf();
 }
 
+// Whether MuJoCo 2.2's mesh compiler accepts the faces' orientation: no directed edge is used by
+// two faces (its "faces have inconsistent orientation" otherwise).
+bool orientation_consistent(const TriangleMesh& mesh) {
+  std::vector<std::pair<std::int32_t, std::int32_t>> edges;
+  edges.reserve(3 * mesh.faces.size());
+  for (const auto& f : mesh.faces) {
+    for (std::size_t k = 0; k < 3; ++k) edges.emplace_back(f[k], f[(k + 1) % 3]);
+  }
+  std::sort(edges.begin(), edges.end());
+  return std::adjacent_find(edges.begin(), edges.end()) == edges.end();
+}
+
 }  // namespace
 
 std::vector<TemplateProblem> template_problems(const std::string& template_path) {
@@ -776,13 +788,15 @@ ObjectScene write_object_scene(const ObjectPlacement& placement, const HandTempl
   }
   fs::create_directories(object_folder);
   // MuJoCo 2.2 reads OBJ and binary STL only, a binary STL of at most kMujocoStlFaces triangles,
-  // and refuses a mesh with zero-area faces ("faces have inconsistent orientation"): any other
-  // file is the mesh as graspcd read it (those faces dropped, with a warning), written as
-  // STEM.converted.obj (in its file units).
+  // and refuses a mesh whose zero-area faces give a directed edge twice ("faces have inconsistent
+  // orientation"): any other file is the mesh as graspcd read it (those faces dropped, with a
+  // warning), written as STEM.converted.obj (in its file units). A file with zero-area faces is
+  // converted only when the mesh read is consistently oriented: graspcd's reader joins vertices
+  // of the same place, which a scanned mesh's seams keep apart in the file (the YCB soup can).
   const std::size_t file_faces = mesh.faces.size() + stats.dropped_faces.size();
   const bool convert = (stats.format != "OBJ" && stats.format != "binary STL") ||
                        (stats.format == "binary STL" && file_faces > io::kMujocoStlFaces) ||
-                       stats.zero_area_faces > 0;
+                       (stats.zero_area_faces > 0 && orientation_consistent(mesh));
   const fs::path object_file =
       object_folder / (!flipped.empty() ? stem + ".outward.obj"
                        : convert        ? stem + ".converted.obj"
