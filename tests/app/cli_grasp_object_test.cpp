@@ -328,6 +328,13 @@ TEST_F(CliTest, GraspObjectWarnsOncePerFaultUnderTheUsersFile) {
   EXPECT_EQ(r.err.find("'base'"), std::string::npos) << r.err;
 }
 
+// The README's block: 60 x 30 x 30 mm, in millimetres, its long axis along the file's x.
+constexpr const char* kBlockMm =
+    "v -30 -15 -15\nv 30 -15 -15\nv -30 15 -15\nv 30 15 -15\n"
+    "v -30 -15 15\nv 30 -15 15\nv -30 15 15\nv 30 15 15\n"
+    "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\n"
+    "f 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n";
+
 // --hand robotiq and --hand shadow (../shared/models): a new object at its real size in metres and
 // in millimetres, placed by --up, grasped to a verdict that agrees with its numbers.
 TEST_F(CliTest, GraspObjectWithTheRealHands) {
@@ -340,11 +347,7 @@ TEST_F(CliTest, GraspObjectWithTheRealHands) {
     GTEST_SKIP() << "real-hand grasps skipped at GRASPCD_TEST_SCALE < 1 (sanitizer pass)";
   }
   // A 3 x 3 x 6 cm block, in millimetres, lying on its side in the file (its long axis x).
-  const std::string block = write("block.obj",
-                                  "v -30 -15 -15\nv 30 -15 -15\nv -30 15 -15\nv 30 15 -15\n"
-                                  "v -30 -15 15\nv 30 -15 15\nv -30 15 15\nv 30 15 15\n"
-                                  "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\n"
-                                  "f 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n");
+  const std::string block = write("block.obj", kBlockMm);
   // Robotiq: standing up (file x along -gravity), between the pads.
   Result r = run("grasp --object " + block + " --scale 0.001 --hand robotiq --up x --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -385,11 +388,7 @@ TEST_F(CliTest, GraspObjectFitIntoTheRobotiqLeavesThePadsSomethingToReach) {
   if (sanitizer_pass()) {
     GTEST_SKIP() << "real-hand grasps skipped at GRASPCD_TEST_SCALE < 1 (sanitizer pass)";
   }
-  const std::string block = write("block.obj",
-                                  "v -30 -15 -15\nv 30 -15 -15\nv -30 15 -15\nv 30 15 -15\n"
-                                  "v -30 -15 15\nv 30 -15 15\nv -30 15 15\nv 30 15 15\n"
-                                  "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\n"
-                                  "f 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n");
+  const std::string block = write("block.obj", kBlockMm);
   const Result r = run("grasp --object " + block + " --fit --hand robotiq --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json doc = nlohmann::json::parse(r.out);
