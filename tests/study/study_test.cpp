@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -32,10 +33,13 @@ TEST_F(StudyTest, QuickStudyWritesTheReportAndEveryMethodAgreesWithCgal) {
   // The sanitizer pass (GRASPCD_TEST_SCALE < 1, docs/testing.md) times one replay per method
   // instead of --quick's 3: every replay's answers are checked all the same.
   const std::size_t repeats = graspcd::testing::test_scale() < 1 ? 1 : 3;
+  // Not a terminal: a progress line every GRASPCD_PROGRESS_SECONDS (app/progress.h), here longer
+  // than the run, so none; and one final line.
+  ::setenv("GRASPCD_PROGRESS_SECONDS", "100000", 1);
   const Outcome r = graspcd("study --quick --out '" + out.string() + "'" +
                             (repeats == 3 ? "" : " --repeats " + std::to_string(repeats)));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  // Not a terminal: no progress lines, one final line on stderr.
+  ::unsetenv("GRASPCD_PROGRESS_SECONDS");
   EXPECT_EQ(r.err.find("[study] recorded example1"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("[study] wrote " + out.string() + "\n"), std::string::npos) << r.err;
   for (const char* f : {"study.json", "table1.csv", "box_hand.csv", "sweep.json", "sweep.csv"})
