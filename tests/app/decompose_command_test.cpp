@@ -555,11 +555,15 @@ TEST_F(DecomposeCommand, DecomposedScaleIsAppliedOnce) {
     EXPECT_LT((lo - cube_lo).norm(), 1e-6) << scale << ": " << lo.transpose();
     EXPECT_LT((hi - cube_hi).norm(), 1e-6) << scale << ": " << hi.transpose();
   }
-  // decomposition.json as graspcd 0.4 wrote it: no scale, pieces in metres.
-  nlohmann::json old = load(dir_ / "cube_at_0.001/decomposition.json");
-  old.erase("scale");
-  old.erase("units");
-  std::ofstream(dir_ / "cube_at_0.001/decomposition.json") << old.dump(2);
+  // A decomposition.json as graspcd 0.4 wrote it: no "scale", no "units".
+  const auto written_by_0_4 = [&](const std::string& folder) {
+    nlohmann::json manifest = load(dir_ / folder / "decomposition.json");
+    manifest.erase("scale");
+    manifest.erase("units");
+    std::ofstream(dir_ / folder / "decomposition.json") << manifest.dump(2);
+  };
+  // Pieces in metres.
+  written_by_0_4("cube_at_0.001");
   const Outcome r = graspcd("grasp '" + scene + "' --decomposed '" +
                             (dir_ / "cube_at_0.001").string() + "' --max-steps 1");
   EXPECT_EQ(r.exit_code, 2) << r.err;
@@ -578,10 +582,7 @@ TEST_F(DecomposeCommand, DecomposedScaleIsAppliedOnce) {
       << r.err;
   EXPECT_EQ(err_lines.size(), 1u) << r.err;
   // Pieces written in the file's own units (scale 1) without a scale: read as 1, with a warning.
-  nlohmann::json old1 = load(dir_ / "cube_at_1/decomposition.json");
-  old1.erase("scale");
-  old1.erase("units");
-  std::ofstream(dir_ / "cube_at_1/decomposition.json") << old1.dump(2);
+  written_by_0_4("cube_at_1");
   const Outcome ok = graspcd("grasp '" + scene + "' --decomposed '" +
                              (dir_ / "cube_at_1").string() + "' --max-steps 1");
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
