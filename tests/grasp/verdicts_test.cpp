@@ -168,7 +168,7 @@ TEST(PushedOverVerdict, AnObjectTurnedPastTheLimitBeforeTheLiftIsPushedOver) {
   judge_grasp(r);
   EXPECT_FALSE(r.held);
   EXPECT_TRUE(r.pushed_over);
-  EXPECT_EQ(r.reason, "pushed over: turned 28\xc2\xb0 before the lift");
+  EXPECT_EQ(r.reason, "pushed over: tipped 28\xc2\xb0 before the lift");
   // Within the limit: not pushed over.
   r.tilt_before_lift_deg = kPushedOverDeg - 1;
   judge_grasp(r);

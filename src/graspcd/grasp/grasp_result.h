@@ -45,9 +45,10 @@ inline constexpr double kSqueezePush = 0.01;
 inline constexpr double kEjectMargin = 1.0;
 // The verdict text names the object's final tilt from this many degrees on (grasp.h, "tilted").
 inline constexpr double kTiltShownDeg = 2.0;
-// An object turned by more than this many degrees between the start and the start of the lift
-// was pushed over (verdicts.h), degrees: the hands turn an object they close on by at most about
-// ten degrees on the shipped scenes; a drill knocked over turns by 28-39.
+// An object tipped by more than this many degrees between the start and the start of the lift
+// (its up axis turned away from up) was pushed over (verdicts.h), degrees: the hands tip an
+// object they close on by at most about ten degrees on the shipped scenes; a drill knocked over
+// turns by 28-39.
 inline constexpr double kPushedOverDeg = 20.0;
 // The support's penetration by the true meshes past which the run warns (verdicts.h,
 // "support"), m: four times the start check's tolerance, deeper than MuJoCo's soft contacts let
@@ -187,8 +188,9 @@ struct GraspResult {
   // any later step (the largest) and at the end of the hold, degrees.
   double tilt_deg = 0;
   double tilt_final_deg = 0;
-  // Its rotation from the start to the start of the lift, degrees; more than kPushedOverDeg:
-  // pushed over (verdicts.h).
+  // How far it tipped from the start to the start of the lift, degrees: the angle its axis that
+  // pointed up at the start turned away from up (a turn about gravity is no tip); more than
+  // kPushedOverDeg: pushed over (verdicts.h).
   double tilt_before_lift_deg = 0;
   bool pushed_over = false;
   double max_speed = 0;  // the object's largest linear speed over all phases, m/s

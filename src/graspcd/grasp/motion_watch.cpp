@@ -19,6 +19,21 @@ double rotation_angle(const std::array<double, 4>& q0, const mjtNum* q) {
   return 2 * std::acos(std::min(1.0, std::abs(dot)));
 }
 
+// How far an object tipped from orientation q0 to q, radians: the angle between the world's up
+// direction and where the object's axis that pointed up at q0 points at q. A turn about the up
+// direction (a parallel gripper squaring a yawed block to its pads) is no tip.
+double tip_angle(const std::array<double, 4>& q0, const mjtNum* q, const std::array<double, 3>& up) {
+  mjtNum r0[9], r[9];
+  const mjtNum start[4] = {q0[0], q0[1], q0[2], q0[3]};
+  mju_quat2Mat(r0, start);
+  mju_quat2Mat(r, q);
+  mjtNum axis[3], now[3];
+  const mjtNum world_up[3] = {up[0], up[1], up[2]};
+  mju_mulMatTVec(axis, r0, world_up, 3, 3);  // up in the object's frame at q0
+  mju_mulMatVec(now, r, axis, 3, 3);         // that axis in the world at q
+  return std::acos(std::clamp(mju_dot3(now, world_up), -1.0, 1.0));
+}
+
 double norm3(const std::array<double, 3>& a, const std::array<double, 3>& b) {
   double s = 0;
   for (std::size_t k = 0; k < 3; ++k) s += (a[k] - b[k]) * (a[k] - b[k]);
@@ -189,7 +204,7 @@ void MotionWatch::at_lift_start(const mjData* d, double t) {
   GraspResult& r = measured_;
   r.object_z_gripped = height(d, object_);
   hand_at_lift_ = height(d, hand_);
-  r.tilt_before_lift_deg = rotation_angle(quat_start_, d->xquat + 4 * object_) * kDegrees;
+  r.tilt_before_lift_deg = tip_angle(quat_start_, d->xquat + 4 * object_, up_) * kDegrees;
   for (std::size_t k = 0; k < 4; ++k)
     quat_lift_[k] = d->xquat[4 * static_cast<std::size_t>(object_) + k];
   const GripTouch grip = touch_->grip(d);

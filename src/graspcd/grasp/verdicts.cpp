@@ -78,7 +78,7 @@ void judge_grasp(GraspResult& r) {
   } else if (r.ejected) {
     r.reason = ejection_text(*r.ejected);
   } else if (r.pushed_over) {
-    r.reason = format("pushed over: turned %.0f\xc2\xb0 before the lift", r.tilt_before_lift_deg);
+    r.reason = format("pushed over: tipped %.0f\xc2\xb0 before the lift", r.tilt_before_lift_deg);
   } else if (r.dropped_at) {
     r.reason = format("dropped at t = %.3f s: ", *r.dropped_at) + r.drop;
   } else if (r.touching_at_lift == 0) {

@@ -17,7 +17,8 @@
 //    start, R how far its geoms reach from its origin: dropped when it passed there), or it
 //    touched the hand at the start of the lift, left it for good (release_time) and ended more
 //    than kHeldSlip behind the hand's path. `drop` says where it went.
-//  - pushed over: turned by more than kPushedOverDeg from the start to the start of the lift.
+//  - pushed over: tipped by more than kPushedOverDeg from the start to the start of the lift (its
+//    up axis turned away from up; a turn about gravity is no tip).
 //  - tilted (held), pushed during the squeeze (held), pushed over, and a closing cut short by
 //    --max-steps are notes beside the verdict, held or not.
 //  - reason (not held), the first that applies: ejected, pushed over, dropped, the hand did not
