@@ -189,9 +189,10 @@ TEST_F(CliTest, GraspQuietPrintsOnlyTheHeaderAndTheVerdict) {
   EXPECT_EQ(nlohmann::json::parse(json.out)["steps"].size(), 8u);
 }
 
-// An L-shaped block (6 x 3 x 7 cm, 1.5 cm thick) turned 45 degrees in the Robotiq: the pads meet
-// its corner and the squeeze pushes it about 1.3 cm before the lift; the hand then lifts it. Held,
-// but the verdict says it was pushed, and --require-held still passes.
+// An L-shaped block (6 x 3 x 7 cm, 1.5 cm thick) turned 37 degrees in the Robotiq: the pads meet
+// its corner and the squeeze pushes it about 1.4 cm before the lift, squaring it to the pads;
+// the hand then lifts it. Held, but the verdict says it was pushed (not pushed over: the turn
+// about gravity is no tip), and --require-held still passes.
 TEST_F(CliTest, GraspSaysWhenTheSqueezePushedAHeldObject) {
   const fs::path models = fs::path(GRASPCD_MODELS_DIR);
   if (!fs::exists(models / "hands" / "robotiq_2f85" / "2f85.xml")) {
@@ -208,7 +209,7 @@ TEST_F(CliTest, GraspSaysWhenTheSqueezePushedAHeldObject) {
                  "f 1 2 8\nf 1 8 7\nf 2 3 9\nf 2 9 8\nf 3 4 10\nf 3 10 9\nf 4 5 11\nf 4 11 10\n"
                  "f 5 6 12\nf 5 12 11\nf 6 1 7\nf 6 7 12\nf 1 3 2\nf 7 8 9\nf 1 4 3\nf 7 9 10\n"
                  "f 1 5 4\nf 7 10 11\nf 1 6 5\nf 7 11 12\n"));
-  const std::string args = "grasp --object " + l_shape + " --hand robotiq --yaw 45 --require-held";
+  const std::string args = "grasp --object " + l_shape + " --hand robotiq --yaw 37 --require-held";
   const Result json = run(args + " --json");
   ASSERT_EQ(json.exit_code, 0) << json.err;
   const nlohmann::json doc = nlohmann::json::parse(json.out);
@@ -217,13 +218,18 @@ TEST_F(CliTest, GraspSaysWhenTheSqueezePushedAHeldObject) {
   EXPECT_GT(doc["pushed"].get<double>(), 0.01);
   EXPECT_LT(doc["pushed"].get<double>(), 0.03);
   EXPECT_TRUE(doc["dropped_at"].is_null());
+  EXPECT_FALSE(doc["pushed_over"]);
+  EXPECT_LT(doc["tilt_before_lift_deg"].get<double>(), 10.0);
   for (const nlohmann::json& w : doc["warnings"]) EXPECT_NE(w["code"], "mesh_inside_out") << w;
   const Result text = run(args + " --quiet");
   ASSERT_EQ(text.exit_code, 0) << text.err;
   const std::vector<std::string> out = lines(text.out);
   ASSERT_EQ(out.size(), 5u) << text.out;
-  EXPECT_EQ(out[2].rfind("# gripped yes; held yes, pushed 1.", 0), 0u) << out[2];
-  EXPECT_NE(out[2].find(" cm during the squeeze"), std::string::npos) << out[2];
+  EXPECT_TRUE(std::regex_search(
+      out[2], std::regex("^# gripped yes; held yes, (tilted \\d+\xc2\xb0, )?pushed 1\\.\\d cm "
+                         "during the squeeze: carried")))
+      << out[2];
+  EXPECT_EQ(out[2].find("pushed over"), std::string::npos) << out[2];
   EXPECT_NE(out[2].find("; object z "), std::string::npos) << out[2];
 }
 

@@ -4,11 +4,13 @@
 #include <tinyxml2.h>
 
 #include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -705,8 +707,44 @@ void replace_comments(tinyxml2::XMLDocument& doc, tinyxml2::XMLElement* root,
   root->InsertFirstChild(doc.NewComment(header.c_str()));
 }
 
-// The scene written as out.scene and the template's pair config, unchanged (it names
-// body:object), copied to out.pairs.
+// The name of the support body the object stands on when graspcd can serve its pair with the
+// object (docs/objects.md, "The object and its support"): the pair config's "grasp" section names
+// it, no pair of the config names it, and its geoms (one or more, direct children of the body)
+// are all boxes or meshes. Empty otherwise (the project hand's floor is a plane MuJoCo collides).
+std::string servable_support(const tinyxml2::XMLElement* root,
+                             const nlohmann::ordered_json& config) {
+  if (!config.is_object() || !config.contains("grasp") || !config["grasp"].is_object()) return {};
+  const nlohmann::ordered_json& grasp = config["grasp"];
+  if (!grasp.contains("support") || !grasp["support"].is_string()) return {};
+  const std::string support = grasp["support"].get<std::string>();
+  if (config.contains("pairs") && config["pairs"].is_array()) {
+    for (const nlohmann::ordered_json& p : config["pairs"]) {
+      for (const char* side : {"a", "b"}) {
+        if (p.is_object() && p.contains(side) && p[side] == "body:" + support) return {};
+      }
+    }
+  }
+  const tinyxml2::XMLElement* body = nullptr;
+  for (const tinyxml2::XMLElement* w = root->FirstChildElement("worldbody"); w;
+       w = w->NextSiblingElement("worldbody")) {
+    for (const tinyxml2::XMLElement* b = w->FirstChildElement("body"); b;
+         b = b->NextSiblingElement("body")) {
+      if (b->Attribute("name", support.c_str())) body = b;
+    }
+  }
+  if (body == nullptr || body->FirstChildElement("geom") == nullptr) return {};
+  for (const tinyxml2::XMLElement* g = body->FirstChildElement("geom"); g;
+       g = g->NextSiblingElement("geom")) {
+    if (!g->Attribute("type", "box") && !g->Attribute("type", "mesh")) return {};
+  }
+  return support;
+}
+
+// The scene written as out.scene and the template's pair config copied to out.pairs: unchanged
+// (it names body:object), or, where graspcd can serve the object's pair with its support
+// (servable_support), with that pair added. MuJoCo 2.2 gives a convex pair one contact, so an
+// object lying on a box sinks into it: a YCB soup can on its side in the Robotiq sank 4.1 mm
+// and tilted 11 deg (2.3 mm with multiccd); served, 0.7 mm, for 14% more time per physics step.
 void save_scene(tinyxml2::XMLDocument& doc, const std::string& template_path,
                 const ObjectScene& out) {
   if (doc.SaveFile(out.scene.c_str()) != tinyxml2::XML_SUCCESS) {
@@ -715,7 +753,20 @@ void save_scene(tinyxml2::XMLDocument& doc, const std::string& template_path,
   const std::string pairs = fs::path(template_path).replace_extension(".pairs.json").string();
   std::ifstream in(pairs, std::ios::binary);
   if (!in) throw io::InputError(pairs, 0, "cannot read the template's pair config");
-  std::ofstream(out.pairs, std::ios::binary) << in.rdbuf();
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // A config that does not parse is copied as it is: the grasp names its fault in the template's.
+  // Its keys keep their order.
+  nlohmann::ordered_json config = nlohmann::ordered_json::parse(text, nullptr, false);
+  const std::string support =
+      config.is_discarded() ? std::string() : servable_support(doc.RootElement(), config);
+  std::ofstream written(out.pairs, std::ios::binary);
+  if (support.empty() || !config.contains("pairs") || !config["pairs"].is_array()) {
+    written << text;
+  } else {
+    config["pairs"].push_back({{"a", "body:object"}, {"b", "body:" + support}});
+    written << config.dump(2) << '\n';
+  }
+  if (!written) throw io::InputError(out.pairs, 0, "cannot write the pair config");
 }
 
 // Whether MuJoCo 2.2's mesh compiler accepts the faces' orientation: no directed edge is used by
