@@ -102,6 +102,14 @@ void Progress::note(const std::string& line) {
   changed_ = true;
 }
 
+void Progress::print(const std::string& text) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (shown_) std::cerr << "\r\033[K" << std::flush;
+  shown_ = false;
+  std::cout << text << std::flush;
+  changed_ = true;
+}
+
 void Progress::done(const std::string& text) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);

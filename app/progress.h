@@ -40,6 +40,9 @@ class Progress {
   // A line of its own on stderr while the work goes on (e.g. an object refused), printed between
   // progress lines.
   void note(const std::string& line);
+  // Text on stdout while the work goes on (e.g. a table's rows as they are made), flushed at
+  // once; on a terminal the progress line is cleared first and drawn again after.
+  void print(const std::string& text);
 
   // "12 s", "3 min 20 s", "1 h 5 min": a duration as a progress line says it.
   static std::string duration(double seconds);

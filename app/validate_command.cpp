@@ -43,6 +43,7 @@ struct ValidateCliOptions {
   bool all_methods = false;
   bool json = false;
   int steps = 400;
+  std::string phases = "closing,squeeze";  // --phases
   // --objects DIR: an object set through the --object workflow (object_set.h).
   std::string objects;
   std::string shard;               // --shard i/N of the set
@@ -146,6 +147,14 @@ int run_object_set(ValidateCliOptions& o, const CLI::App& app) {
   }
   Progress progress("validate");
   options.log = [&progress](const std::string& line) { progress.update(line); };
+  // The table's rows are printed as the objects are checked (the JSON document at the end).
+  if (!o.json) {
+    options.on_row = [&progress](const nlohmann::json& so_far, const nlohmann::json& row) {
+      std::string text = study::object_set_row(so_far, row);
+      if (so_far["rows"].size() == 1) text = study::object_set_head(so_far) + text;
+      progress.print(text);
+    };
+  }
   nlohmann::json doc;
   try {
     doc = study::validate_object_set(options, testers);
@@ -154,7 +163,12 @@ int run_object_set(ValidateCliOptions& o, const CLI::App& app) {
   }
   if (!o.out_dir.empty()) study::write_object_set(o.out_dir, doc);
   progress.done("checked the objects of " + o.objects);
-  print_object_set(doc, o.json);
+  if (o.json) {
+    print_object_set(doc, true);
+  } else {
+    if (doc["rows"].empty()) std::cout << study::object_set_head(doc);
+    std::cout << study::object_set_tail(doc);
+  }
   return object_set_exit_code(doc);
 }
 
@@ -185,21 +199,31 @@ int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
   options.max_steps = o.steps;
   options.out_dir = o.out_dir;
   options.decomposed_dir = o.decomposed;
+  try {
+    options.phases = study::parse_validate_phases(o.phases);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("validate: --phases: ") + e.what());
+  }
   Progress progress("validate");
-  int checked = 0;
-  options.on_step = [&](int step) {
-    checked = step;
-    // The closing may end before --max-steps: the share is a lower bound.
-    progress.update(o.scene + ": closing grasp step " + std::to_string(step) + " of at most " +
-                        std::to_string(o.steps) + " checked",
-                    static_cast<double>(step) / std::max(1, o.steps), true);
+  long checked = 0;
+  options.on_step = [&](const std::string& phase, long step) {
+    ++checked;
+    if (phase == "closing") {
+      // The closing may end before --max-steps: the share is a lower bound.
+      progress.update(o.scene + ": closing grasp step " + std::to_string(step) + " of at most " +
+                          std::to_string(o.steps) + " checked",
+                      static_cast<double>(step) / std::max(1, o.steps), true);
+    } else {
+      progress.update(o.scene + ": " + phase + " physics step " + std::to_string(step) +
+                      " checked (" + std::to_string(checked) + " states so far)");
+    }
   };
   const study::ValidationReport report = study::validate_scene(o.scene, testers, options);
-  progress.done("checked " + o.scene + ": " + std::to_string(checked) + " grasp steps");
-  if (report.steps_with_contact == 0) {
+  progress.done("checked " + o.scene + ": " + std::to_string(checked) + " states");
+  if (report.states_with_contact() == 0) {
     warnings().add("validate_no_contact",
                    o.scene +
-                       ": no grasp step had a contact to check (no pair ever touched): "
+                       ": no checked state had a contact to check (no pair ever touched): "
                        "'no missed collision' says nothing about this scene",
                    "scene");
   }
@@ -218,7 +242,8 @@ int run_validate_command(ValidateCliOptions& o, const CLI::App& app) {
 Command add_validate_command(CLI::App& parent) {
   auto o = std::make_shared<ValidateCliOptions>();
   CLI::App* app = parent.add_subcommand(
-      "validate", "Check a scene's grasp against CGAL: every registered pair at every grasp step");
+      "validate",
+      "Check a scene's grasp against CGAL: every registered pair through the closing and squeeze");
   app->add_option("SCENE", o->scene, "The scene: an MJCF file with its SCENE.pairs.json");
   app->add_option("--objects", o->objects,
                   "A folder of objects (every mesh file under it: OBJ, STL, OFF, PLY, glTF/GLB, "
@@ -232,7 +257,7 @@ Command add_validate_command(CLI::App& parent) {
   add_placement_options(
       *app, o->placement,
       {{Placement::kHand,
-        "--objects: the template: project, robotiq, shadow or a template scene file"},
+        "--objects: the template: project, robotiq, shadow, allegro or a template scene file"},
        {Placement::kFit, "--objects: scale each object into the template's room"},
        {Placement::kScale, "--objects: file units to metres for every object"},
        {Placement::kUp, "--objects: the file axis that points up: x, y, z, -x, -y, -z"},
@@ -245,6 +270,11 @@ Command add_validate_command(CLI::App& parent) {
                   "Most closing grasp steps (--steps: the same, kept as an alias)")
       ->transform(positive_integer())
       ->capture_default_str();
+  app->add_option("--phases", o->phases,
+                  "The phases checked: all, or some of closing, squeeze, lift, hold (comma-"
+                  "separated); the closing after each grasp step, the others every 5 physics "
+                  "steps (a grasp step's worth)")
+      ->capture_default_str();
   app->add_option("--config", o->config,
                   "Pair config (JSON); default SCENE.pairs.json beside the scene");
   app->add_option("--out", o->out_dir,
@@ -256,8 +286,9 @@ Command add_validate_command(CLI::App& parent) {
                   "pieces under MuJoCo's native collision; the checks stay on the true meshes");
   app->footer(wrap_help(
       "Runs the scene's grasp (as graspcd grasp, driven by the pair config's method) and, after "
-      "every closing grasp step, checks each registered pair with each method asked for "
-      "(--method, --all-methods, or the config's method; --all-methods leaves out "
+      "every closing grasp step and every 5th physics step of the squeeze and its settling "
+      "(--phases: the lift and the hold too), checks each registered pair with each method "
+      "asked for (--method, --all-methods, or the config's method; --all-methods leaves out "
       "perceptron-nodisp, which proves almost no node pair of a mesh disjoint and so tests nearly "
       "every triangle pair: hours on example 3, ask for it by name) against CGAL's exact brute "
       "force over "
@@ -277,23 +308,27 @@ Command add_validate_command(CLI::App& parent) {
       "same double) and the pose line are written into --out (when given; nothing is written "
       "into the current folder otherwise), and 'graspcd meshpair A B --poses P' with the "
       "method's options prints the method's answer again (add --exact for CGAL's); box pairs "
-      "write one boxbox line. A line '# contacts: N of M grasp steps had a contact to check' "
-      "counts the steps at which CGAL found some pair intersecting; with none, the result says "
-      "so and a warning says that 'no missed collision' means nothing there. A line '# checked: "
-      "...' "
-      "says which phases were checked (the closing), how many grasp steps, and whether "
-      "--max-steps cut the closing short. Progress on stderr: the grasp step checked, the time "
-      "so far and at most how long is left, on a terminal one line rewritten, otherwise one "
-      "line every 5 s (GRASPCD_PROGRESS_SECONDS).\n"
-      "--json: one document: scene, config, grasp_method, steps, steps_with_contact, phases "
-      "([\"closing\"]), max_steps, cut_short, gripped, "
+      "write one boxbox line. A line '# contacts: N of M closing grasp steps, K of L squeeze "
+      "states had a contact to check' counts, per phase, the states at which CGAL found some "
+      "pair intersecting; with none in any phase, the result says so and a warning says that "
+      "'no missed collision' means nothing there. A line '# checked: ...' says which phases "
+      "were checked, how many states of each, whether --max-steps cut the closing short, and "
+      "which phases were not checked. The squeeze is checked by default because the hand "
+      "presses hardest there; --phases all checks the lift and the hold as well. Progress on "
+      "stderr: the state checked, the time so far and, in the closing, at most how long is "
+      "left, on a terminal one line rewritten, otherwise one line every 5 s "
+      "(GRASPCD_PROGRESS_SECONDS).\n"
+      "--json: one document: scene, config, grasp_method, steps (closing grasp steps checked), "
+      "steps_with_contact (of those), phases (the names checked), checks (per phase: phase, "
+      "states, with_contact, physics_steps between two checked states, 0 for the closing's "
+      "grasp steps), max_steps, cut_short, gripped, "
       "cgal, exact_seconds, "
       "tester_seconds, nonfinite_skips (pair checks skipped on a placement with NaN, inf or a "
       "number beyond 1e10), missed_any, methods (method, missed_any, seconds, pairs: pair, geom1, "
       "geom2, "
       "path, "
       "steps, agree, truth_hits, missed, false_contacts, pair_mismatch, missed_tri_pairs, "
-      "false_tri_pairs, first_disagreement: null or step, truth, answer, truth_pairs, "
+      "false_tri_pairs, first_disagreement: null or phase, step, truth, answer, truth_pairs, "
       "answer_pairs, files, command), decomposed (null, or dir, source, pieces, geoms).\n"
       "--decomposed DIR: the truth side of the race. The grasp runs as 'graspcd "
       "grasp SCENE --decomposed DIR' does: the object's geoms of the mesh DIR decomposes keep "
@@ -314,7 +349,8 @@ Command add_validate_command(CLI::App& parent) {
       "same for every object; the start state checked) and is validated as above. One row per "
       "object: its scale, the closing grasp steps checked, the steps with a contact to check, "
       "CGAL's hits (pair checks that intersect), missed/false collisions per method, and the "
-      "grasp's verdict (held; gripped, not held: REASON; not gripped: REASON). An object that "
+      "grasp's verdict (held; gripped, not held: REASON; not gripped: REASON), each row printed "
+      "as soon as its object is checked. An object that "
       "cannot be checked (a bad mesh, a start state that is not valid) is a row 'refused' with "
       "its one-line error, and a line 'warning: FILE:LINE: message' on stderr (the line where "
       "the loader names one); the others go on. Exit code: 1 when some method missed a "
@@ -325,7 +361,8 @@ Command add_validate_command(CLI::App& parent) {
       "OUT/objects.json (with --shard i/N: OUT/objects.shard-i-of-N.json) and the first "
       "disagreements under OUT/OBJECT/. --json prints the document: objects_dir, hand, template, "
       "settings, objects (the whole set), shard, rows (object, status, error, scale, fitted, "
-      "size, steps, steps_with_contact, cgal_hits, gripped, held, reason, methods: method, "
+      "size, steps, steps_with_contact, states and states_with_contact (every phase checked), "
+      "cgal_hits, gripped, held, reason, methods: method, "
       "checks, agree, missed, false_contacts, missed_tri_pairs, false_tri_pairs), missed_any, "
       "false_any, refused (the number of objects refused).\n"
       "--merge FILE...: joins the shard files of one split of one set (same objects, settings "

@@ -217,8 +217,10 @@ TEST_F(ConcaveRobotiq, ADecomposedBowlsRefusalNamesThePiece) {
   EXPECT_EQ(r.err.find("convex hull"), std::string::npos) << r.err;
 }
 
-// What validate checked, said in its header and its JSON: the closing, how many grasp steps, and
-// whether --max-steps cut it short; and progress lines on stderr when it is a file.
+// What validate checked, said in its header and its JSON: the closing, how many grasp steps,
+// whether --max-steps cut it short, and the squeeze, where the pads press on the rim (before, it
+// stopped at the pads' first touch: "1 of 193 grasp steps had a contact to check"); --phases all
+// adds the lift and the hold; and progress lines on stderr when it is a file.
 TEST_F(ConcaveRobotiq, ValidateSaysWhatItCheckedAndShowsProgress) {
   const std::string path = scene("concave_robotiq_mug_rim");
   SKIP_WITHOUT_MODELS(path);
@@ -231,7 +233,7 @@ TEST_F(ConcaveRobotiq, ValidateSaysWhatItCheckedAndShowsProgress) {
   EXPECT_EQ(v.at("steps").get<int>(), 5);
   EXPECT_EQ(v.at("max_steps").get<int>(), 5);
   EXPECT_TRUE(v.at("cut_short").get<bool>());
-  EXPECT_EQ(v.at("phases"), nlohmann::json::array({"closing"}));
+  EXPECT_EQ(v.at("phases"), nlohmann::json::array({"closing", "squeeze"}));
   EXPECT_NE(r.err.find("[validate] " + path + ": closing grasp step 5 of at most 5 checked; "),
             std::string::npos)
       << r.err;
@@ -244,9 +246,47 @@ TEST_F(ConcaveRobotiq, ValidateSaysWhatItCheckedAndShowsProgress) {
   ASSERT_EQ(text.exit_code, 0) << text.err;
   EXPECT_NE(testing::read_file(dir_ / "cut.txt")
                 .find("# checked: the closing, 5 grasp steps, each after its last physics step; "
-                      "--max-steps 5 cut the closing short"),
+                      "the squeeze and its settling, "),
             std::string::npos)
       << testing::read_file(dir_ / "cut.txt");
+  EXPECT_NE(testing::read_file(dir_ / "cut.txt")
+                .find("; --max-steps 5 cut the closing short (the hand had not finished "
+                      "closing); the lift and the hold are not checked (--phases all checks every "
+                      "phase)\n"),
+            std::string::npos)
+      << testing::read_file(dir_ / "cut.txt");
+
+  // A whole grasp, every phase, on a block the Robotiq lifts (3 x 3 x 6 cm, 12 triangles, so
+  // that CGAL's brute force over the lift's and the hold's 300 states stays cheap): the closing
+  // ends at the pads' touch, and the squeeze, the lift and the hold each have states where the
+  // pads touch it, every pair agreeing with CGAL.
+  const fs::path block = dir_ / "block.obj";
+  std::ofstream(block) << "v -0.015 -0.015 0\nv 0.015 -0.015 0\nv -0.015 0.015 0\n"
+                          "v 0.015 0.015 0\nv -0.015 -0.015 0.06\nv 0.015 -0.015 0.06\n"
+                          "v -0.015 0.015 0.06\nv 0.015 0.015 0.06\n"
+                          "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\n"
+                          "f 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n";
+  const testing::Outcome written =
+      graspcd("grasp --object '" + block.string() + "' --hand robotiq --quiet --write-scene '" +
+              (dir_ / "kept").string() + "'");
+  ASSERT_EQ(written.exit_code, 0) << written.err;
+  const fs::path all = dir_ / "all.json";
+  const testing::Outcome whole =
+      run("{ '" + std::string(GRASPCD_EXE) + "' validate '" + (dir_ / "kept" / "block.xml").string() +
+          "' --method sat --phases all --json > '" + all.string() + "'; }");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const nlohmann::json w = load(all);
+  EXPECT_FALSE(w.at("cut_short").get<bool>());
+  EXPECT_EQ(w.at("phases"), nlohmann::json::array({"closing", "squeeze", "lift", "hold"}));
+  ASSERT_EQ(w.at("checks").size(), 4u);
+  for (const nlohmann::json& c : w.at("checks")) {
+    EXPECT_GT(c.at("states").get<int>(), 0) << c;
+    EXPECT_GT(c.at("with_contact").get<int>(), 0) << c;
+  }
+  // The squeeze presses at every state checked; the closing touched only near its end.
+  EXPECT_EQ(w.at("checks")[1].at("with_contact"), w.at("checks")[1].at("states"));
+  EXPECT_LT(w.at("checks")[0].at("with_contact").get<int>(), w.at("steps").get<int>());
+  EXPECT_FALSE(w.at("missed_any").get<bool>());
 }
 
 // A scene that starts from a keyframe is no template for a new object: the keyframe holds the

@@ -180,7 +180,9 @@ class SlurmTest(unittest.TestCase):
             self.assertEqual(row["status"], "checked", row)
             self.assertEqual([m["method"] for m in row["methods"]], ["sat"])
             self.assertEqual(row["methods"][0]["missed"], 0, row)
-            self.assertEqual(row["methods"][0]["checks"] % row["steps"], 0, row)
+            # Every pair at every state checked: the closing's grasp steps and the squeeze's.
+            self.assertGreater(row["states"], row["steps"], row)
+            self.assertEqual(row["methods"][0]["checks"] % row["states"], 0, row)
             self.assertLessEqual(row["steps_with_contact"], row["steps"], row)
             self.assertTrue(row["fitted"], row)
         self.assertGreater(sum(row.get("cgal_hits", 0) for row in a["rows"]), 0,

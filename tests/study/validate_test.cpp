@@ -139,7 +139,10 @@ TEST_P(ShippedScene, EveryMethodAgreesWithCgalAtEveryStep) {
   }
   const std::string scene = kMjcf + name + ".xml";
   const std::vector<TesterSpec> specs = methods_for(name);
-  const ValidationReport report = graspcd::study::validate_scene(scene, specs);
+  // The closing (every method through the squeeze: the box hand's command test below).
+  graspcd::study::ValidateOptions closing;
+  closing.phases.squeeze = false;
+  const ValidationReport report = graspcd::study::validate_scene(scene, specs, closing);
   ASSERT_EQ(report.methods.size(), specs.size());
   EXPECT_GT(report.steps, 20);
   // Gripped is two hand geoms touching from opposing sides on the true meshes (docs/design.md,
@@ -194,6 +197,7 @@ class ValidateTest : public graspcd::testing::TempDirTest {
 TEST_F(ValidateTest, BrokenDetectorIsCaughtAndItsFirstDisagreementReproduces) {
   graspcd::study::ValidateOptions options;
   options.out_dir = (dir_ / "cases").string();
+  options.phases.squeeze = false;  // the closing catches it (the squeeze's checks are tested below)
   const ValidationReport report = graspcd::study::validate_scene(
       kMjcf + "example1.xml", {graspcd::study::detector_tester(Method::kSat, {}), broken_tester()},
       options);
@@ -294,9 +298,13 @@ TEST_F(ValidateTest, UsersOwnSceneWithANewObject) {
   const std::string scene = write("star.xml", xml);
   write("star.pairs.json", read_file(kMjcf + "example1.pairs.json"));
 
+  graspcd::study::ValidateOptions closing;
+  closing.phases.squeeze = false;  // the command below checks the squeeze
   const ValidationReport report = graspcd::study::validate_scene(
-      scene, {graspcd::study::detector_tester(Method::kSat, {}),
-              graspcd::study::detector_tester(Method::kNeuroSatSticky, {})});
+      scene,
+      {graspcd::study::detector_tester(Method::kSat, {}),
+       graspcd::study::detector_tester(Method::kNeuroSatSticky, {})},
+      closing);
   EXPECT_TRUE(report.gripped);
   EXPECT_FALSE(report.missed_any());
   // The steps with something to check are counted: some, not all (the fingers close from apart).
@@ -309,18 +317,21 @@ TEST_F(ValidateTest, UsersOwnSceneWithANewObject) {
   const Outcome r = graspcd("validate '" + scene + "' --steps 40");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("finger1_A/object"), std::string::npos) << r.out;
-  EXPECT_TRUE(std::regex_search(r.out, std::regex("\n# contacts: \\d+ of 40 grasp steps had a "
-                                                  "contact to check\n# result: no missed")))
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("\n# contacts: \\d+ of 40 closing grasp steps, "
+                                                  "[1-9]\\d* of 40 squeeze states had a contact "
+                                                  "to check\n# result: no missed")))
       << r.out;
 }
 
 // A validation in which nothing touched says so and warns, instead of a bare "no missed
-// collision"; --max-steps is the option's name (--steps stays an alias); nothing is written into
-// the current folder without --out.
+// collision" (two closing grasp steps alone: the squeeze would reach the cup); --max-steps is the
+// option's name (--steps stays an alias); nothing is written into the current folder without
+// --out.
 TEST_F(ValidateTest, AValidationWithNoContactToCheckSaysSoAndWarns) {
   const std::filesystem::path cwd_out = std::filesystem::current_path() / "validate_out";
   std::filesystem::remove_all(cwd_out);
-  const Outcome r = graspcd("validate '" + kMjcf + "example1.xml' --max-steps 2 --json");
+  const Outcome r =
+      graspcd("validate '" + kMjcf + "example1.xml' --max-steps 2 --phases closing --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json doc = json::parse(r.out);
   graspcd::testing::expect_envelope(doc, 1);
@@ -328,12 +339,13 @@ TEST_F(ValidateTest, AValidationWithNoContactToCheckSaysSoAndWarns) {
   EXPECT_EQ(doc["steps_with_contact"], 0);
   EXPECT_EQ(doc["warnings"][0]["code"], "validate_no_contact");
   EXPECT_EQ(doc["warnings"][0]["source"], "scene");
-  EXPECT_NE(r.err.find("no grasp step had a contact to check"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no checked state had a contact to check"), std::string::npos) << r.err;
+  EXPECT_EQ(doc["phases"], json::array({"closing"}));
   EXPECT_FALSE(std::filesystem::exists(cwd_out));
   if (graspcd::testing::test_scale() < 1) return;  // the text again: Release pass only
-  const Outcome text = graspcd("validate '" + kMjcf + "example1.xml' --steps 2");
+  const Outcome text = graspcd("validate '" + kMjcf + "example1.xml' --steps 2 --phases closing");
   ASSERT_EQ(text.exit_code, 0) << text.err;
-  EXPECT_NE(text.out.find("# contacts: 0 of 2 grasp steps had a contact to check\n"
+  EXPECT_NE(text.out.find("# contacts: 0 of 2 closing grasp steps had a contact to check\n"
                           "# result: no missed collision (nothing touched: nothing was checked)"),
             std::string::npos)
       << text.out;
@@ -360,12 +372,23 @@ TEST_F(ValidateTest, CommandPrintsTheTableAndJsonAndExitsZeroOnTheBoxHand) {
   }
   EXPECT_FALSE(doc["missed_any"].get<bool>());
   EXPECT_TRUE(doc["gripped"].get<bool>());
+  // The closing and the squeeze (with its settling: 0.4 s of 2 ms steps, one state in 5), where
+  // the boxes press on the object.
+  ASSERT_EQ(doc["phases"], json::array({"closing", "squeeze"}));
+  ASSERT_EQ(doc["checks"].size(), 2u);
+  EXPECT_EQ(doc["checks"][0]["states"], doc["steps"]);
+  const json& squeeze = doc["checks"][1];
+  EXPECT_EQ(squeeze["phase"], "squeeze");
+  EXPECT_EQ(squeeze["physics_steps"], 5);
+  EXPECT_EQ(squeeze["states"], (50 + 150) / 5);
+  EXPECT_EQ(squeeze["with_contact"], squeeze["states"]) << "the gripped object is touched";
   int truth = 0;
   for (const json& m : doc["methods"]) {
     for (const json& p : m["pairs"]) {
       EXPECT_EQ(p["path"], "boxes");
       EXPECT_EQ(p["missed"].get<int>(), 0) << m["method"] << ' ' << p["pair"];
-      EXPECT_EQ(p["steps"].get<int>(), doc["steps"].get<int>());
+      // Every state checked: the closing's grasp steps and the squeeze's (the default phases).
+      EXPECT_EQ(p["steps"].get<int>(), doc["steps"].get<int>() + squeeze.at("states").get<int>());
       truth += p["truth_hits"].get<int>();
       // A false collision (a perceptron that hit its cap) comes with its reproducing boxbox line.
       if (!p["first_disagreement"].is_null()) {
@@ -434,7 +457,8 @@ TEST_F(ValidateTest, ObjectSetRowsEachObjectAndItsShardsMergeToTheWhole) {
   EXPECT_EQ(sat["missed"], 0) << row;
   EXPECT_EQ(sat["false_contacts"], 0) << row;
   EXPECT_EQ(sat["agree"], sat["checks"]) << "exact answers agree with CGAL at every check";
-  EXPECT_EQ(sat["checks"].get<int>() % row["steps"].get<int>(), 0) << "every pair every step";
+  EXPECT_GT(row["states"].get<int>(), row["steps"].get<int>()) << "the squeeze is checked";
+  EXPECT_EQ(sat["checks"].get<int>() % row["states"].get<int>(), 0) << "every pair every state";
   EXPECT_GE(row["cgal_hits"].get<int>(), row["steps_with_contact"].get<int>());
   EXPECT_GT(row["cgal_hits"].get<int>(), 0) << "the hand touched: something was checked";
 
@@ -455,6 +479,21 @@ TEST_F(ValidateTest, ObjectSetRowsEachObjectAndItsShardsMergeToTheWhole) {
   checked_only["rows"] = json::array({doc["rows"][2]});
   EXPECT_EQ(merged_exit_code(checked_only), 0);
   if (graspcd::testing::test_scale() < 1) return;  // the shards again: Release pass only
+
+  // The table streams: each row is printed when its object is done, before the next object's
+  // progress line (stdout and stderr into one file, a progress line at every update).
+  const fs::path both = dir_ / "both.txt";
+  const std::string line = "GRASPCD_PROGRESS_SECONDS=0 '" + std::string(GRASPCD_EXE) + "' " +
+                           common + " > '" + both.string() + "' 2>&1";
+  std::system(line.c_str());
+  const std::string streamed = read_file(both);
+  const std::size_t first_row = streamed.find("\nBad.OBJ ");
+  const std::size_t third_object = streamed.find("object 3 of 3: prisms/star.obj");
+  ASSERT_NE(first_row, std::string::npos) << streamed;
+  ASSERT_NE(third_object, std::string::npos) << streamed;
+  EXPECT_LT(first_row, third_object) << streamed;
+  EXPECT_LT(streamed.find("\nbad.obj "), third_object) << streamed;
+  EXPECT_GT(streamed.find("\nprisms/star.obj "), third_object) << streamed;
 
   // Two shards written into OUT, merged: the same rows as the whole set.
   const fs::path out = dir_ / "shards";
@@ -551,6 +590,12 @@ TEST_F(ValidateTest, BadInputIsOneLineAndExitCodeTwo) {
 
   const Outcome both = graspcd("validate '" + kMjcf + "example1.xml' --all-methods --method sat");
   EXPECT_EQ(both.exit_code, 2) << both.err;
+  for (const char* phases : {"closing,lift,closing", "squeze", "", "all,hold"}) {
+    const Outcome bad = graspcd("validate '" + kMjcf + "example1.xml' --phases '" + phases + "'");
+    EXPECT_EQ(bad.exit_code, 2) << phases << ": " << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+    EXPECT_NE(bad.err.find("--phases"), std::string::npos) << bad.err;
+  }
   const Outcome steps = graspcd("validate '" + kMjcf + "example1.xml' --steps 0");
   EXPECT_EQ(steps.exit_code, 2) << steps.err;
 }

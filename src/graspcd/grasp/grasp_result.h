@@ -104,6 +104,11 @@ struct GraspOptions {
   // Called after each closing grasp step with the model, the state after the step's last physics
   // step and the 1-based step number (the study records the poses it replays, src/graspcd/study).
   std::function<void(const mjModel*, const mjData*, int)> on_grasp_step;
+  // Called after every physics step of the squeeze, the settling, the lift and the hold (not the
+  // six directions) with the model, the state after the step, the phase's run-record name
+  // ("squeeze", "settle", "lift", "hold"; docs/run-record.md) and the 1-based physics step of
+  // that phase (`graspcd validate --phases` checks the pairs there).
+  std::function<void(const mjModel*, const mjData*, const std::string&, long)> on_physics_step;
   // After the hold, the six-direction test (six_directions.h): six runs from the held state, the
   // support taken away, gravity off, the object pulled by its weight along the hand's axes.
   bool six_directions = false;

@@ -205,10 +205,16 @@ void HandRun::run_phase(RunPhase phase, long steps, Targets at, Observe observe)
                                        "the six directions"};
   phase_ = kNames[static_cast<int>(phase)];
   phase_kind_ = phase;
+  const bool call = on_physics_step_ != nullptr && *on_physics_step_ && phase != RunPhase::kDirection;
+  const std::string name = call ? phase_record_name(phase) : std::string();
   for (long i = 1; i <= steps; ++i) {
     at(i);
     physics_step();
     observe();
+    if (call) {
+      const CostTimer timer(cost_, CostPart::kJudge);
+      (*on_physics_step_)(m_, d_, name, i);
+    }
   }
 }
 
@@ -328,6 +334,7 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   if (record_) record_->start(m_, d_);
   // The physics part is the phases' time less the parts measured inside them.
   cost_ = &result.cost;
+  on_physics_step_ = &options.on_physics_step;
   const GraspCost before = result.cost;
   const CostInstant phases_start = CostInstant::now();
   close(options, result);
@@ -360,6 +367,7 @@ void HandRun::run(const GraspOptions& options, GraspResult& result) {
   }
   result.cost[CostPart::kPhysics] += physics;
   cost_ = nullptr;
+  on_physics_step_ = nullptr;
   watch_->fill(result);
   judge_grasp(result);
 }

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -135,6 +136,9 @@ class HandRun {
   const mjModel* truth_ = nullptr;
   SurfaceCache* surfaces_ = nullptr;
   GraspCost* cost_ = nullptr;  // the running grasp's (GraspResult::cost)
+  // The running grasp's GraspOptions::on_physics_step (none outside run()).
+  const std::function<void(const mjModel*, const mjData*, const std::string&, long)>*
+      on_physics_step_ = nullptr;
   mjModel* mutable_m_ = nullptr;
   RunRecordWriter* record_ = nullptr;
   std::unique_ptr<MotionWatch> watch_;

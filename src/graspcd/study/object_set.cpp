@@ -84,14 +84,23 @@ json checked_row(const std::string& object, const grasp::ObjectScene& scene,
                        {"missed_tri_pairs", missed_tri},
                        {"false_tri_pairs", false_tri}});
   }
-  return {
-      {"object", object},       {"status", "checked"},
-      {"error", nullptr},       {"scale", scene.scale},
-      {"fitted", scene.fitted}, {"size", scene.size},
-      {"steps", report.steps},  {"steps_with_contact", report.steps_with_contact},
-      {"cgal_hits", cgal_hits}, {"gripped", report.gripped},
-      {"held", report.held},    {"reason", report.reason.empty() ? json() : json(report.reason)},
-      {"methods", methods}};
+  int states = 0;  // every phase's (the closing's grasp steps and the squeeze's states)
+  for (const PhaseChecks& c : report.phases) states += c.states;
+  return {{"object", object},
+          {"status", "checked"},
+          {"error", nullptr},
+          {"scale", scene.scale},
+          {"fitted", scene.fitted},
+          {"size", scene.size},
+          {"steps", report.steps},
+          {"steps_with_contact", report.steps_with_contact},
+          {"states", states},
+          {"states_with_contact", report.states_with_contact()},
+          {"cgal_hits", cgal_hits},
+          {"gripped", report.gripped},
+          {"held", report.held},
+          {"reason", report.reason.empty() ? json() : json(report.reason)},
+          {"methods", methods}};
 }
 
 // Whether some method of the row counted a check or triangle pair under `checks` or `tri_pairs`
@@ -216,7 +225,14 @@ std::vector<std::string> find_object_files(const std::string& dir) {
 json validate_object_set(const ObjectSetOptions& options, const std::vector<TesterSpec>& testers) {
   const std::vector<std::string> objects = find_object_files(options.dir);
   const Shard shard = options.shard.value_or(Shard{});
-  json rows = json::array();
+  json doc = {{"objects_dir", options.dir},
+              {"hand", options.hand.name},
+              {"template", options.hand.scene},
+              {"settings", settings_json(options, testers)},
+              {"objects", objects},
+              {"shard", {{"index", shard.index}, {"count", shard.count}}},
+              {"rows", json::array()}};
+  json& rows = doc["rows"];
   const std::size_t first = static_cast<std::size_t>(shard.index);
   const std::size_t stride = static_cast<std::size_t>(shard.count);
   for (std::size_t i = first; i < objects.size(); i += stride) {
@@ -243,9 +259,9 @@ json validate_object_set(const ObjectSetOptions& options, const std::vector<Test
             (fs::path(options.out_dir) / fs::path(object).replace_extension()).string();
       }
       const ValidationReport report = validate_scene(run.scene(), testers, validate);
-      if (report.steps_with_contact == 0) {
+      if (report.states_with_contact() == 0) {
         warnings().add("validate_no_contact",
-                       file + ": no grasp step had a contact to check (no pair ever touched)",
+                       file + ": no checked state had a contact to check (no pair ever touched)",
                        "scene");
       }
       rows.push_back(checked_row(object, run.description().scene, report));
@@ -253,14 +269,8 @@ json validate_object_set(const ObjectSetOptions& options, const std::vector<Test
       rows.push_back(refused_row(object, e.what()));
       warnings().add("object_refused", e.what(), "scene");
     }
+    if (options.on_row) options.on_row(doc, rows.back());
   }
-  json doc = {{"objects_dir", options.dir},
-              {"hand", options.hand.name},
-              {"template", options.hand.scene},
-              {"settings", settings_json(options, testers)},
-              {"objects", objects},
-              {"shard", {{"index", shard.index}, {"count", shard.count}}},
-              {"rows", rows}};
   set_verdicts(doc);
   return doc;
 }
@@ -337,29 +347,54 @@ json merge_object_shards(const std::vector<std::string>& files) {
   return merged;
 }
 
-std::string object_set_text(const json& doc) {
+namespace {
+
+// The width of the object column: the longest name among the shard's objects.
+std::size_t object_width(const json& doc) {
+  const std::size_t first = doc["shard"]["index"].get<std::size_t>();
+  const std::size_t stride = doc["shard"]["count"].get<std::size_t>();
+  std::size_t width = 6;
+  const json& objects = doc["objects"];
+  for (std::size_t i = first; i < objects.size(); i += stride) {
+    width = std::max(width, objects[i].get<std::string>().size());
+  }
+  return width;
+}
+
+}  // namespace
+
+std::string object_set_head(const json& doc) {
   std::ostringstream out;
   const json& settings = doc["settings"];
-  const json& rows = doc["rows"];
+  const std::size_t count = doc["shard"]["count"].get<std::size_t>();
+  const std::size_t index = doc["shard"]["index"].get<std::size_t>();
+  const std::size_t objects = doc["objects"].size();
+  const std::size_t in_shard = objects > index ? (objects - index + count - 1) / count : 0;
   out << "# graspcd validate --objects " << doc["objects_dir"].get<std::string>() << ": "
-      << rows.size() << " of " << doc["objects"].size() << " objects";
-  if (doc["shard"]["count"].get<int>() > 1) {
-    out << " (shard " << doc["shard"]["index"].get<int>() << " of "
-        << doc["shard"]["count"].get<int>() << ")";
-  }
+      << in_shard << " of " << objects << " objects";
+  if (count > 1) out << " (shard " << index << " of " << count << ")";
   out << " in the " << doc["hand"].get<std::string>() << " template, "
       << (settings["fit"].get<bool>() ? "fitted" : "at the given scale") << "; truth: CGAL "
       << exact::cgal_version() << '\n';
-  std::size_t width = 6;
-  for (const json& r : rows) width = std::max(width, r["object"].get<std::string>().size());
-  out << std::left << std::setw(static_cast<int>(width) + 2) << "object" << std::right
+  out << std::left << std::setw(static_cast<int>(object_width(doc)) + 2) << "object" << std::right
       << std::setw(9) << "scale" << std::setw(7) << "steps" << std::setw(9) << "contact"
       << std::setw(7) << "cgal";
   for (const json& m : settings["methods"]) {
     out << std::setw(22) << m.get<std::string>() + " missed/false";
   }
   out << "  verdict\n";
-  for (const json& r : rows) object_row(out, r, width, settings["methods"].size());
+  return out.str();
+}
+
+std::string object_set_row(const json& doc, const json& row) {
+  std::ostringstream out;
+  object_row(out, row, object_width(doc), doc["settings"]["methods"].size());
+  return out.str();
+}
+
+std::string object_set_tail(const json& doc) {
+  std::ostringstream out;
+  const json& rows = doc["rows"];
   int refused = 0;
   for (const json& r : rows) {
     if (r["status"] == "checked") continue;
@@ -376,6 +411,12 @@ std::string object_set_text(const json& doc) {
       << "; " << checked << (checked == 1 ? " object" : " objects") << " checked, " << refused
       << " refused\n";
   return out.str();
+}
+
+std::string object_set_text(const json& doc) {
+  std::string text = object_set_head(doc);
+  for (const json& r : doc["rows"]) text += object_set_row(doc, r);
+  return text + object_set_tail(doc);
 }
 
 void write_object_set(const std::string& out_dir, json doc) {

@@ -3,7 +3,7 @@
 // sorted by its path relative to DIR) goes through the `grasp --object` run (grasp/object_run.h):
 // placed in the template hand's scene with the same placement options (--fit, --scale, --up,
 // --yaw), its start state checked, then validate_scene() (validate.h) runs the grasp and checks
-// every registered pair at every closing grasp step.
+// every registered pair through the closing and the squeeze (validate.h's default phases).
 //
 // A row: the object's scale and size, the closing grasp steps checked, those at which CGAL found
 // some pair intersecting (steps with contact), CGAL's hits (pair checks that intersect, summed
@@ -42,6 +42,9 @@ struct ObjectSetOptions {
   std::string out_dir;
   std::optional<Shard> shard;                   // only this shard of the set
   std::function<void(const std::string&)> log;  // progress, one line per object
+  // Called after each object with the document so far (its rows up to this one, no verdicts
+  // yet) and the object's row, e.g. to print the row at once (object_set_row).
+  std::function<void(const nlohmann::json& doc, const nlohmann::json& row)> on_row;
 };
 
 // The mesh files under `dir` (every extension io::load_mesh reads), relative to it ('/'
@@ -56,8 +59,8 @@ std::vector<std::string> find_object_files(const std::string& dir);
 // Validates the objects of the set (of the shard) with every tester. The document: objects_dir,
 // hand, template, settings (scale, fit, up, yaw, pose, max_steps, methods), objects (the whole
 // set, relative paths), shard {index, count}, rows (this shard's objects in set order: object,
-// status "checked" or "refused", error, scale, fitted, size, steps, steps_with_contact,
-// cgal_hits, gripped, held, reason, methods: method, checks, agree, missed, false_contacts,
+// status "checked" or "refused", error, scale, fitted, size, steps, steps_with_contact, states and
+// states_with_contact (every phase checked: the closing's grasp steps and the squeeze's), cgal_hits, gripped, held, reason, methods: method, checks, agree, missed, false_contacts,
 // missed_tri_pairs, false_tri_pairs), missed_any and false_any (some method missed a collision
 // or a triangle pair, or gave a false one, on some object), refused (the objects refused). No
 // envelope (the caller adds it when it writes the document). Throws std::invalid_argument for a bad
@@ -75,6 +78,12 @@ nlohmann::json merge_object_shards(const std::vector<std::string>& files);
 // The set's table (`validate --objects` without --json): a header, one row per object, the
 // refusals, the result.
 std::string object_set_text(const nlohmann::json& doc);
+// The same in three parts, for a table printed as its rows come: the header and the column
+// names (from the document's set, settings and shard; no rows needed), one row, and the
+// refusals and the result (from the finished document).
+std::string object_set_head(const nlohmann::json& doc);
+std::string object_set_row(const nlohmann::json& doc, const nlohmann::json& row);
+std::string object_set_tail(const nlohmann::json& doc);
 
 // The document with its envelope as OUT/objects.json, or OUT/objects.shard-i-of-N.json for a
 // shard. Throws io::InputError naming the folder or file that cannot be written.

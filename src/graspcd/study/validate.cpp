@@ -102,8 +102,10 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
   if (!out) throw std::runtime_error(path.string() + ": cannot write");
 }
 
-std::string file_stem(const std::string& method, const std::string& pair, int step) {
-  std::string s = method + "_" + pair + "_step" + std::to_string(step);
+std::string file_stem(const std::string& method, const std::string& pair,
+                      const std::string& phase, long step) {
+  std::string s = method + "_" + pair + (phase == "closing" ? "" : "_" + phase) + "_step" +
+                  std::to_string(step);
   for (char& c : s) {
     if (c == '/' || c == ' ') c = '-';
   }
@@ -137,10 +139,15 @@ class Validator {
   Validator(const std::vector<TesterSpec>& specs, const ValidateOptions& options)
       : specs_(specs), options_(options) {}
 
-  // After closing grasp step `step`: every pair of `registry` (built on the model `d` steps, or on
-  // a copy of it with the same geom ids) at the poses of `d`.
-  void check_step(const mujoco::Registry& registry, const mjData* d, int step) {
+  // After step `step` of `phase` (a closing grasp step, or a physics step of a later phase):
+  // every pair of `registry` (built on the model `d` steps, or on a copy of it with the same geom
+  // ids) at the poses of `d`.
+  // `group` is the ValidatePhases name that counts it (the settling's states count in the
+  // squeeze's), `phase` the grasp's phase that disagreements name.
+  void check_step(const mujoco::Registry& registry, const mjData* d, const std::string& group,
+                  const std::string& phase, long step) {
     if (pairs_.empty()) set_up(registry);
+    phase_ = phase;
     bool any_contact = false;
     for (std::size_t i = 0; i < pairs_.size(); ++i) {
       const CheckedPair& p = pairs_[i];
@@ -154,9 +161,18 @@ class Validator {
       const bool truth = p.box_box ? check_boxes(i, pose, step) : check_trees(i, pose, step);
       any_contact = any_contact || truth;
     }
-    report_.steps = step;
-    if (any_contact) ++report_.steps_with_contact;
-    if (options_.on_step) options_.on_step(step);
+    PhaseChecks* checks = nullptr;
+    for (PhaseChecks& c : report_.phases) {
+      if (c.phase == group) checks = &c;
+    }
+    if (!checks) throw std::logic_error("validate: phase " + group + " was not asked for");
+    ++checks->states;
+    checks->with_contact += any_contact;
+    if (group == "closing") {
+      report_.steps = static_cast<int>(step);
+      report_.steps_with_contact += any_contact;
+    }
+    if (options_.on_step) options_.on_step(phase, step);
   }
 
   ValidationReport finish(const grasp::GraspResult& grasp) {
@@ -220,7 +236,7 @@ class Validator {
   }
 
   // Checks pair i at this step with every tester; returns CGAL's answer (the pair intersects).
-  bool check_trees(std::size_t i, const Pose& pose, int step) {
+  bool check_trees(std::size_t i, const Pose& pose, long step) {
     const CheckedPair& p = pairs_[i];
     Clock::time_point start = Clock::now();
     std::vector<Triangle> moved = *p.faces2;
@@ -240,14 +256,15 @@ class Validator {
       row.false_tri_pairs += extra;
       if (!agree && !row.disagreed) {
         row.disagreed = true;
-        row.first = Disagreement{step, !truth.empty(), hit, truth.size(), found_.size(), {}, {}};
+        row.first = Disagreement{phase_, step, !truth.empty(), hit, truth.size(), found_.size(),
+                                 {},     {}};
         if (!options_.out_dir.empty()) write_tree_case(k, row, p, pose, step);
       }
     }
     return !truth.empty();
   }
 
-  bool check_boxes(std::size_t i, const Pose& pose, int step) {
+  bool check_boxes(std::size_t i, const Pose& pose, long step) {
     const CheckedPair& p = pairs_[i];
     Obb a;
     a.half = p.half1;
@@ -265,7 +282,7 @@ class Validator {
       tally(row, truth, hit, hit == truth);
       if (hit != truth && !row.disagreed) {
         row.disagreed = true;
-        row.first = Disagreement{step, truth, hit, 0, 0, {}, {}};
+        row.first = Disagreement{phase_, step, truth, hit, 0, 0, {}, {}};
         if (!options_.out_dir.empty()) write_box_case(k, row, a, b, step);
       }
     }
@@ -293,43 +310,46 @@ class Validator {
     return dir;
   }
 
+  // "closing grasp step 12", "squeeze physics step 40".
+  std::string where(long step) const {
+    return phase_ + (phase_ == "closing" ? " grasp step " : " physics step ") + std::to_string(step);
+  }
+
   void write_tree_case(std::size_t k, PairRow& row, const CheckedPair& p, const Pose& pose,
-                       int step) {
+                       long step) {
     const std::filesystem::path dir = out_dir();
-    const std::string stem = file_stem(specs_[k].name, row.pair, step);
+    const std::string stem = file_stem(specs_[k].name, row.pair, phase_, step);
     const std::filesystem::path a = dir / (stem + "_a.obj");
     const std::filesystem::path b = dir / (stem + "_b.obj");
     const std::filesystem::path poses = dir / (stem + "_pose.txt");
-    const std::string where = " at closing grasp step " + std::to_string(step) + " of " +
-                              report_.scene +
+    const std::string at = " at " + where(step) + " of " + report_.scene +
                               ": MuJoCo's vertices in the geom frame, face order "
                               "kept, each coordinate printed to read back as the same double";
     const std::string name1 = row.pair.substr(0, row.pair.find('/'));
     const std::string name2 = row.pair.substr(row.pair.find('/') + 1);
-    write_obj(a, *p.faces1, "graspcd validate: geom " + name1 + where);
-    write_obj(b, *p.faces2, "graspcd validate: geom " + name2 + where);
+    write_obj(a, *p.faces1, "graspcd validate: geom " + name1 + at);
+    write_obj(b, *p.faces2, "graspcd validate: geom " + name2 + at);
     std::string line;
     append_matrix(line, pose.R);
     append_vector(line, pose.t);
-    write_text(poses, "# graspcd validate: " + name2 + " in " + name1 + "'s frame at step " +
-                          std::to_string(step) + ": R row-major (9), t (3)\n" + line.substr(1) +
-                          "\n");
+    write_text(poses, "# graspcd validate: " + name2 + " in " + name1 + "'s frame at " +
+                          where(step) + ": R row-major (9), t (3)\n" + line.substr(1) + "\n");
     row.first.files = {a.string(), b.string(), poses.string()};
     row.first.command = "graspcd meshpair " + quoted(a.string()) + " " + quoted(b.string()) + " " +
                         specs_[k].cli_args + " --poses " + quoted(poses.string());
   }
 
-  void write_box_case(std::size_t k, PairRow& row, const Obb& a, const Obb& b, int step) {
+  void write_box_case(std::size_t k, PairRow& row, const Obb& a, const Obb& b, long step) {
     const std::filesystem::path file =
-        out_dir() / (file_stem(specs_[k].name, row.pair, step) + "_boxes.txt");
+        out_dir() / (file_stem(specs_[k].name, row.pair, phase_, step) + "_boxes.txt");
     std::string line;
     for (const Obb* box : {&a, &b}) {
       append_vector(line, box->center);
       append_matrix(line, box->axes);
       append_vector(line, box->half);
     }
-    write_text(file, "# graspcd validate: the boxes of " + row.pair + " at closing grasp step " +
-                         std::to_string(step) + " of " + report_.scene +
+    write_text(file, "# graspcd validate: the boxes of " + row.pair + " at " + where(step) +
+                         " of " + report_.scene +
                          " in the first geom's frame: centre, R row-major, half-extents of each\n" +
                          line.substr(1) + "\n");
     row.first.files = {file.string()};
@@ -343,6 +363,7 @@ class Validator {
   std::vector<std::unique_ptr<PairTester>> testers_;
   std::map<const mujoco::MeshTree*, std::vector<Triangle>> faces_;
   std::vector<TrianglePair> found_;
+  std::string phase_ = "closing";  // of the state being checked
 };
 
 }  // namespace
@@ -371,6 +392,59 @@ bool ValidationReport::missed_any() const {
                      [](const MethodTable& t) { return t.missed_any(); });
 }
 
+ValidatePhases parse_validate_phases(const std::string& text) {
+  if (text == "all") return ValidatePhases{true, true, true, true};
+  ValidatePhases phases{false, false, false, false};
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', begin), text.size());
+    const std::string name = text.substr(begin, comma - begin);
+    bool* phase = name == "closing"   ? &phases.closing
+                  : name == "squeeze" ? &phases.squeeze
+                  : name == "lift"    ? &phases.lift
+                  : name == "hold"    ? &phases.hold
+                                      : nullptr;
+    if (!phase) {
+      throw std::invalid_argument("'" + name +
+                                  "' is not a phase: give all, or some of closing, squeeze, lift, "
+                                  "hold separated by commas");
+    }
+    if (*phase) throw std::invalid_argument("phase '" + name + "' is given twice");
+    *phase = true;
+    begin = comma + 1;
+  }
+  return phases;
+}
+
+int ValidationReport::states_with_contact() const {
+  int n = 0;
+  for (const PhaseChecks& c : phases) n += c.with_contact;
+  return n;
+}
+
+namespace {
+
+// The phases asked for, in the grasp's order, with the physics steps between two checks.
+std::vector<PhaseChecks> asked_phases(const ValidatePhases& phases, int every) {
+  std::vector<PhaseChecks> out;
+  if (phases.closing) out.push_back({"closing", 0, 0, 0});
+  if (phases.squeeze) out.push_back({"squeeze", 0, 0, every});
+  if (phases.lift) out.push_back({"lift", 0, 0, every});
+  if (phases.hold) out.push_back({"hold", 0, 0, every});
+  return out;
+}
+
+// Whether the grasp's phase `record_phase` (GraspOptions::on_physics_step's name) is checked,
+// and under which of ValidatePhases' names: the settling belongs to the squeeze.
+const char* checked_phase(const ValidatePhases& phases, const std::string& record_phase) {
+  if ((record_phase == "squeeze" || record_phase == "settle") && phases.squeeze) return "squeeze";
+  if (record_phase == "lift" && phases.lift) return "lift";
+  if (record_phase == "hold" && phases.hold) return "hold";
+  return nullptr;
+}
+
+}  // namespace
+
 ValidationReport validate_scene(const std::string& scene, const std::vector<TesterSpec>& testers,
                                 const ValidateOptions& options) {
   Validator validator(testers, options);
@@ -379,45 +453,59 @@ ValidationReport validate_scene(const std::string& scene, const std::vector<Test
   grasp.config_path = options.config_path;
   grasp.max_steps = options.max_steps;
   grasp.names = options.names;
+  const int every = std::max(1, grasp.physics_steps_per_grasp_step);
+  validator.report().phases = asked_phases(options.phases, every);
   const std::string config =
       options.config_path.empty() ? mujoco::pair_config_path(scene) : options.config_path;
-  if (options.decomposed_dir.empty()) {
-    grasp.on_grasp_step = [&validator](const mjModel* m, const mjData* d, int step) {
+  // The registry whose pairs are checked, found on the first check: the served run's own, or for
+  // a decomposed run (native, no registry) one of the config built, unattached, on a copy of its
+  // model with the true object colliding.
+  const bool decomposed = !options.decomposed_dir.empty();
+  const mujoco::RegistryConfig registry_config =
+      decomposed ? mujoco::load_registry_config(config) : mujoco::RegistryConfig{};
+  mujoco::ModelPtr truth;
+  std::unique_ptr<mujoco::Registry> own_registry;
+  const auto registry_of = [&](const mjModel* m) -> const mujoco::Registry& {
+    if (!decomposed) {
       const mujoco::Registry* registry = mujoco::find_registry(m);
       if (!registry) {
         throw std::runtime_error("validate: no pair registry is attached to the model");
       }
-      validator.check_step(*registry, d, step);
-    };
-    const grasp::GraspResult result = grasp::run_grasp(scene, grasp);
-    ValidationReport report = validator.finish(result);
-    report.config = config;
-    report.max_steps = options.max_steps;
-    report.cut_short = report.steps >= options.max_steps;
-    return report;
-  }
-  // The decomposed grasp runs natively (no registry): the pairs and trees come from a registry of
-  // the config built, unattached, on a copy of its model with the true object colliding.
-  const mujoco::RegistryConfig registry_config = mujoco::load_registry_config(config);
-  mujoco::ModelPtr truth;
-  std::unique_ptr<mujoco::Registry> registry;
-  grasp.on_grasp_step = [&](const mjModel* m, const mjData* d, int step) {
-    if (!registry) {
-      truth = grasp::true_object_model(m);
-      registry = std::make_unique<mujoco::Registry>(truth.get(), registry_config, config);
+      return *registry;
     }
-    validator.check_step(*registry, d, step);
+    if (!own_registry) {
+      truth = grasp::true_object_model(m);
+      own_registry = std::make_unique<mujoco::Registry>(truth.get(), registry_config, config);
+    }
+    return *own_registry;
   };
-  grasp::DecomposedScene decomposed;
+  if (options.phases.closing) {
+    grasp.on_grasp_step = [&](const mjModel* m, const mjData* d, int step) {
+      validator.check_step(registry_of(m), d, "closing", "closing", step);
+    };
+  }
+  if (options.phases.squeeze || options.phases.lift || options.phases.hold) {
+    grasp.on_physics_step = [&](const mjModel* m, const mjData* d, const std::string& phase,
+                                long step) {
+      const char* checked = checked_phase(options.phases, phase);
+      if (checked && step % every == 0) {
+        validator.check_step(registry_of(m), d, checked, phase, step);
+      }
+    };
+  }
+  grasp::DecomposedScene pieces;
   const grasp::GraspResult result =
-      grasp::run_decomposed_grasp(scene, options.decomposed_dir, grasp, &decomposed);
-  registry.reset();  // before its model
+      decomposed ? grasp::run_decomposed_grasp(scene, options.decomposed_dir, grasp, &pieces)
+                 : grasp::run_grasp(scene, grasp);
+  own_registry.reset();  // before its model
   ValidationReport report = validator.finish(result);
   report.config = config;
   report.max_steps = options.max_steps;
-  report.cut_short = report.steps >= options.max_steps;
-  report.decomposed_dir = options.decomposed_dir;
-  report.decomposed = decomposed;
+  report.cut_short = result.closing == "max_steps";
+  if (decomposed) {
+    report.decomposed_dir = options.decomposed_dir;
+    report.decomposed = pieces;
+  }
   return report;
 }
 

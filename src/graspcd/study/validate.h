@@ -16,6 +16,10 @@
 // - Box-box pairs: each tester's box test on the two geom boxes, against CGAL's exact overlap.
 // - Each tester keeps its state across the steps of the run (warm planes, caches), one per pair,
 //   as the served pairs' detectors do.
+// - The phases (ValidatePhases, `--phases`): the closing after each grasp step; the squeeze (with
+//   its settling), the lift and the hold after every `physics_steps_per_grasp_step`-th physics
+//   step of each (a grasp step's worth, 5 steps of 2 ms by default). By default the closing and
+//   the squeeze, where the hand presses on what it closed on.
 // A method that answered the same as the truth at every pair and step lets the grasp take the same
 // path whichever method drives it, so checking every method on one trajectory is the same as
 // running the grasp with each up to its first disagreement.
@@ -61,14 +65,28 @@ struct TesterSpec {
 // A served pair's Detector of `method` with `options`, one per pair.
 TesterSpec detector_tester(Method method, const DetectorOptions& options);
 
+// Which phases of the grasp are checked (grasp.h's phases; the squeeze includes its settling).
+struct ValidatePhases {
+  bool closing = true;
+  bool squeeze = true;
+  bool lift = false;
+  bool hold = false;
+};
+
+// `--phases` text: "all" or a comma-separated list of closing, squeeze, lift, hold (none twice,
+// at least one). Throws std::invalid_argument saying what is wrong.
+ValidatePhases parse_validate_phases(const std::string& text);
+
 struct ValidateOptions {
   std::string config_path;  // pair config; empty: SCENE.pairs.json beside the scene
   int max_steps = 400;      // most closing grasp steps
+  ValidatePhases phases;
   // Where the first disagreement of each (method, pair) is written (created when needed); empty:
   // nothing is written.
   std::string out_dir;
-  // Called after each checked grasp step (1-based), e.g. for progress.
-  std::function<void(int step)> on_step;
+  // Called after each checked state: its phase ("closing", "squeeze", "lift", "hold") and its
+  // step (the closing's grasp step, or the phase's physics step), e.g. for progress.
+  std::function<void(const std::string& phase, long step)> on_step;
   // A folder written by `graspcd decompose` (empty: none): the grasp runs with the object replaced
   // by its convex pieces under MuJoCo's native collision (grasp::run_decomposed_grasp, as
   // `graspcd grasp --decomposed`), and at its poses every registered pair is checked on the true
@@ -80,7 +98,8 @@ struct ValidateOptions {
 
 // The first disagreement of a (method, pair), and the files that reproduce it.
 struct Disagreement {
-  int step = 0;                   // 1-based closing grasp step
+  std::string phase = "closing";  // ValidatePhases' name of its phase
+  long step = 0;                  // 1-based closing grasp step, or physics step of the phase
   bool truth = false;             // CGAL: the pair intersects
   bool answer = false;            // the method
   std::uint64_t truth_pairs = 0;  // intersecting triangle pairs (tree pairs)
@@ -98,7 +117,7 @@ struct PairRow {
   int geom1 = 0;
   int geom2 = 0;
   bool box_box = false;
-  int steps = 0;                       // steps checked
+  int steps = 0;                       // states checked (every phase)
   int agree = 0;                       // steps with the same answer and the same triangle pairs
   int truth_hits = 0;                  // steps where CGAL says the pair intersects
   int missed = 0;                      // CGAL intersects, the method says not: a missed collision
@@ -118,12 +137,23 @@ struct MethodTable {
   bool missed_any() const;
 };
 
+// The states checked in one phase.
+struct PhaseChecks {
+  std::string phase;       // "closing", "squeeze", "lift" or "hold"
+  int states = 0;          // states checked (the closing: its grasp steps)
+  int with_contact = 0;    // those at which CGAL found some pair intersecting
+  int physics_steps = 0;   // physics steps between two checked states (the closing: 0, per step)
+};
+
 struct ValidationReport {
   std::string scene;
   std::string config;
   std::string grasp_method;    // the method that drove the grasp
   int steps = 0;               // closing grasp steps checked
   int steps_with_contact = 0;  // those at which CGAL found some pair intersecting
+  // Every phase asked for, in the grasp's order (the closing's entry has `steps`).
+  std::vector<PhaseChecks> phases;
+  int states_with_contact() const;  // over every phase
   // ValidateOptions::max_steps, and whether the closing ran that many grasp steps: --max-steps
   // cut it short (the hand had not said it was done before).
   int max_steps = 0;

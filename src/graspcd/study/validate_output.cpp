@@ -13,7 +13,19 @@ namespace {
 using json = nlohmann::json;
 
 std::string first_text(const PairRow& r) {
-  return r.disagreed ? std::to_string(r.first.step) : "-";
+  if (!r.disagreed) return "-";
+  return (r.first.phase == "closing" ? "" : r.first.phase + " ") + std::to_string(r.first.step);
+}
+
+// "the closing, 183 grasp steps, each after its last physics step" and the like for a phase.
+std::string phase_text(const PhaseChecks& c) {
+  if (c.phase == "closing") {
+    return "the closing, " + std::to_string(c.states) +
+           " grasp steps, each after its last physics step";
+  }
+  return (c.phase == "squeeze" ? std::string("the squeeze and its settling") : "the " + c.phase) +
+         ", " + std::to_string(c.states) + " states, one every " +
+         std::to_string(c.physics_steps) + " physics steps";
 }
 
 // The header line (and the decomposed scene's).
@@ -23,13 +35,23 @@ void text_header(std::ostream& out, const ValidationReport& report) {
       << report.grasp_method << (report.gripped ? " (gripped)" : " (not gripped)")
       << "; truth: CGAL " << exact::cgal_version()
       << " on the same triangles or boxes in the same poses\n";
-  out << "# checked: the closing, " << report.steps << " grasp steps, each after its last physics "
-      << "step; "
-      << (report.cut_short
-              ? "--max-steps " + std::to_string(report.max_steps) +
-                    " cut the closing short (the hand had not finished closing)"
-              : "the closing ended before --max-steps " + std::to_string(report.max_steps))
-      << "; the squeeze, the lift and the hold are not checked\n";
+  out << "# checked: ";
+  std::vector<std::string> unchecked = {"the closing", "the squeeze", "the lift", "the hold"};
+  for (const PhaseChecks& c : report.phases) {
+    out << phase_text(c) << "; ";
+    unchecked.erase(std::find(unchecked.begin(), unchecked.end(), "the " + c.phase));
+  }
+  out << (report.cut_short ? "--max-steps " + std::to_string(report.max_steps) +
+                                 " cut the closing short (the hand had not finished closing)"
+                           : "the closing ended before --max-steps " +
+                                 std::to_string(report.max_steps));
+  for (std::size_t i = 0; i < unchecked.size(); ++i) {
+    out << (i == 0 ? "; " : i + 1 == unchecked.size() ? " and " : ", ") << unchecked[i];
+  }
+  if (!unchecked.empty()) {
+    out << (unchecked.size() == 1 ? " is" : " are") << " not checked (--phases all checks every phase)";
+  }
+  out << '\n';
   if (report.decomposed.pieces > 0) {
     out << "# decomposed: the grasp ran natively with " << report.decomposed.replaced_geoms
         << " geom(s) of " << report.decomposed.source << " colliding as "
@@ -75,8 +97,9 @@ void method_summaries(std::ostream& out, const ValidationReport& report) {
         << t.seconds << " s of queries\n";
     for (const PairRow& r : t.rows) {
       if (!r.disagreed) continue;
-      out << "# first disagreement of " << t.method << " on " << r.pair << ": step " << r.first.step
-          << ", CGAL " << (r.first.truth ? "intersect" : "disjoint");
+      out << "# first disagreement of " << t.method << " on " << r.pair << ": "
+          << (r.first.phase == "closing" ? "step " : r.first.phase + " physics step ")
+          << r.first.step << ", CGAL " << (r.first.truth ? "intersect" : "disjoint");
       if (!r.box_box) out << " (" << r.first.truth_pairs << " triangle pairs)";
       out << ", " << t.method << ' ' << (r.first.answer ? "intersect" : "disjoint");
       if (!r.box_box) out << " (" << r.first.answer_pairs << " triangle pairs)";
@@ -106,7 +129,8 @@ json pair_json(const PairRow& r) {
               {"false_tri_pairs", r.false_tri_pairs},
               {"first_disagreement", nullptr}};
   if (r.disagreed) {
-    row["first_disagreement"] = {{"step", r.first.step},
+    row["first_disagreement"] = {{"phase", r.first.phase},
+                                 {"step", r.first.step},
                                  {"truth", r.first.truth},
                                  {"answer", r.first.answer},
                                  {"truth_pairs", r.first.truth_pairs},
@@ -124,10 +148,15 @@ std::string validation_text(const ValidationReport& report) {
   text_header(out, report);
   pair_table(out, report);
   method_summaries(out, report);
-  out << "# contacts: " << report.steps_with_contact << " of " << report.steps
-      << " grasp steps had a contact to check\n";
+  out << "# contacts: ";
+  for (std::size_t i = 0; i < report.phases.size(); ++i) {
+    const PhaseChecks& c = report.phases[i];
+    out << (i == 0 ? "" : ", ") << c.with_contact << " of " << c.states
+        << (c.phase == "closing" ? " closing grasp steps" : " " + c.phase + " states");
+  }
+  out << " had a contact to check\n";
   out << "# result: " << (report.missed_any() ? "MISSED COLLISIONS" : "no missed collision")
-      << (report.steps_with_contact == 0 ? " (nothing touched: nothing was checked)" : "")
+      << (report.states_with_contact() == 0 ? " (nothing touched: nothing was checked)" : "")
       << "; CGAL " << std::fixed << std::setprecision(2) << report.exact_seconds
       << " s, the methods " << report.tester_seconds << " s\n";
   if (report.nonfinite_skips > 0) {
@@ -147,12 +176,22 @@ json validation_json(const ValidationReport& report) {
                        {"seconds", t.seconds},
                        {"pairs", rows}});
   }
+  json phase_names = json::array();
+  json checks = json::array();
+  for (const PhaseChecks& c : report.phases) {
+    phase_names.push_back(c.phase);
+    checks.push_back({{"phase", c.phase},
+                      {"states", c.states},
+                      {"with_contact", c.with_contact},
+                      {"physics_steps", c.physics_steps}});
+  }
   json doc = {{"scene", report.scene},
               {"config", report.config},
               {"grasp_method", report.grasp_method},
               {"steps", report.steps},
               {"steps_with_contact", report.steps_with_contact},
-              {"phases", json::array({"closing"})},
+              {"phases", phase_names},
+              {"checks", checks},
               {"max_steps", report.max_steps},
               {"cut_short", report.cut_short},
               {"gripped", report.gripped},
