@@ -432,8 +432,7 @@ TEST_F(CliTest, ALyingCylinderRestsOnTheTableWhereGraspcdServesThePair) {
   EXPECT_LT(doc.at("true_penetration").at("support_max").get<double>(), 0.002);
   EXPECT_EQ(support_warning(doc), "") << doc.at("warnings");
   const nlohmann::json pairs = nlohmann::json::parse(read_file(dir_ / "kept" / "can.pairs.json"));
-  EXPECT_EQ(pairs.at("pairs").back(),
-            nlohmann::json({{"a", "body:object"}, {"b", "body:table"}}));
+  EXPECT_EQ(pairs.at("pairs").back(), nlohmann::json({{"a", "body:object"}, {"b", "body:table"}}));
 }
 
 // The README's block (60 x 30 x 30 mm) lying flat, --fit into the Robotiq: fitted to the pads'

@@ -271,9 +271,9 @@ TEST_F(ConcaveRobotiq, ValidateSaysWhatItCheckedAndShowsProgress) {
               (dir_ / "kept").string() + "'");
   ASSERT_EQ(written.exit_code, 0) << written.err;
   const fs::path all = dir_ / "all.json";
-  const testing::Outcome whole =
-      run("{ '" + std::string(GRASPCD_EXE) + "' validate '" + (dir_ / "kept" / "block.xml").string() +
-          "' --method sat --phases all --json > '" + all.string() + "'; }");
+  const testing::Outcome whole = run(
+      "{ '" + std::string(GRASPCD_EXE) + "' validate '" + (dir_ / "kept" / "block.xml").string() +
+      "' --method sat --phases all --json > '" + all.string() + "'; }");
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
   const nlohmann::json w = load(all);
   EXPECT_FALSE(w.at("cut_short").get<bool>());

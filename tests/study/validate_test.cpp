@@ -300,11 +300,11 @@ TEST_F(ValidateTest, UsersOwnSceneWithANewObject) {
 
   graspcd::study::ValidateOptions closing;
   closing.phases.squeeze = false;  // the command below checks the squeeze
-  const ValidationReport report = graspcd::study::validate_scene(
-      scene,
-      {graspcd::study::detector_tester(Method::kSat, {}),
-       graspcd::study::detector_tester(Method::kNeuroSatSticky, {})},
-      closing);
+  const ValidationReport report =
+      graspcd::study::validate_scene(scene,
+                                     {graspcd::study::detector_tester(Method::kSat, {}),
+                                      graspcd::study::detector_tester(Method::kNeuroSatSticky, {})},
+                                     closing);
   EXPECT_TRUE(report.gripped);
   EXPECT_FALSE(report.missed_any());
   // The steps with something to check are counted: some, not all (the fingers close from apart).

@@ -205,7 +205,8 @@ void HandRun::run_phase(RunPhase phase, long steps, Targets at, Observe observe)
                                        "the six directions"};
   phase_ = kNames[static_cast<int>(phase)];
   phase_kind_ = phase;
-  const bool call = on_physics_step_ != nullptr && *on_physics_step_ && phase != RunPhase::kDirection;
+  const bool call =
+      on_physics_step_ != nullptr && *on_physics_step_ && phase != RunPhase::kDirection;
   const std::string name = call ? phase_record_name(phase) : std::string();
   for (long i = 1; i <= steps; ++i) {
     at(i);

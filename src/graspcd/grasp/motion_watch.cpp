@@ -22,7 +22,8 @@ double rotation_angle(const std::array<double, 4>& q0, const mjtNum* q) {
 // How far an object tipped from orientation q0 to q, radians: the angle between the world's up
 // direction and where the object's axis that pointed up at q0 points at q. A turn about the up
 // direction (a parallel gripper squaring a yawed block to its pads) is no tip.
-double tip_angle(const std::array<double, 4>& q0, const mjtNum* q, const std::array<double, 3>& up) {
+double tip_angle(const std::array<double, 4>& q0, const mjtNum* q,
+                 const std::array<double, 3>& up) {
   mjtNum r0[9], r[9];
   const mjtNum start[4] = {q0[0], q0[1], q0[2], q0[3]};
   mju_quat2Mat(r0, start);

@@ -4,7 +4,6 @@
 #include <tinyxml2.h>
 
 #include <Eigen/Geometry>
-#include <nlohmann/json.hpp>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -13,6 +12,7 @@
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <stdexcept>

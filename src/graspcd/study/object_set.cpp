@@ -86,21 +86,15 @@ json checked_row(const std::string& object, const grasp::ObjectScene& scene,
   }
   int states = 0;  // every phase's (the closing's grasp steps and the squeeze's states)
   for (const PhaseChecks& c : report.phases) states += c.states;
-  return {{"object", object},
-          {"status", "checked"},
-          {"error", nullptr},
-          {"scale", scene.scale},
-          {"fitted", scene.fitted},
-          {"size", scene.size},
-          {"steps", report.steps},
-          {"steps_with_contact", report.steps_with_contact},
-          {"states", states},
-          {"states_with_contact", report.states_with_contact()},
-          {"cgal_hits", cgal_hits},
-          {"gripped", report.gripped},
-          {"held", report.held},
-          {"reason", report.reason.empty() ? json() : json(report.reason)},
-          {"methods", methods}};
+  return {
+      {"object", object},       {"status", "checked"},
+      {"error", nullptr},       {"scale", scene.scale},
+      {"fitted", scene.fitted}, {"size", scene.size},
+      {"steps", report.steps},  {"steps_with_contact", report.steps_with_contact},
+      {"states", states},       {"states_with_contact", report.states_with_contact()},
+      {"cgal_hits", cgal_hits}, {"gripped", report.gripped},
+      {"held", report.held},    {"reason", report.reason.empty() ? json() : json(report.reason)},
+      {"methods", methods}};
 }
 
 // Whether some method of the row counted a check or triangle pair under `checks` or `tri_pairs`

@@ -60,7 +60,8 @@ std::vector<std::string> find_object_files(const std::string& dir);
 // hand, template, settings (scale, fit, up, yaw, pose, max_steps, methods), objects (the whole
 // set, relative paths), shard {index, count}, rows (this shard's objects in set order: object,
 // status "checked" or "refused", error, scale, fitted, size, steps, steps_with_contact, states and
-// states_with_contact (every phase checked: the closing's grasp steps and the squeeze's), cgal_hits, gripped, held, reason, methods: method, checks, agree, missed, false_contacts,
+// states_with_contact (every phase checked: the closing's grasp steps and the squeeze's),
+// cgal_hits, gripped, held, reason, methods: method, checks, agree, missed, false_contacts,
 // missed_tri_pairs, false_tri_pairs), missed_any and false_any (some method missed a collision
 // or a triangle pair, or gave a false one, on some object), refused (the objects refused). No
 // envelope (the caller adds it when it writes the document). Throws std::invalid_argument for a bad

@@ -102,8 +102,8 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
   if (!out) throw std::runtime_error(path.string() + ": cannot write");
 }
 
-std::string file_stem(const std::string& method, const std::string& pair,
-                      const std::string& phase, long step) {
+std::string file_stem(const std::string& method, const std::string& pair, const std::string& phase,
+                      long step) {
   std::string s = method + "_" + pair + (phase == "closing" ? "" : "_" + phase) + "_step" +
                   std::to_string(step);
   for (char& c : s) {
@@ -256,8 +256,8 @@ class Validator {
       row.false_tri_pairs += extra;
       if (!agree && !row.disagreed) {
         row.disagreed = true;
-        row.first = Disagreement{phase_, step, !truth.empty(), hit, truth.size(), found_.size(),
-                                 {},     {}};
+        row.first =
+            Disagreement{phase_, step, !truth.empty(), hit, truth.size(), found_.size(), {}, {}};
         if (!options_.out_dir.empty()) write_tree_case(k, row, p, pose, step);
       }
     }
@@ -312,7 +312,8 @@ class Validator {
 
   // "closing grasp step 12", "squeeze physics step 40".
   std::string where(long step) const {
-    return phase_ + (phase_ == "closing" ? " grasp step " : " physics step ") + std::to_string(step);
+    return phase_ + (phase_ == "closing" ? " grasp step " : " physics step ") +
+           std::to_string(step);
   }
 
   void write_tree_case(std::size_t k, PairRow& row, const CheckedPair& p, const Pose& pose,
@@ -323,8 +324,8 @@ class Validator {
     const std::filesystem::path b = dir / (stem + "_b.obj");
     const std::filesystem::path poses = dir / (stem + "_pose.txt");
     const std::string at = " at " + where(step) + " of " + report_.scene +
-                              ": MuJoCo's vertices in the geom frame, face order "
-                              "kept, each coordinate printed to read back as the same double";
+                           ": MuJoCo's vertices in the geom frame, face order "
+                           "kept, each coordinate printed to read back as the same double";
     const std::string name1 = row.pair.substr(0, row.pair.find('/'));
     const std::string name2 = row.pair.substr(row.pair.find('/') + 1);
     write_obj(a, *p.faces1, "graspcd validate: geom " + name1 + at);

@@ -139,10 +139,10 @@ struct MethodTable {
 
 // The states checked in one phase.
 struct PhaseChecks {
-  std::string phase;       // "closing", "squeeze", "lift" or "hold"
-  int states = 0;          // states checked (the closing: its grasp steps)
-  int with_contact = 0;    // those at which CGAL found some pair intersecting
-  int physics_steps = 0;   // physics steps between two checked states (the closing: 0, per step)
+  std::string phase;      // "closing", "squeeze", "lift" or "hold"
+  int states = 0;         // states checked (the closing: its grasp steps)
+  int with_contact = 0;   // those at which CGAL found some pair intersecting
+  int physics_steps = 0;  // physics steps between two checked states (the closing: 0, per step)
 };
 
 struct ValidationReport {

@@ -24,8 +24,8 @@ std::string phase_text(const PhaseChecks& c) {
            " grasp steps, each after its last physics step";
   }
   return (c.phase == "squeeze" ? std::string("the squeeze and its settling") : "the " + c.phase) +
-         ", " + std::to_string(c.states) + " states, one every " +
-         std::to_string(c.physics_steps) + " physics steps";
+         ", " + std::to_string(c.states) + " states, one every " + std::to_string(c.physics_steps) +
+         " physics steps";
 }
 
 // The header line (and the decomposed scene's).
@@ -41,15 +41,16 @@ void text_header(std::ostream& out, const ValidationReport& report) {
     out << phase_text(c) << "; ";
     unchecked.erase(std::find(unchecked.begin(), unchecked.end(), "the " + c.phase));
   }
-  out << (report.cut_short ? "--max-steps " + std::to_string(report.max_steps) +
-                                 " cut the closing short (the hand had not finished closing)"
-                           : "the closing ended before --max-steps " +
-                                 std::to_string(report.max_steps));
+  out << (report.cut_short
+              ? "--max-steps " + std::to_string(report.max_steps) +
+                    " cut the closing short (the hand had not finished closing)"
+              : "the closing ended before --max-steps " + std::to_string(report.max_steps));
   for (std::size_t i = 0; i < unchecked.size(); ++i) {
     out << (i == 0 ? "; " : i + 1 == unchecked.size() ? " and " : ", ") << unchecked[i];
   }
   if (!unchecked.empty()) {
-    out << (unchecked.size() == 1 ? " is" : " are") << " not checked (--phases all checks every phase)";
+    out << (unchecked.size() == 1 ? " is" : " are")
+        << " not checked (--phases all checks every phase)";
   }
   out << '\n';
   if (report.decomposed.pieces > 0) {
