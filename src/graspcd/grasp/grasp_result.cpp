@@ -8,13 +8,6 @@
 
 namespace graspcd::grasp {
 
-namespace {
-
-constexpr int kFingers = 4;
-constexpr int kSegmentsPerFinger = 3;
-
-}  // namespace
-
 const std::array<std::string, kFingerSegments>& finger_segment_names() {
   static const std::array<std::string, kFingerSegments> names = [] {
     std::array<std::string, kFingerSegments> out;

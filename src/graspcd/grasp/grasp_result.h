@@ -24,8 +24,10 @@
 
 namespace graspcd::grasp {
 
-inline constexpr double kGraspStepRad = 0.003;  // the paper's grasp step
-inline constexpr int kFingerSegments = 12;      // finger{1..4}_{A,B,C}
+inline constexpr double kGraspStepRad = 0.003;                         // the paper's grasp step
+inline constexpr int kFingers = 4;                                     // finger1..finger4
+inline constexpr int kSegmentsPerFinger = 3;                           // _A, _B, _C
+inline constexpr int kFingerSegments = kFingers * kSegmentsPerFinger;  // finger{1..4}_{A,B,C}
 // The verdicts (verdicts.h; docs/design.md, "Semantics"): the share of the hand's travel the
 // object's grip point must rise, and the most the object may move in the hand during the hold (m).
 inline constexpr double kHeldRiseShare = 0.8;

@@ -9,8 +9,6 @@ namespace graspcd::grasp {
 namespace {
 
 constexpr int kArmJoints = 3;
-constexpr int kFingers = 4;
-constexpr int kSegmentsPerFinger = 3;
 
 std::vector<std::string> joint_names() {
   std::vector<std::string> names = {"arm1", "arm2", "arm3"};

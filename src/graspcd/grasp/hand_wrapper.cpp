@@ -35,14 +35,14 @@ constexpr double kSupportMass = 2;
 constexpr double kPlaceholderHalf = 0.01;
 
 // The shortest text that reads back as v (-0 as 0).
-std::string number(double v) {
+std::string shortest_text(double v) {
   char text[32];
   const auto end = std::to_chars(text, text + sizeof text, v + 0.0).ptr;
   return std::string(text, end);
 }
 
 std::string numbers(const Vec3& v) {
-  return number(v.x()) + " " + number(v.y()) + " " + number(v.z());
+  return shortest_text(v.x()) + " " + shortest_text(v.y()) + " " + shortest_text(v.z());
 }
 
 // A drive file's array of `n` finite numbers at `key` of `object`; an error naming the file.
@@ -200,8 +200,8 @@ std::string wrapper_scene(const HandTemplate& hand, const HandMount& mount,
     << "  <custom>\n"
     << "    <numeric name=\"graspcd_support\" data=\"" << numbers(mount.support) << "\"/>\n";
   if (mount.room) {
-    x << "    <numeric name=\"graspcd_fit\" data=\"" << number((*mount.room)[0]) << ' '
-      << number((*mount.room)[1]) << "\"/>\n";
+    x << "    <numeric name=\"graspcd_fit\" data=\"" << shortest_text((*mount.room)[0]) << ' '
+      << shortest_text((*mount.room)[1]) << "\"/>\n";
   }
   x << "  </custom>\n"
     << "  <asset>\n"
@@ -214,8 +214,8 @@ std::string wrapper_scene(const HandTemplate& hand, const HandMount& mount,
        "friction=\"1 0.01 0.001\" contype=\"3\" conaffinity=\"3\"/>\n"
     << "    </body>\n"
     << "    <body name=\"" << kWrapperSupport << "\" pos=\"" << numbers(centre) << "\" quat=\""
-    << number(turn.w()) << ' ' << number(turn.x()) << ' ' << number(turn.y()) << ' '
-    << number(turn.z()) << "\">\n"
+    << shortest_text(turn.w()) << ' ' << shortest_text(turn.x()) << ' ' << shortest_text(turn.y())
+    << ' ' << shortest_text(turn.z()) << "\">\n"
     << "      <joint name=\"support_slide\" type=\"slide\" axis=\"0 0 1\" damping=\"50\"/>\n"
     << "      <geom name=\"support\" type=\"box\" size=\"" << kSupportHalf << ' ' << kSupportHalf
     << ' ' << kSupportHalfThickness << "\" mass=\"" << kSupportMass

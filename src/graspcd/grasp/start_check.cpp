@@ -8,6 +8,7 @@
 
 #include "graspcd/core/containment.h"
 #include "graspcd/grasp/decomposed_pieces.h"
+#include "graspcd/grasp/true_surfaces.h"
 #include "graspcd/io/limit_text.h"
 #include "graspcd/io/warnings.h"
 #include "graspcd/mujoco/collision_pose.h"
@@ -85,11 +86,6 @@ void warn_open(const mjModel* m, int g, std::vector<char>& warned, const mujoco:
   warnings().add("start_check_open",
                  "start check: " + geom_name(m, g, &names) +
                      " is not a closed mesh: what lies inside it is not checked");
-}
-
-bool may_collide(const mjModel* m, int a, int b) {
-  return (m->geom_contype[a] & m->geom_conaffinity[b]) != 0 ||
-         (m->geom_contype[b] & m->geom_conaffinity[a]) != 0;
 }
 
 // Whether the bounding spheres of two geoms lie farther apart than kStartPenetration.

@@ -24,7 +24,8 @@ namespace {
 
 using nlohmann::json;
 
-[[noreturn]] void fail(const std::string& path, const std::string& message, std::size_t line = 0) {
+[[noreturn]] void refuse(const std::string& path, const std::string& message,
+                         std::size_t line = 0) {
   throw InputError(path, line, message);
 }
 
@@ -67,7 +68,7 @@ std::uint64_t ply_type_bytes(const std::string& type) {
 // lists are in its data).
 void check_ply(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open");
+  if (!in) refuse(path, "cannot open");
   std::string line;
   std::string format;
   bool ended = false;
@@ -110,9 +111,9 @@ void check_ply(const std::string& path) {
     if (!sized || at < 0 || size < at) return;
     const auto data = static_cast<std::uint64_t>(size - at);
     if (data >= least_bytes) return;
-    fail(path, head + ", at least " + std::to_string(least_bytes) +
-                   " bytes of binary data (a face of 3 vertices or more), but " +
-                   std::to_string(data) + " bytes follow end_header");
+    refuse(path, head + ", at least " + std::to_string(least_bytes) +
+                     " bytes of binary data (a face of 3 vertices or more), but " +
+                     std::to_string(data) + " bytes follow end_header");
   }
   // Count the lines that hold a word.
   std::uint64_t lines = 0;
@@ -132,8 +133,8 @@ void check_ply(const std::string& path) {
   }
   lines += word ? 1 : 0;
   if (lines == declared) return;
-  fail(path, head + ", one line each in an ASCII PLY, but " + std::to_string(lines) + " line" +
-                 (lines == 1 ? "" : "s") + " of data follow end_header");
+  refuse(path, head + ", one line each in an ASCII PLY, but " + std::to_string(lines) + " line" +
+                   (lines == 1 ? "" : "s") + " of data follow end_header");
 }
 
 // --- glTF: the JSON's structure. ---
@@ -156,7 +157,7 @@ std::string json_message(const std::exception& e) {
 // (Assimp's to refuse).
 std::string gltf_json_text(const std::string& path, const std::string& format) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open");
+  if (!in) refuse(path, "cannot open");
   if (format == "gltf") {
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
@@ -222,13 +223,13 @@ DeclaredMesh check_gltf(const std::string& path, const std::string& format) {
     if (const auto* parse = dynamic_cast<const json::parse_error*>(&e)) {
       if (parse->byte > 0 && format == "gltf") line = line_of(text, parse->byte - 1);
     }
-    fail(path,
-         std::string(format == "glb" ? "bad JSON in its JSON chunk: " : "bad JSON: ") +
-             json_message(e),
-         line);
+    refuse(path,
+           std::string(format == "glb" ? "bad JSON in its JSON chunk: " : "bad JSON: ") +
+               json_message(e),
+           line);
   }
   DeclaredMesh out;
-  if (!root.is_object()) fail(path, "not a glTF file (its JSON is not an object)");
+  if (!root.is_object()) refuse(path, "not a glTF file (its JSON is not an object)");
   // glTF 1.0 (an object of named accessors) is Assimp's other reader's.
   const auto asset = root.find("asset");
   if (asset != root.end() && asset->is_object()) {
@@ -272,10 +273,10 @@ DeclaredMesh check_gltf(const std::string& path, const std::string& format) {
               : 0;
       if (type_name != "VEC3" || component_type != 5126) {
         const char* name = component_name(component_type);
-        fail(path, where + "its POSITION accessor " + std::to_string(d.position_accessor) +
-                       " holds " + type_name + " of " +
-                       (name ? name : "componentType " + std::to_string(component_type)) +
-                       "; a glTF position is a VEC3 of FLOAT (componentType 5126)");
+        refuse(path, where + "its POSITION accessor " + std::to_string(d.position_accessor) +
+                         " holds " + type_name + " of " +
+                         (name ? name : "componentType " + std::to_string(component_type)) +
+                         "; a glTF position is a VEC3 of FLOAT (componentType 5126)");
       }
       const auto mode = primitive.find("mode");
       const std::int64_t mode_value =
@@ -291,11 +292,11 @@ DeclaredMesh check_gltf(const std::string& path, const std::string& format) {
       d.triangle_mode = mode_value == 4 || mode_value == 5 || mode_value == 6;
       if (mode_value == 4) {
         if (vertices % 3 != 0) {
-          fail(path, where + std::to_string(vertices) +
-                         (d.indices_accessor >= 0
-                              ? " indices (accessor " + std::to_string(d.indices_accessor) + ")"
-                              : " vertices") +
-                         " in TRIANGLES mode, not a multiple of 3");
+          refuse(path, where + std::to_string(vertices) +
+                           (d.indices_accessor >= 0
+                                ? " indices (accessor " + std::to_string(d.indices_accessor) + ")"
+                                : " vertices") +
+                           " in TRIANGLES mode, not a multiple of 3");
         }
         d.triangles = vertices / 3;
       } else if (d.triangle_mode) {
@@ -319,8 +320,8 @@ void find_units(const tinyxml2::XMLElement* e, std::vector<const tinyxml2::XMLEl
 void check_collada(const std::string& path) {
   tinyxml2::XMLDocument doc;
   if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) {
-    fail(path, std::string("not well-formed XML: ") + doc.ErrorName(),
-         static_cast<std::size_t>(std::max(0, doc.ErrorLineNum())));
+    refuse(path, std::string("not well-formed XML: ") + doc.ErrorName(),
+           static_cast<std::size_t>(std::max(0, doc.ErrorLineNum())));
   }
   if (doc.RootElement() == nullptr) return;
   std::vector<const tinyxml2::XMLElement*> units;
@@ -332,11 +333,11 @@ void check_collada(const std::string& path) {
     const double value = std::strtod(meter, &end);
     const bool number = end != meter && *end == '\0';
     if (number && std::isfinite(value) && value > 0) continue;
-    fail(path,
-         std::string("<unit meter=\"") + meter +
-             "\">: the metres per unit of the file must be a finite number > 0 (COLLADA "
-             "scales the mesh by it)",
-         static_cast<std::size_t>(unit->GetLineNum()));
+    refuse(path,
+           std::string("<unit meter=\"") + meter +
+               "\">: the metres per unit of the file must be a finite number > 0 (COLLADA "
+               "scales the mesh by it)",
+           static_cast<std::size_t>(unit->GetLineNum()));
   }
 }
 
@@ -360,11 +361,12 @@ void check_read_faces(const std::string& path, const DeclaredMesh& declared,
     const DeclaredPrimitive& d = declared.primitives[i];
     if (!d.triangle_mode || read_faces[i] >= d.triangles) continue;
     const std::uint64_t dropped = d.triangles - read_faces[i];
-    fail(path, "meshes[" + std::to_string(d.mesh) + "].primitives[" + std::to_string(d.primitive) +
-                   "]: " + std::to_string(dropped) + " of its " + std::to_string(d.triangles) +
-                   " triangles (indices accessor " + std::to_string(d.indices_accessor) +
-                   ") name a vertex beyond the " + std::to_string(d.positions) +
-                   " of its POSITION accessor " + std::to_string(d.position_accessor));
+    refuse(path, "meshes[" + std::to_string(d.mesh) + "].primitives[" +
+                     std::to_string(d.primitive) + "]: " + std::to_string(dropped) + " of its " +
+                     std::to_string(d.triangles) + " triangles (indices accessor " +
+                     std::to_string(d.indices_accessor) + ") name a vertex beyond the " +
+                     std::to_string(d.positions) + " of its POSITION accessor " +
+                     std::to_string(d.position_accessor));
   }
 }
 

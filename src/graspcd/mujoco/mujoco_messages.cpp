@@ -9,7 +9,7 @@
 namespace graspcd::mujoco {
 namespace {
 
-thread_local WarningSink* t_capture = nullptr;
+thread_local graspcd::WarningSink* t_capture = nullptr;
 // The scene this thread simulates (ScopedMujocoErrors), or null.
 thread_local const ScopedMujocoErrors* t_scene = nullptr;
 
@@ -32,7 +32,7 @@ void route_mujoco_warnings() { mju_user_warning = on_mujoco_warning; }
 
 void route_mujoco_errors() { mju_user_error = on_mujoco_error; }
 
-ScopedMujocoWarnings::ScopedMujocoWarnings(WarningSink& sink) : previous_(t_capture) {
+ScopedMujocoWarnings::ScopedMujocoWarnings(graspcd::WarningSink& sink) : previous_(t_capture) {
   t_capture = &sink;
 }
 

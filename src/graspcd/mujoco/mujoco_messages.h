@@ -44,13 +44,13 @@ void route_mujoco_errors();
 // While alive, MuJoCo warnings raised on this thread are also added to `sink`.
 class ScopedMujocoWarnings {
  public:
-  explicit ScopedMujocoWarnings(WarningSink& sink);
+  explicit ScopedMujocoWarnings(graspcd::WarningSink& sink);
   ~ScopedMujocoWarnings();
   ScopedMujocoWarnings(const ScopedMujocoWarnings&) = delete;
   ScopedMujocoWarnings& operator=(const ScopedMujocoWarnings&) = delete;
 
  private:
-  WarningSink* previous_;
+  graspcd::WarningSink* previous_;
 };
 
 // While alive, a MuJoCo error raised on this thread (with route_mujoco_errors()) is an
