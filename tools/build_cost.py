@@ -15,6 +15,14 @@ is both halves of the measurement (docs/testing.md, "Where the time goes"):
   report: the sums, per target, and the most expensive commands.
 
     /usr/bin/python3 tools/build_cost.py --report /tmp/cost.tsv [--top 25]
+
+  ninja log: without a launcher, what a finished build's commands took, from Ninja's own log
+  (each output's last build: wall seconds of one job), summed per part of the tree (src, app,
+  tests, fuzz) and its most expensive commands; on an otherwise idle machine a job's wall
+  seconds are its CPU seconds. A fresh clone's `./run test` leaves build/.ninja_log and
+  build-asan/.ninja_log.
+
+    /usr/bin/python3 tools/build_cost.py --ninja-log build/.ninja_log [--top 10]
 """
 
 import argparse
@@ -95,19 +103,55 @@ def report(log, top):
         print("  %8.1f  %6.1f  %-7s %s" % (cpu, wall, kind, output))
 
 
+def ninja_report(log, top):
+    """Ninja's log (version 5: start ms, end ms, mtime, output, hash per line, '#' header): the
+    last entry of each output, summed by the first folder of its path."""
+    last = {}
+    with open(log, encoding="utf-8") as f:
+        for line in f:
+            if line.startswith("#"):
+                continue
+            fields = line.rstrip("\n").split("\t")
+            if len(fields) < 4:
+                continue
+            last[fields[3]] = (int(fields[1]) - int(fields[0])) / 1000.0
+    if not last:
+        sys.exit("%s: no commands logged" % log)
+    parts = collections.defaultdict(lambda: [0.0, 0])
+    for output, seconds in last.items():
+        if output.startswith("/"):
+            first = "(absolute paths)"
+        else:
+            first = output.split("/")[0] if "/" in output else "(top)"
+        parts[first][0] += seconds
+        parts[first][1] += 1
+    print("%d outputs, %.0f job-seconds in all (wall seconds of one job each)" % (
+        len(last), sum(last.values())))
+    for part, (seconds, n) in sorted(parts.items(), key=lambda kv: -kv[1][0]):
+        print("  %8.1f  %4d  %s" % (seconds, n, part))
+    print("\nmost expensive outputs (s):")
+    for output, seconds in sorted(last.items(), key=lambda kv: -kv[1])[:top]:
+        print("  %8.1f  %s" % (seconds, output))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--log", help="as a compiler/linker launcher: append to LOG")
     parser.add_argument("--report", metavar="LOG", help="print the costs LOG holds")
+    parser.add_argument("--ninja-log", metavar="NINJA_LOG",
+                        help="print what a finished build's commands took, from Ninja's log")
     parser.add_argument("--top", type=int, default=25, help="rows per table (default 25)")
     parser.add_argument("command", nargs=argparse.REMAINDER, help="the command to run")
     args = parser.parse_args()
     if args.report:
         report(args.report, args.top)
+    elif args.ninja_log:
+        ninja_report(args.ninja_log, args.top)
     elif args.log and args.command:
         sys.exit(launch(args.log, args.command))
     else:
-        parser.error("give --report LOG, or --log LOG followed by a command")
+        parser.error("give --report LOG, --ninja-log NINJA_LOG, or --log LOG followed by a "
+                     "command")
 
 
 if __name__ == "__main__":
