@@ -375,7 +375,8 @@ Command add_validate_command(CLI::App& parent) {
       "  graspcd validate mjcf/hand_boxes.xml --all-methods --max-steps 100 --json\n"
       "  graspcd decompose mjcf/meshes/cup.obj --out /tmp/cup8 --pieces 8\n"
       "  graspcd validate mjcf/example1.xml --decomposed /tmp/cup8\n"
-      "  graspcd validate --objects ../shared/models/objects --fit --method sat --out /tmp/o\n"
+      "  graspcd validate --objects ../shared/models/objects/mujoco --fit --method sat --out "
+      "/tmp/o\n"
       "  graspcd validate --objects DIR --fit --shard 0/4 --out /tmp/o\n"
       "  graspcd validate --merge /tmp/o/objects.shard-*-of-4.json --out /tmp/o"));
   auto exit_code = std::make_shared<int>(0);
