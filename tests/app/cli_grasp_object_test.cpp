@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "app/cli_helpers.h"
+#include "helpers/prism_mesh.h"
 
 namespace {
 
@@ -376,33 +377,11 @@ TEST_F(CliTest, GraspObjectWithTheRealHands) {
   EXPECT_TRUE(doc["reason"].is_null());
 }
 
-// A closed cylinder of radius r and length h along the file's z (32 sides, capped), as OBJ text.
-std::string cylinder_obj(double r, double h) {
-  std::ostringstream obj;
-  obj.precision(17);
-  const int n = 32;
-  for (double z : {0.0, h}) {
-    for (int i = 0; i < n; ++i) {
-      const double a = 2 * 3.14159265358979323846 * i / n;
-      obj << "v " << r * std::cos(a) << ' ' << r * std::sin(a) << ' ' << z << '\n';
-    }
-  }
-  obj << "v 0 0 0\nv 0 0 " << h << '\n';
-  for (int i = 0; i < n; ++i) {
-    const int j = (i + 1) % n;
-    const int b0 = i + 1, b1 = j + 1, t0 = n + i + 1, t1 = n + j + 1;
-    obj << "f " << b0 << ' ' << b1 << ' ' << t1 << "\nf " << b0 << ' ' << t1 << ' ' << t0 << '\n';
-    obj << "f " << 2 * n + 1 << ' ' << b1 << ' ' << b0 << "\nf " << 2 * n + 2 << ' ' << t0 << ' '
-        << t1 << '\n';
-  }
-  return obj.str();
-}
-
-// A can-shaped cylinder (6.8 cm across, 10 cm long) lying on its side on the Robotiq's table.
-// MuJoCo 2.2 gives the convex pair of the object and the table one contact, on which the lying
-// can rocks and sinks (--native: past the 2 mm limit, the warning support_penetration naming
-// that cause); the written scene has graspcd serve the object against the table (its pair config
-// gains the pair), and it rests within the limit without the warning.
+// A can-shaped cylinder (a 32-sided prism 6.8 cm across, 10 cm long) lying on its side on the
+// Robotiq's table. MuJoCo 2.2 gives the convex pair of the object and the table one contact, on
+// which the lying can rocks and sinks (--native: past the 2 mm limit, the warning
+// support_penetration naming that cause); the written scene has graspcd serve the object against
+// the table (its pair config gains the pair), and it rests within the limit without the warning.
 TEST_F(CliTest, ALyingCylinderRestsOnTheTableWhereGraspcdServesThePair) {
   const fs::path models = fs::path(GRASPCD_MODELS_DIR);
   if (!fs::exists(models / "hands" / "robotiq_2f85" / "2f85.xml")) {
@@ -411,7 +390,7 @@ TEST_F(CliTest, ALyingCylinderRestsOnTheTableWhereGraspcdServesThePair) {
   if (sanitizer_pass()) {
     GTEST_SKIP() << "real-hand grasps skipped at GRASPCD_TEST_SCALE < 1 (sanitizer pass)";
   }
-  const std::string can = write("can.obj", cylinder_obj(0.034, 0.1));
+  const std::string can = write("can.obj", graspcd::testing::prism_obj(0.034, 0.034, 0.1, 32));
   const auto support_warning = [](const nlohmann::json& doc) {
     for (const nlohmann::json& w : doc.at("warnings")) {
       if (w.at("code") == "support_penetration") return w.at("message").get<std::string>();

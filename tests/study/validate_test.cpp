@@ -23,6 +23,7 @@
 #include "graspcd/core/tree_query.h"
 #include "graspcd/io/mesh_io.h"
 #include "helpers/envelope_check.h"
+#include "helpers/prism_mesh.h"
 #include "helpers/temp_dir.h"
 #include "helpers/test_scale.h"
 
@@ -262,25 +263,7 @@ TEST_F(ValidateTest, BrokenDetectorIsCaughtAndItsFirstDisagreementReproduces) {
 // A star-shaped prism (closed, non-convex): 8 points at radius r_out, 8 notches at r_in, from
 // z = 0 to h, as an OBJ text.
 std::string star_prism_obj(double r_out, double r_in, double h) {
-  std::ostringstream obj;
-  obj.precision(17);
-  const int n = 16;
-  for (double z : {0.0, h}) {
-    for (int i = 0; i < n; ++i) {
-      const double a = 2 * 3.14159265358979323846 * i / n;
-      const double r = i % 2 == 0 ? r_out : r_in;
-      obj << "v " << r * std::cos(a) << ' ' << r * std::sin(a) << ' ' << z << '\n';
-    }
-  }
-  obj << "v 0 0 0\nv 0 0 " << h << '\n';  // the caps' centres: vertices 2n+1 and 2n+2
-  for (int i = 0; i < n; ++i) {
-    const int j = (i + 1) % n;
-    const int b0 = i + 1, b1 = j + 1, t0 = n + i + 1, t1 = n + j + 1;
-    obj << "f " << b0 << ' ' << b1 << ' ' << t1 << "\nf " << b0 << ' ' << t1 << ' ' << t0 << '\n';
-    obj << "f " << 2 * n + 1 << ' ' << b1 << ' ' << b0 << "\nf " << 2 * n + 2 << ' ' << t0 << ' '
-        << t1 << '\n';
-  }
-  return obj.str();
+  return graspcd::testing::prism_obj(r_out, r_in, h, 16);
 }
 
 // A user's own scene: example 1 with the cup swapped for a new non-convex object (an OBJ beside the
