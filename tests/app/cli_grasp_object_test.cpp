@@ -339,14 +339,7 @@ constexpr const char* kBlockMm =
 // --hand robotiq and --hand shadow (../shared/models): a new object at its real size in metres and
 // in millimetres, placed by --up, grasped to a verdict that agrees with its numbers.
 TEST_F(CliTest, GraspObjectWithTheRealHands) {
-  const fs::path models = fs::path(GRASPCD_MODELS_DIR);
-  if (!fs::exists(models / "hands" / "robotiq_2f85" / "2f85.xml") ||
-      !fs::exists(models / "hands" / "shadow_hand" / "right_hand.xml")) {
-    GTEST_SKIP() << "real hands not found in " << models;
-  }
-  if (sanitizer_pass()) {
-    GTEST_SKIP() << "real-hand grasps skipped at GRASPCD_TEST_SCALE < 1 (sanitizer pass)";
-  }
+  SKIP_UNLESS_REAL_HAND_GRASPS("robotiq_2f85/2f85.xml", "shadow_hand/right_hand.xml");
   // A 3 x 3 x 6 cm block, in millimetres, lying on its side in the file (its long axis x).
   const std::string block = write("block.obj", kBlockMm);
   // Robotiq: standing up (file x along -gravity), between the pads.
@@ -383,13 +376,7 @@ TEST_F(CliTest, GraspObjectWithTheRealHands) {
 // support_penetration naming that cause); the written scene has graspcd serve the object against
 // the table (its pair config gains the pair), and it rests within the limit without the warning.
 TEST_F(CliTest, ALyingCylinderRestsOnTheTableWhereGraspcdServesThePair) {
-  const fs::path models = fs::path(GRASPCD_MODELS_DIR);
-  if (!fs::exists(models / "hands" / "robotiq_2f85" / "2f85.xml")) {
-    GTEST_SKIP() << "real hands not found in " << models;
-  }
-  if (sanitizer_pass()) {
-    GTEST_SKIP() << "real-hand grasps skipped at GRASPCD_TEST_SCALE < 1 (sanitizer pass)";
-  }
+  SKIP_UNLESS_REAL_HAND_GRASPS("robotiq_2f85/2f85.xml");
   const std::string can = write("can.obj", graspcd::testing::prism_obj(0.034, 0.034, 0.1, 32));
   const auto support_warning = [](const nlohmann::json& doc) {
     for (const nlohmann::json& w : doc.at("warnings")) {
@@ -419,13 +406,7 @@ TEST_F(CliTest, ALyingCylinderRestsOnTheTableWhereGraspcdServesThePair) {
 // under it to the template's reach (graspcd_reach, 5.5 cm) and the pads close on it: gripped and
 // held. The first line and the JSON say by how much.
 TEST_F(CliTest, GraspObjectFitIntoTheRobotiqLeavesThePadsSomethingToReach) {
-  const fs::path models = fs::path(GRASPCD_MODELS_DIR);
-  if (!fs::exists(models / "hands" / "robotiq_2f85" / "2f85.xml")) {
-    GTEST_SKIP() << "real hands not found in " << models;
-  }
-  if (sanitizer_pass()) {
-    GTEST_SKIP() << "real-hand grasps skipped at GRASPCD_TEST_SCALE < 1 (sanitizer pass)";
-  }
+  SKIP_UNLESS_REAL_HAND_GRASPS("robotiq_2f85/2f85.xml");
   const std::string block = write("block.obj", kBlockMm);
   const Result r = run("grasp --object " + block + " --fit --hand robotiq --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;

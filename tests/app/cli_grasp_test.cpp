@@ -194,13 +194,7 @@ TEST_F(CliTest, GraspQuietPrintsOnlyTheHeaderAndTheVerdict) {
 // the hand then lifts it. Held, but the verdict says it was pushed (not pushed over: the turn
 // about gravity is no tip), and --require-held still passes.
 TEST_F(CliTest, GraspSaysWhenTheSqueezePushedAHeldObject) {
-  const fs::path models = fs::path(GRASPCD_MODELS_DIR);
-  if (!fs::exists(models / "hands" / "robotiq_2f85" / "2f85.xml")) {
-    GTEST_SKIP() << "real hands not found in " << models;
-  }
-  if (sanitizer_pass()) {
-    GTEST_SKIP() << "real-hand grasps skipped at GRASPCD_TEST_SCALE < 1 (sanitizer pass)";
-  }
+  SKIP_UNLESS_REAL_HAND_GRASPS("robotiq_2f85/2f85.xml");
   const std::string l_shape = write(
       "l_shape.obj",
       inside_out("v 0 0 0\nv 0.06 0 0\nv 0.06 0 0.015\nv 0.015 0 0.015\nv 0.015 0 0.07\n"

@@ -70,6 +70,20 @@ inline bool sanitizer_pass() {
   return scale != nullptr && std::strtod(scale, nullptr) < 1;
 }
 
+// Why a test that grasps with real hands (their files below GRASPCD_MODELS_DIR/hands, e.g.
+// "robotiq_2f85/2f85.xml") cannot run here: a hand missing, or the sanitizer pass, where such a
+// grasp takes ten times as long; empty when it can (SKIP_UNLESS_REAL_HAND_GRASPS).
+inline std::string real_hand_skip(const std::vector<std::string>& hands) {
+  const fs::path models = fs::path(GRASPCD_MODELS_DIR);
+  for (const std::string& hand : hands) {
+    if (!fs::exists(models / "hands" / hand)) return "real hands not found in " + models.string();
+  }
+  if (sanitizer_pass()) {
+    return "real-hand grasps skipped at GRASPCD_TEST_SCALE < 1 (sanitizer pass)";
+  }
+  return "";
+}
+
 // Triangle pairs: T1 in the plane z = 0, T2 sharing its vertex at the origin / lifted by 1.
 const char* const kTouching = "0 0 0 1 0 0 0 1 0  0 0 0 0 0 1 1 0 1\n";
 const char* const kSeparated = "0 0 0 1 0 0 0 1 0  0 0 1 0 0 2 1 0 2\n";
@@ -190,3 +204,9 @@ inline std::string cube_obj(const std::string& first = "v 0 0 0") {
          "f 3 8 7\nf 4 1 5\nf 4 5 8\n";
 }
 }  // namespace graspcd::cli_testing
+
+// Skips the test, saying why, unless it can grasp with the real hands named (real_hand_skip).
+#define SKIP_UNLESS_REAL_HAND_GRASPS(...)                                                    \
+  if (const std::string why_skipped = ::graspcd::cli_testing::real_hand_skip({__VA_ARGS__}); \
+      !why_skipped.empty())                                                                  \
+  GTEST_SKIP() << why_skipped
