@@ -1,16 +1,18 @@
 // The formats load_mesh reads besides OBJ and binary STL (io/mesh_io.h): ASCII STL and OFF (read by
-// graspcd), PLY, glTF/GLB and COLLADA (Assimp, in a child process). Each is written here from one
-// small mesh (by hand for the text formats, by Assimp's exporter for the others) and must load as
-// the OBJ of the same mesh does; bad files are one line naming the file.
+// graspcd), PLY, glTF/GLB and COLLADA (Assimp, in a process of its own). Each is written here from
+// one small mesh (by hand for the text formats, by Assimp's exporter for the others) and must load
+// as the OBJ of the same mesh does; bad files are one line naming the file.
 #include "graspcd/io/mesh_import.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "graspcd/io/mesh_io.h"
@@ -213,6 +215,34 @@ TEST_F(MeshImportTest, BadFilesAreOneLineNamingTheFile) {
   const std::string glb = write("garbage.glb", std::string("glTF\x02\x00\x00\x00garbage", 15));
   one_line(load_error(glb), glb);
   EXPECT_NE(load_error(glb), "");
+}
+
+// graspcd reads while other threads run (the progress line's, a study's workers): the reader's
+// process must not depend on what they hold at the fork. A thread allocating without pause held
+// the sanitizer's allocator lock at some fork, and a reader that ran Assimp in the forked child
+// waited for it until the import timeout.
+TEST_F(MeshImportTest, FilesReadWhileAnotherThreadAllocatesAreRead) {
+  const std::string ply = write("box.ply", ascii_ply(box()));
+  std::atomic<bool> stop{false};
+  std::thread allocator([&stop] {
+    while (!stop) {
+      std::vector<std::unique_ptr<int>> held;
+      for (int i = 0; i < 64; ++i) held.push_back(std::make_unique<int>(i));
+    }
+  });
+  set_import_timeout(10);
+  int failed = 0;
+  std::string first_error;
+  for (int i = 0; i < 40; ++i) {
+    const ImportedMesh read = import_with_assimp(ply, "ply");
+    if (!read.error.empty() || read.mesh.faces.size() != 12) {
+      if (failed++ == 0) first_error = read.error;
+    }
+  }
+  set_import_timeout(kImportTimeout);
+  stop = true;
+  allocator.join();
+  EXPECT_EQ(failed, 0) << first_error;
 }
 
 // Assimp 5.2.5 loops forever on a PLY whose header ends early: its child process is killed after

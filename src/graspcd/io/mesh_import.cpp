@@ -16,6 +16,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -163,9 +164,21 @@ bool decode(const std::string& b, ImportedMesh& m) {
   return r.ok && r.at == b.size();
 }
 
-// The child's address space is limited (setrlimit RLIMIT_AS) to kImportMemoryBase plus
+// The reader is this program run again (/proc/self/exe) with kReaderFd, kReaderFile and
+// kReaderFormat in its environment: mesh_reader_entry, a constructor of this file, sees them
+// before main, reads the file, writes encode()'s bytes to the descriptor and ends. graspcd forks
+// while other threads run (the progress line's, a study's workers), and a forked child may only
+// make async-signal-safe calls until it execs: a child that ran Assimp itself could block for
+// ever on a lock another thread held at the fork (the sanitizer's allocator did).
+constexpr const char* kReaderFd = "GRASPCD_MESH_READER_FD";
+constexpr const char* kReaderFile = "GRASPCD_MESH_READER_FILE";
+constexpr const char* kReaderFormat = "GRASPCD_MESH_READER_FORMAT";
+// The reader's exit status when it could not be started (exec failed).
+constexpr int kReaderNotStarted = 127;
+
+// The reader's address space is limited (setrlimit RLIMIT_AS) to kImportMemoryBase plus
 // kImportMemoryPerByte times the file's size, so that a file on which Assimp allocates without end
-// (the fuzzer found a COLLADA file taking more than 3 GB) fails in the child with bad_alloc rather
+// (the fuzzer found a COLLADA file taking more than 3 GB) fails in the reader with bad_alloc rather
 // than exhaust the machine. Not under AddressSanitizer, whose shadow memory the limit would deny.
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)
@@ -176,72 +189,103 @@ bool decode(const std::string& b, ImportedMesh& m) {
 #define GRASPCD_IMPORT_ASAN 1
 #endif
 
-void limit_memory(const std::string& path) {
+// The limit for `path`, 0 for none.
+std::uint64_t memory_limit(const std::string& path) {
 #ifndef GRASPCD_IMPORT_ASAN
   constexpr std::uint64_t kImportMemoryBase = std::uint64_t{4} << 30;
   constexpr std::uint64_t kImportMemoryPerByte = 64;
   struct stat info {};
   const std::uint64_t size =
       ::stat(path.c_str(), &info) == 0 ? static_cast<std::uint64_t>(info.st_size) : 0;
-  const std::uint64_t bytes = kImportMemoryBase + kImportMemoryPerByte * size;
-  rlimit limit{};
-  limit.rlim_cur = limit.rlim_max = static_cast<rlim_t>(bytes);
-  ::setrlimit(RLIMIT_AS, &limit);
+  return kImportMemoryBase + kImportMemoryPerByte * size;
 #else
   (void)path;
+  return 0;
 #endif
+}
+
+// In the reader's process, before main: when the environment names a file to read, it is read,
+// the answer written to the descriptor, and the process ends.
+__attribute__((constructor)) void mesh_reader_entry() {
+  const char* fd_text = std::getenv(kReaderFd);
+  const char* path = std::getenv(kReaderFile);
+  const char* format = std::getenv(kReaderFormat);
+  if (fd_text == nullptr || path == nullptr || format == nullptr) return;
+  char* end = nullptr;
+  const long fd = std::strtol(fd_text, &end, 10);
+  if (end == fd_text || *end != '\0' || fd < 3 || fcntl(static_cast<int>(fd), F_GETFD) < 0) {
+    return;  // not a reader started by import_in_child
+  }
+  std::string bytes;
+  try {
+    bytes = encode(import_in_process(path, format));
+  } catch (const std::bad_alloc&) {
+    ImportedMesh failed;
+    failed.error = "the import library (Assimp) ran out of memory reading it";
+    bytes = encode(failed);
+  } catch (const std::exception& e) {
+    ImportedMesh failed;
+    failed.error = one_line(e.what());
+    bytes = encode(failed);
+  }
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(static_cast<int>(fd), bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) ::_exit(3);
+    done += static_cast<std::size_t>(n);
+  }
+  ::_exit(0);
 }
 
 ImportedMesh import_in_child(const std::string& path, const std::string& format,
                              double timeout_seconds) {
   ImportedMesh out;
+  // Everything the child needs is made here: after the fork it only calls fcntl, setrlimit, dup2
+  // and execve. Its stdout and stderr go nowhere (Assimp's own messages, an ai_assert's, its
+  // logger's, would add lines to the one error line).
   int fds[2];
-  if (::pipe(fds) != 0) {
+  if (::pipe2(fds, O_CLOEXEC) != 0) {
     out.error = std::string("cannot start the reader: ") + std::strerror(errno);
     return out;
   }
+  const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+  std::vector<std::string> own = {std::string(kReaderFd) + "=" + std::to_string(fds[1]),
+                                  std::string(kReaderFile) + "=" + path,
+                                  std::string(kReaderFormat) + "=" + format};
+  std::vector<char*> env;
+  for (char** e = environ; *e != nullptr; ++e) {
+    if (std::strncmp(*e, "GRASPCD_MESH_READER_", 20) != 0) env.push_back(*e);
+  }
+  for (std::string& s : own) env.push_back(s.data());
+  env.push_back(nullptr);
+  char program[] = "graspcd-mesh-reader";
+  char* argv[] = {program, nullptr};
+  rlimit limit{};
+  limit.rlim_cur = limit.rlim_max = static_cast<rlim_t>(memory_limit(path));
   // A child tied to the run (output_files.h): killed with graspcd, never left looping.
   ChildProcess process;
   const pid_t child = process.pid();
   if (child < 0) {
+    const int error = errno;
     ::close(fds[0]);
     ::close(fds[1]);
-    out.error = std::string("cannot start the reader: ") + std::strerror(errno);
+    if (null >= 0) ::close(null);
+    out.error = std::string("cannot start the reader: ") + std::strerror(error);
     return out;
   }
   if (child == 0) {
-    ::close(fds[0]);
-    // Assimp's own messages (an ai_assert's, its logger's) would add lines to the one error line:
-    // the child's stdout and stderr go nowhere.
-    limit_memory(path);
-    const int null = ::open("/dev/null", O_WRONLY);
+    ::fcntl(fds[1], F_SETFD, 0);
+    if (limit.rlim_cur > 0) ::setrlimit(RLIMIT_AS, &limit);
     if (null >= 0) {
       ::dup2(null, 1);
       ::dup2(null, 2);
-      ::close(null);
     }
-    std::string bytes;
-    try {
-      bytes = encode(import_in_process(path, format));
-    } catch (const std::bad_alloc&) {
-      ImportedMesh failed;
-      failed.error = "the import library (Assimp) ran out of memory reading it";
-      bytes = encode(failed);
-    } catch (const std::exception& e) {
-      ImportedMesh failed;
-      failed.error = one_line(e.what());
-      bytes = encode(failed);
-    }
-    std::size_t done = 0;
-    while (done < bytes.size()) {
-      const ssize_t n = ::write(fds[1], bytes.data() + done, bytes.size() - done);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) ::_exit(3);
-      done += static_cast<std::size_t>(n);
-    }
-    ::_exit(0);
+    ::execve("/proc/self/exe", argv, env.data());
+    ::_exit(kReaderNotStarted);
   }
   ::close(fds[1]);
+  if (null >= 0) ::close(null);
   std::string bytes;
   char buffer[1 << 16];
   const auto deadline = std::chrono::steady_clock::now() +
@@ -276,6 +320,9 @@ ImportedMesh import_in_child(const std::string& path, const std::string& format,
     const char* name = ::strsignal(sig);
     out.error = "the import library (Assimp) crashed reading it (signal " + std::to_string(sig) +
                 (name ? std::string(", ") + name : std::string()) + ")";
+  } else if (WIFEXITED(status) && WEXITSTATUS(status) == kReaderNotStarted) {
+    out = ImportedMesh{};
+    out.error = "cannot start the reader (this program again, as /proc/self/exe)";
   } else if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !decode(bytes, out)) {
     out = ImportedMesh{};
     out.error = "the import library (Assimp) failed reading it (exit status " +

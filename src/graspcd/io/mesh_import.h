@@ -34,13 +34,14 @@ struct ImportedMesh {
 // The file read by Assimp. `format` is the lower-case extension ("ply", "gltf", "glb", "dae").
 // A file Assimp cannot read, a point or a line primitive (a face of fewer than three vertices)
 // or a file without any triangle come back with `error` set; the caller words it.
-// In a child process (fork) when `isolated`: a crash or a hang of the reader (killed after
+// In a process of its own when `isolated` (this program run again, /proc/self/exe, which reads
+// the file before its main and ends): a crash or a hang of the reader (killed after
 // `timeout_seconds`) is then an error, not the caller's end.
 // A negative timeout: the process-wide one (import_timeout).
 ImportedMesh import_with_assimp(const std::string& path, const std::string& format,
                                 bool isolated = true, double timeout_seconds = -1);
 
-// The time load_mesh gives the child process that reads a file through Assimp before it is killed
+// The time load_mesh gives the process that reads a file through Assimp before it is killed
 // and the file refused ("FILE: the import library did not finish reading it in N s"); default
 // kImportTimeout. Process-wide (the fuzz target shortens it).
 inline constexpr double kImportTimeout = 60;
