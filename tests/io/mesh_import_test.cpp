@@ -4,11 +4,15 @@
 // as the OBJ of the same mesh does; bad files are one line naming the file.
 #include "graspcd/io/mesh_import.h"
 
+#include <dlfcn.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -243,6 +247,51 @@ TEST_F(MeshImportTest, FilesReadWhileAnotherThreadAllocatesAreRead) {
   stop = true;
   allocator.join();
   EXPECT_EQ(failed, 0) << first_error;
+}
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define GRASPCD_TEST_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define GRASPCD_TEST_ASAN 1
+#endif
+
+// graspcd linked into a shared library that another program loaded (the test's executable here,
+// a Python interpreter or a simulator elsewhere): that program run again would not read the file,
+// so the reader is a forked child; the file is read, and a bad one is still one error line.
+TEST_F(MeshImportTest, AProgramThatLoadedGraspcdAsALibraryReadsToo) {
+  void* module = dlopen(GRASPCD_READER_MODULE, RTLD_NOW | RTLD_LOCAL);
+  ASSERT_NE(module, nullptr) << dlerror();
+  using FacesOf = long (*)(const char*, char*, unsigned long);
+  const auto faces_of = reinterpret_cast<FacesOf>(dlsym(module, "graspcd_test_faces_of"));
+  ASSERT_NE(faces_of, nullptr) << dlerror();
+  char error[512] = "";
+  EXPECT_EQ(faces_of(write("box.ply", ascii_ply(box())).c_str(), error, sizeof error), 12) << error;
+  const std::string bad = write("bad.glb", std::string("glTF\x02\x00\x00\x00garbage", 15));
+  EXPECT_EQ(faces_of(bad.c_str(), error, sizeof error), -1);
+  EXPECT_EQ(std::string(error).rfind(bad + ": ", 0), 0u) << error;
+  dlclose(module);
+#ifndef GRASPCD_TEST_ASAN
+  // A program without graspcd of its own, Python, loads the library and reads through it (in the
+  // sanitizer build the library needs the sanitizer's runtime first, which Python has not).
+  const std::string host =
+      write("host.py",
+            "import ctypes, sys\n"
+            "lib = ctypes.CDLL(sys.argv[1])\n"
+            "lib.graspcd_test_faces_of.restype = ctypes.c_long\n"
+            "error = ctypes.create_string_buffer(512)\n"
+            "print(lib.graspcd_test_faces_of(sys.argv[2].encode(), error, 512),"
+            " error.value.decode())\n");
+  const std::string printed = (dir_ / "printed.txt").string();
+  const std::string command = "/usr/bin/python3 '" + host + "' '" + GRASPCD_READER_MODULE + "' '" +
+                              (dir_ / "box.ply").string() + "' < /dev/null > '" + printed + "'";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  std::ifstream in(printed);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()),
+            "12 \n");
+#endif
 }
 
 // Assimp 5.2.5 loops forever on a PLY whose header ends early: its child process is killed after

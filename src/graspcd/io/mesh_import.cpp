@@ -4,6 +4,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fcntl.h>
+#include <link.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/resource.h>
@@ -204,18 +205,9 @@ std::uint64_t memory_limit(const std::string& path) {
 #endif
 }
 
-// In the reader's process, before main: when the environment names a file to read, it is read,
-// the answer written to the descriptor, and the process ends.
-__attribute__((constructor)) void mesh_reader_entry() {
-  const char* fd_text = std::getenv(kReaderFd);
-  const char* path = std::getenv(kReaderFile);
-  const char* format = std::getenv(kReaderFormat);
-  if (fd_text == nullptr || path == nullptr || format == nullptr) return;
-  char* end = nullptr;
-  const long fd = std::strtol(fd_text, &end, 10);
-  if (end == fd_text || *end != '\0' || fd < 3 || fcntl(static_cast<int>(fd), F_GETFD) < 0) {
-    return;  // not a reader started by import_in_child
-  }
+// Reads `path` and writes encode()'s bytes to `fd`, then ends the process (exit 0; 3 when the
+// answer could not be written).
+[[noreturn]] void answer(int fd, const std::string& path, const std::string& format) {
   std::string bytes;
   try {
     bytes = encode(import_in_process(path, format));
@@ -230,7 +222,7 @@ __attribute__((constructor)) void mesh_reader_entry() {
   }
   std::size_t done = 0;
   while (done < bytes.size()) {
-    const ssize_t n = ::write(static_cast<int>(fd), bytes.data() + done, bytes.size() - done);
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) ::_exit(3);
     done += static_cast<std::size_t>(n);
@@ -238,18 +230,63 @@ __attribute__((constructor)) void mesh_reader_entry() {
   ::_exit(0);
 }
 
+// In the reader's process, before main: when the environment names a file to read, it is read,
+// the answer written to the descriptor, and the process ends.
+__attribute__((constructor)) void mesh_reader_entry() {
+  const char* fd_text = std::getenv(kReaderFd);
+  const char* path = std::getenv(kReaderFile);
+  const char* format = std::getenv(kReaderFormat);
+  if (fd_text == nullptr || path == nullptr || format == nullptr) return;
+  char* end = nullptr;
+  const long fd = std::strtol(fd_text, &end, 10);
+  if (end == fd_text || *end != '\0' || fd < 3 || fd > 1 << 20 ||
+      fcntl(static_cast<int>(fd), F_GETFD) < 0) {
+    return;  // not a reader started by import_in_child
+  }
+  answer(static_cast<int>(fd), path, format);
+}
+
+// Whether mesh_reader_entry is code of the program's executable, so that the program run again
+// is a reader; not when graspcd is linked into a shared library that another program loaded
+// (a plugin, a Python module): that program, run again, would be itself. dl_iterate_phdr visits
+// the executable first.
+bool reader_in_executable() {
+  static const bool yes = [] {
+    struct Probe {
+      std::uintptr_t address;
+      bool found;
+    } probe{reinterpret_cast<std::uintptr_t>(&mesh_reader_entry), false};
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, std::size_t, void* data) {
+          auto* p = static_cast<Probe*>(data);
+          for (int i = 0; i < info->dlpi_phnum; ++i) {
+            const ElfW(Phdr)& h = info->dlpi_phdr[i];
+            const std::uintptr_t start = info->dlpi_addr + h.p_vaddr;
+            if (h.p_type == PT_LOAD && p->address >= start && p->address - start < h.p_memsz) {
+              p->found = true;
+            }
+          }
+          return 1;  // the executable only
+        },
+        &probe);
+    return probe.found;
+  }();
+  return yes;
+}
+
 ImportedMesh import_in_child(const std::string& path, const std::string& format,
                              double timeout_seconds) {
   ImportedMesh out;
   // Everything the child needs is made here: after the fork it only calls fcntl, setrlimit, dup2
-  // and execve. Its stdout and stderr go nowhere (Assimp's own messages, an ai_assert's, its
+  // and execve. Its stdin, stdout and stderr go nowhere (Assimp's own messages, an ai_assert's, its
   // logger's, would add lines to the one error line).
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) {
     out.error = std::string("cannot start the reader: ") + std::strerror(errno);
     return out;
   }
-  const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+  const int null = ::open("/dev/null", O_RDWR | O_CLOEXEC);
+  const bool self_reader = reader_in_executable();
   std::vector<std::string> own = {std::string(kReaderFd) + "=" + std::to_string(fds[1]),
                                   std::string(kReaderFile) + "=" + path,
                                   std::string(kReaderFormat) + "=" + format};
@@ -278,11 +315,17 @@ ImportedMesh import_in_child(const std::string& path, const std::string& format,
     ::fcntl(fds[1], F_SETFD, 0);
     if (limit.rlim_cur > 0) ::setrlimit(RLIMIT_AS, &limit);
     if (null >= 0) {
+      ::dup2(null, 0);
       ::dup2(null, 1);
       ::dup2(null, 2);
     }
-    ::execve("/proc/self/exe", argv, env.data());
-    ::_exit(kReaderNotStarted);
+    if (self_reader) {
+      ::execve("/proc/self/exe", argv, env.data());
+      ::_exit(kReaderNotStarted);
+    }
+    // graspcd in a shared library: the forked child reads, safe only while no other thread of
+    // the program holds a lock Assimp needs (mesh_import.h).
+    answer(fds[1], path, format);
   }
   ::close(fds[1]);
   if (null >= 0) ::close(null);

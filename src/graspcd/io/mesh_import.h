@@ -36,7 +36,10 @@ struct ImportedMesh {
 // or a file without any triangle come back with `error` set; the caller words it.
 // In a process of its own when `isolated` (this program run again, /proc/self/exe, which reads
 // the file before its main and ends): a crash or a hang of the reader (killed after
-// `timeout_seconds`) is then an error, not the caller's end.
+// `timeout_seconds`) is then an error, not the caller's end. Where graspcd is linked into a shared
+// library that another program loaded (a plugin, a Python module), that program run again would
+// not read: the reader is then a forked child that reads the file itself, and it can block when
+// another thread of the program held a lock at the fork (the allocator's, under a sanitizer).
 // A negative timeout: the process-wide one (import_timeout).
 ImportedMesh import_with_assimp(const std::string& path, const std::string& format,
                                 bool isolated = true, double timeout_seconds = -1);
