@@ -423,6 +423,48 @@ TEST(ExactMeshMesh, MatchesAllPairsBruteForce) {
   }
 }
 
+// Soups whose whole boxes overlap in a slab or only touch (the plane x = 1, where one triangle of
+// each meets the other's at a shared vertex): keeping only the triangles that meet the other
+// soup's box loses no pair of the plain double loop.
+TEST(ExactMeshMesh, SoupsThatMeetInASlabOrAtAPointKeepEveryPair) {
+  testing::Rng rng(7);
+  for (const double shift : {0.8, 1.0}) {
+    std::vector<Triangle> a, b;
+    for (int i = 0; i < 200; ++i) {
+      a.push_back(testing::random_triangle(
+          rng, testing::random_in_cube(rng, Vec3(0.5, 0.5, 0.5), 0.3), 0.4));
+      b.push_back(testing::random_triangle(
+          rng, testing::random_in_cube(rng, Vec3(shift + 0.5, 0.5, 0.5), 0.3), 0.4));
+    }
+    // Clipped into the unit cube and [shift, shift + 1] along x: the whole boxes meet in a slab
+    // of 0.2 (shift 0.8) or in the plane x = 1 (shift 1).
+    for (Triangle& t : a) {
+      for (Vec3& v : t.v) v = v.cwiseMax(Vec3::Zero()).cwiseMin(Vec3::Ones());
+    }
+    for (Triangle& t : b) {
+      for (Vec3& v : t.v) v = v.cwiseMax(Vec3(shift, 0, 0)).cwiseMin(Vec3(shift + 1, 1, 1));
+    }
+    a.push_back(tri(Vec3(1, 0.5, 0.5), Vec3(0.5, 0.25, 0.5), Vec3(0.5, 0.75, 0.5)));
+    b.push_back(tri(Vec3(1, 0.5, 0.5), Vec3(1.5, 0.5, 0.25), Vec3(1.5, 0.5, 0.75)));
+    std::vector<TrianglePair> brute;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      for (std::size_t j = 0; j < b.size(); ++j) {
+        if (exact::tri_tri_intersect(a[i], b[j])) {
+          brute.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
+        }
+      }
+    }
+    const TrianglePair touching{static_cast<std::int32_t>(a.size() - 1),
+                                static_cast<std::int32_t>(b.size() - 1)};
+    EXPECT_NE(std::find(brute.begin(), brute.end(), touching), brute.end()) << "shift " << shift;
+    if (shift < 1) {
+      EXPECT_GT(brute.size(), 1u);
+    }
+    EXPECT_EQ(exact::mesh_mesh_pairs(a, b), brute) << "shift " << shift;
+    EXPECT_EQ(exact::mesh_mesh_pairs(a, b, true).size(), 1u) << "shift " << shift;
+  }
+}
+
 TEST(ExactVersion, IsCgal5) {
   EXPECT_EQ(std::string(exact::cgal_version()).rfind("5.", 0), 0u) << exact::cgal_version();
 }

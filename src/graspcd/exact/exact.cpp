@@ -273,20 +273,40 @@ bool plane_keeps_apart(const Triangle& t, const Triangle& u, double gap) {
 // Candidate pairs from CGAL::box_intersection_d (Zomorodian and Edelsbrunner 2000: streamed
 // segment tree over the triangles' axis-aligned boxes, closed topology so touching boxes are
 // reported), each decided by tri_tri_intersect. Bounding boxes of doubles are exact, so no
-// intersecting pair is lost.
+// intersecting pair is lost. Before the segment tree, each soup keeps only the triangles whose box
+// meets the other soup's whole box (closed): a box that misses the whole misses every box in it,
+// so the candidates are the same, and a pose where the soups meet in a small region sorts a few
+// boxes instead of every triangle's.
 std::vector<TrianglePair> mesh_mesh_pairs(const std::vector<Triangle>& a,
                                           const std::vector<Triangle>& b, bool first_contact) {
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::int32_t>;
+  const auto boxes_of = [](const std::vector<Triangle>& soup, CGAL::Bbox_3& whole) {
+    std::vector<CGAL::Bbox_3> boxes;
+    boxes.reserve(soup.size());
+    for (const Triangle& t : soup) {
+      boxes.push_back(bounding_box(t));
+      whole += boxes.back();
+    }
+    return boxes;
+  };
+  CGAL::Bbox_3 whole_a, whole_b;  // empty (+inf, -inf) until a box is added
+  const std::vector<CGAL::Bbox_3> all_a = boxes_of(a, whole_a);
+  const std::vector<CGAL::Bbox_3> all_b = boxes_of(b, whole_b);
+  const auto meets = [](const CGAL::Bbox_3& x, const CGAL::Bbox_3& y) {
+    for (int k = 0; k < 3; ++k) {
+      if (x.max(k) < y.min(k) || y.max(k) < x.min(k)) return false;
+    }
+    return true;
+  };
   std::vector<Box> boxes_a;
   std::vector<Box> boxes_b;
-  boxes_a.reserve(a.size());
-  boxes_b.reserve(b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    boxes_a.emplace_back(bounding_box(a[i]), static_cast<std::int32_t>(i));
+  for (std::size_t i = 0; i < all_a.size(); ++i) {
+    if (meets(all_a[i], whole_b)) boxes_a.emplace_back(all_a[i], static_cast<std::int32_t>(i));
   }
-  for (std::size_t j = 0; j < b.size(); ++j) {
-    boxes_b.emplace_back(bounding_box(b[j]), static_cast<std::int32_t>(j));
+  for (std::size_t j = 0; j < all_b.size(); ++j) {
+    if (meets(all_b[j], whole_a)) boxes_b.emplace_back(all_b[j], static_cast<std::int32_t>(j));
   }
+  if (boxes_a.empty() || boxes_b.empty()) return {};
 
   // box_intersection_d cannot be stopped from its callback except by an exception.
   struct FirstContactFound {};
