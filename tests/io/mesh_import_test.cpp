@@ -249,15 +249,6 @@ TEST_F(MeshImportTest, FilesReadWhileAnotherThreadAllocatesAreRead) {
   EXPECT_EQ(failed, 0) << first_error;
 }
 
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define GRASPCD_TEST_ASAN 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__)
-#define GRASPCD_TEST_ASAN 1
-#endif
-
 // graspcd linked into a shared library that another program loaded (the test's executable here,
 // a Python interpreter or a simulator elsewhere): that program run again would not read the file,
 // so the reader is a forked child; the file is read, and a bad one is still one error line.
@@ -273,7 +264,7 @@ TEST_F(MeshImportTest, AProgramThatLoadedGraspcdAsALibraryReadsToo) {
   EXPECT_EQ(faces_of(bad.c_str(), error, sizeof error), -1);
   EXPECT_EQ(std::string(error).rfind(bad + ": ", 0), 0u) << error;
   dlclose(module);
-#ifndef GRASPCD_TEST_ASAN
+#if !GRASPCD_SANITIZED
   // A program without graspcd of its own, Python, loads the library and reads through it (in the
   // sanitizer build the library needs the sanitizer's runtime first, which Python has not).
   const std::string host =
