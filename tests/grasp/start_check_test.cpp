@@ -2,16 +2,23 @@
 // into it, inside a box "finger", wholly inside one, and a finger wholly inside a large object;
 // and a ring with a finger through its hole, which the true mesh lets start but its convex hull
 // (native collision) does not, nor the hulls of the ring cut in two halves (a decomposition's
-// pieces), while the hulls of its quarters do.
+// pieces), while the hulls of its quarters do. And the deepest probe of a surface inside a hollow
+// solid (grasp/surface_cache.h), which both checks measure, against every probe tested alone.
 #include "graspcd/grasp/start_check.h"
 
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
+#include <random>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "graspcd/core/penetration.h"
+#include "graspcd/grasp/surface_cache.h"
+#include "graspcd/io/mesh_io.h"
 #include "graspcd/io/warnings.h"
 #include "helpers/ring_mesh.h"
 #include "helpers/temp_dir.h"
@@ -150,6 +157,47 @@ TEST_F(RingStartTest, PiecesAreCheckedByTheirOwnHulls) {
   const auto [truth, hull] = check(2);
   EXPECT_EQ(truth, "");
   EXPECT_EQ(hull, "geom 'finger' lies 4.0 mm inside piece 0 of mesh 'ring' at the start");
+}
+
+// deepest_probe_inside against every probe tested alone (core's deepest_point_inside: the exact
+// inside test and the distance to the surface of each): the same deepest depth, and a bound at
+// least it, for a small ring placed at random through the wall and the hole of a large one. The
+// hole lies inside the solid's boxes, so its probes reach the inside test, which the search
+// answers for most of them from a ball free of the surface around an earlier probe.
+TEST_F(RingStartTest, TheDeepestProbeIsTheDeepestOfEveryProbeTestedAlone) {
+  const double kTwoPi = 2 * std::acos(-1.0);
+  const double kSpacing = 1e-3, kFloor = 5e-4;
+  const GeomSurface solid(posed_triangles(
+      io::load_mesh(write("ring.obj", testing::ring_obj(0.02, 0.03, 0.01, 0, kTwoPi, 48))),
+      Pose{}));
+  const GeomSurface probed(posed_triangles(
+      io::load_mesh(write("link.obj", testing::ring_obj(0.004, 0.012, 0.006, 0, kTwoPi, 24))),
+      Pose{}));
+  ASSERT_TRUE(solid.closed());
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::vector<Vec3> placed;
+  int deep = 0, shallow = 0;
+  for (int k = 0; k < 150; ++k) {
+    const Vec3 axis = Vec3(unit(random), unit(random), unit(random)).normalized();
+    const Pose pose{Eigen::AngleAxisd(3 * unit(random), axis).toRotationMatrix(),
+                    Vec3(0.045 * unit(random), 0.045 * unit(random), 0.02 * unit(random))};
+    const ProbeDepth found = deepest_probe_inside(solid, probed, pose, kSpacing, kFloor, placed);
+    std::vector<Vec3> every;
+    for (const Vec3& p : probed.probes(kSpacing).points) every.push_back(apply_pose(pose, p));
+    const double truth = deepest_point_inside(solid.tree(), every).depth;
+    if (truth > kFloor) {
+      ++deep;
+      EXPECT_EQ(found.depth, truth) << "pose " << k;
+    } else {
+      ++shallow;
+      EXPECT_EQ(found.depth, 0) << "pose " << k;
+    }
+    EXPECT_GE(found.bound, truth) << "pose " << k;
+  }
+  // The poses reach both answers.
+  EXPECT_GE(deep, 30);
+  EXPECT_GE(shallow, 30) << deep;
 }
 
 }  // namespace

@@ -186,6 +186,12 @@ ProbeDepth deepest_probe_inside(const GeomSurface& solid, const GeomSurface& pro
   // inside the solid, in the order of what they cost: a triangle within that distance (found by
   // a search that visits only the boxes that near), the inside test, and only then the distance
   // to the surface, exactly.
+  // A ball free of the surface holds points of one side: the side of a probe inside the last
+  // such ball found is its centre's (the radius shrunk far beyond the distance's rounding).
+  const double ball = 4 * spacing;
+  bool have_ball = false;
+  Vec3 ball_centre = Vec3::Zero();
+  bool ball_inside = false;
   for (const Vec3& x : placed) {
     const double enough = std::max(floor, out.depth);
     const double near = triangle_within(tree, x, enough, stack);
@@ -193,7 +199,16 @@ ProbeDepth deepest_probe_inside(const GeomSurface& solid, const GeomSurface& pro
       out.bound = std::max(out.bound, near);
       continue;
     }
-    if (point_side(tree, x) == PointSide::kOutside) continue;
+    bool inside = false;
+    if (have_ball && (x - ball_centre).norm() < ball * (1 - 1e-6)) {
+      inside = ball_inside;
+    } else {
+      inside = point_side(tree, x) != PointSide::kOutside;
+      have_ball = triangle_within(tree, x, ball, stack) > ball;
+      ball_centre = x;
+      ball_inside = inside;
+    }
+    if (!inside) continue;
     out.depth = nearest_surface_distance(tree, x, enough, stack);
   }
   out.bound = std::max(out.bound, out.depth);
