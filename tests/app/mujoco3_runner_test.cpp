@@ -3,7 +3,8 @@
 // `graspcd grasp --native` on an outside grasp both engines collide alike; the geom ids of its
 // records checked against MuJoCo 2.2's compile of the scene as given; a record of the rigid flex
 // on concave_robotiq_bowl_rim checked against the scene (and judged by `graspcd judge` where the
-// build has it); the 3.14 hull's start on concave_robotiq_mug_rim; its refusals. Each test skips,
+// build has it); its refusals. (The 3.14 hull's start on concave_robotiq_mug_rim, judged through
+// the race's runner: tests/study/race_mujoco3_test.py.) Each test skips,
 // saying why, where node, the npm package or ../shared/models is missing (./run build installs the
 // package). Label "slow": the Release pass only.
 #include <gtest/gtest.h>
@@ -379,49 +380,6 @@ TEST_F(Mujoco3Runner, BowlRimFlexRecordFitsTheScene) {
   if (const auto verdict = judge(scene, record)) {
     EXPECT_TRUE(verdict->at("gripped").get<bool>());
     EXPECT_TRUE(verdict->at("held").get<bool>()) << verdict->at("reason");
-  }
-}
-
-// MuJoCo 3.14's hull of the mug holds the pad that starts inside the mug's wall: its first
-// contacts are deeper than graspcd's start rule allows (0.5 mm), or it throws the mug out (faster
-// than 2 m/s). Judged, "cannot start" or "ejected".
-TEST_F(Mujoco3Runner, HullCannotStartTheMugRim) {
-  SKIP_WITHOUT_RUNNER();
-  const fs::path scene = kMjcf / "concave_robotiq_mug_rim.xml";
-  const fs::path record = dir_ / "mug_rim.jsonl";
-  const Outcome r =
-      node("'" + scene.string() + "' --configuration hull --out '" + record.string() + "'");
-  ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << r.err;
-  Scene22 s(scene);
-  const mjModel* m = s.model.get();
-  const std::vector<json> lines = read_record(record);
-  ASSERT_GE(lines.size(), 2u);
-  if (r.exit_code == 0) {
-    Phases phases;
-    check_record(lines, m, "concave_robotiq_mug_rim", phases);
-    ASSERT_FALSE(HasFatalFailure());
-    EXPECT_TRUE(lines.front().at("multiccd").get<bool>());
-    double deepest = 0;
-    for (const json& c : phases["close"].front().at("contacts")) {
-      deepest = std::max(deepest, -c.at("dist").get<double>());
-    }
-    const int dof = m->jnt_dofadr[m->body_jntadr[s.body("object")]];
-    double fastest = 0;
-    for (const auto& [phase, ls] : phases) {
-      for (const json& l : ls) {
-        const json& v = l.at("qvel");
-        fastest = std::max(fastest, std::hypot(v.at(dof).get<double>(), v.at(dof + 1).get<double>(),
-                                               v.at(dof + 2).get<double>()));
-      }
-    }
-    EXPECT_TRUE(deepest > 0.0005 || fastest > 2.0)
-        << "deepest first contact " << deepest << " m, fastest " << fastest << " m/s";
-  } else {
-    EXPECT_EQ(lines.back().at("end").at("status"), "cannot start");
-  }
-  if (const auto verdict = judge(scene, record)) {
-    const std::string outcome = verdict->at("outcome");
-    EXPECT_TRUE(outcome == "cannot start" || outcome == "ejected") << outcome;
   }
 }
 

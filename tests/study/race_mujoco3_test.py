@@ -3,7 +3,9 @@
 concave_robotiq_mug_rim --configurations "3.14 hull" --noslip 0` runs the node runner
 (tools/mujoco3/grasp3.mjs) with the six directions, keeps its record in --work, and judges it
 with `graspcd judge`. 3.14's hull starts 15-32 mm inside the mug (docs/mujoco3.md): the row must
-say "cannot start" (the judge's start rule on 3.14's own contacts) or "ejected", never a grip.
+say "cannot start" (the judge's start rule on 3.14's own contacts) or "ejected", never a grip, and
+the record must show why (its first closing contacts deeper than 0.5 mm, or the mug faster than
+2 m/s).
 The row carries a WebAssembly step cost and no native one, the race.json no path of this
 machine, and the report's race section shows the row. A second race of the same scene judges
 the kept record again without running node (the record is not rewritten).
@@ -80,8 +82,21 @@ with tempfile.TemporaryDirectory() as tmp:
     record = os.path.join(work, "records", SCENE, "3.14_hull_noslip0.jsonl")
     check(os.path.exists(record), f"the record kept in --work: {record}")
     with open(record, encoding="utf-8") as f:
-        header = json.loads(f.readline())
+        lines = [json.loads(x) for x in f]
+    header = lines[0]
     check(header.get("six_directions") is not None, "the record has the six directions")
+    check(header.get("multiccd") is True, "3.14's default: multiccd on")
+    # Why: 3.14's hull holds the pad inside the mug's wall from the first step, its first closing
+    # contacts deeper than graspcd's start rule allows (0.5 mm), or it throws the mug out (faster
+    # than 2 m/s); or the runner found that it cannot start.
+    if lines[-1]["end"]["status"] == "ok":
+        close = next(x for x in lines if x.get("phase") == "close")
+        deepest = max((-c["dist"] for c in close["contacts"]), default=0.0)
+        fastest = r.get("max_speed") or 0.0
+        check(deepest > 0.0005 or fastest > 2.0,
+              f"deepest first contact {deepest} m, fastest {fastest} m/s")
+    else:
+        check(lines[-1]["end"]["status"] == "cannot start", f"end {lines[-1]['end']}")
     check(tmp not in text and str(ROOT) not in text,
           "race.json carries no path of this machine")
     check(data["scenes"][SCENE]["mujoco3"] is None, "the scene was raced in 3.14")
