@@ -4,16 +4,21 @@
 - graspcd's own configurations (graspcd, its exact contacts, MuJoCo 2.2 on the hull or on
   convex pieces): `graspcd grasp SCENE --judge --json --write-run RECORD --six-directions`, then
   `graspcd judge SCENE RECORD --json`. The step cost, the contacts per step and the simulator's
-  first contacts are the grasp's (what it measured while it ran); the outcome, the verdicts, the
+  first contacts are the grasp's (what it measured while it ran: the step cost is its
+  cpu_ms_per_physics_step, the thread's CPU time per physics step); the outcome, the verdicts, the
   true penetration, the six directions and the phantom and missed contacts are the judge's.
 - MuJoCo 3.14 (the official WebAssembly build, run by node: tools/mujoco3/grasp3.mjs,
   docs/mujoco3.md) in four configurations of the object's collision, on the scenes whose pair
   config has a "grasp" section: its hull with multiccd on (3.14's default), the mesh SDF with
   sdf_initpoints 40 (the default) and 10, and the rigid flex (radius 0.5 mm). The runner writes
   the record (cached in WORK/mujoco3: a record that exists is judged again, not run again, since
-  node takes 10-60 s per run), `graspcd judge` judges it. Its step cost is WebAssembly's,
-  measured by the runner around MuJoCo's mj_step: it goes in its own column
+  node takes 10 s to a few minutes per run), `graspcd judge` judges it. Its step cost is
+  WebAssembly's, the node process's CPU time per mj_step as the runner measures it (its wall time
+  grows with whatever else the machine runs): it goes in its own column
   (ms_per_physics_step_wasm), never beside a native one (ms_per_physics_step is null).
+- Every row's step cost is CPU time ("step_clock": "cpu"); "wall" marks a row whose run did not
+  measure it (a record or a grasp of an earlier build), and a row merged from an earlier race
+  without the field is wall time too.
 """
 
 import json
@@ -106,14 +111,21 @@ def judged_row(name, j, noslip, multiccd, grasp=None, summary=None):
     r.update(verdict_fields(j))
     r.update(contact_fields(j.get("judge")))
     if grasp is not None:
-        r.update({"ms_per_physics_step": grasp["ms_per_physics_step"],
+        # The CPU time per physics step (the grasp's thread: what the steps cost, whatever
+        # else the machine runs); the wall time where the grasp did not measure it.
+        r.update({"ms_per_physics_step": grasp.get("cpu_ms_per_physics_step",
+                                                   grasp["ms_per_physics_step"]),
+                  "step_clock": "cpu" if "cpu_ms_per_physics_step" in grasp else "wall",
                   "ms_per_physics_step_wasm": None,
                   "contacts_per_step": grasp["mean_contacts"],
                   "first_contact": grasp["first_contact"]})
     else:
         s = summary or {}
         r.update({"ms_per_physics_step": None,
-                  "ms_per_physics_step_wasm": s.get("step_ms"),
+                  # The runner's CPU time per mj_step; a summary without it (a runner before
+                  # it measured CPU time) gives its wall time, and the row says which.
+                  "ms_per_physics_step_wasm": s.get("step_cpu_ms", s.get("step_ms")),
+                  "step_clock": "cpu" if "step_cpu_ms" in s else "wall",
                   "contacts_per_step": s.get("contacts_per_step"),
                   "first_contact": s.get("first_contact", {})})
     return r

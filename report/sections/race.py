@@ -42,8 +42,10 @@ def race_intro(race):
       " collision where raced (`grasp --multiccd`, `run_race.py --multiccd 0,1`: up to 5"
       " contacts per convex pair instead of 1; \"native hull multiccd\", \"decomposed-N"
       " multiccd\", in the figure \"mc\"); graspcd's served pairs are not convex and are its own,"
-      " so its row runs without it. The step cost is the wall time per physics step over the whole"
-      " grasp (single runs one after another, not a benchmark); contacts are hand-object"
+      " so its row runs without it. The step cost is the CPU time per physics step over the"
+      " whole grasp (single runs one after another, not a benchmark; CPU time, since the race"
+      " shares the machine with other work and wall time grows with it; \"(wall)\" marks a row"
+      " of a run that did not measure CPU time); contacts are hand-object"
       " contacts per physics step; the contact error is phantom plus missed contacts per closing"
       " grasp step, judged by CGAL on the true meshes (`grasp --judge`: a phantom's point lies"
       " more than 1 mm from a true surface; a missed contact is a finger segment whose true mesh"
@@ -206,7 +208,7 @@ def race_rows(race, fig_dir, fig_rel):
     w = lines.append
     w("| scene | configuration | noslip | outcome | six directions | tilt final (deg) |"
       " top speed (m/s) | kinetic energy (mJ) | true penetration: hand, support (mm) |"
-      " step cost, native (ms) | step cost, WebAssembly (ms) | contacts per step |"
+      " step cost, native (CPU ms) | step cost, WebAssembly (CPU ms) | contacts per step |"
       " first contact as CGAL's | phantom, missed | contact error per step |")
     w("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     fig, (ax, axp) = plt.subplots(1, 2, figsize=(13, 4.8))
@@ -215,9 +217,10 @@ def race_rows(race, fig_dir, fig_rel):
         points = {True: ([], [], []), False: ([], [], [])}
         for r in e["rows"]:
             w(row_line(scene, r))
-            # A WebAssembly step cost is not on the native axis.
+            # A WebAssembly step cost is not on the native axis, nor a wall time on a CPU one.
             if (race_score.row_outcome(r) != "cannot start"
-                    and r.get("ms_per_physics_step") is not None):
+                    and r.get("ms_per_physics_step") is not None
+                    and r.get("step_clock") == "cpu"):
                 plot_row(r, ax, axp, points)
         plot_scene(scene, color=f"C{k % 10}", marker=markers[k % len(markers)], points=points,
                    ax=ax, axp=axp)
@@ -226,9 +229,9 @@ def race_rows(race, fig_dir, fig_rel):
     w(f"![step cost against contact error and true-mesh penetration]({fig_rel}/race_pareto.png)")
     w("")
     w("Filled markers: the object was kept (held, tilted or not); hollow: it was not (dropped,"
-      " ejected; a run that could not start has no point). Rows of an earlier race (no noslip"
-      " column) have no true penetration and appear in the left panel only. MuJoCo 3.14's rows"
-      " have a WebAssembly step cost, not a native one, and are not in the figure.")
+      " ejected; a run that could not start has no point). Rows whose step cost is wall time"
+      " (an earlier race's) and MuJoCo 3.14's rows (a WebAssembly step cost, not a native one)"
+      " are not in the figure.")
     w("")
     return lines
 
@@ -258,13 +261,22 @@ def row_line(scene, r):
             f" {opt(r.get('max_speed'), '.3g')} |"
             f" {opt(None if r.get('kinetic_energy_max') is None else 1000 * r['kinetic_energy_max'], '.3g')} |"
             f" {penetration_cell(r)} |"
-            f" {opt(r.get('ms_per_physics_step'), '.3f')} |"
-            f" {opt(r.get('ms_per_physics_step_wasm'), '.3f')} |"
+            f" {cost_cell(r, 'ms_per_physics_step')} |"
+            f" {cost_cell(r, 'ms_per_physics_step_wasm')} |"
             f" {opt(r.get('contacts_per_step'), '.1f')} |"
             f" {same} of {len(segments)} |"
             f" {by_geom(r['phantom'], r.get('phantom_by_geom'))},"
             f" {by_geom(r['missed'], r.get('missed_by_geom'))} |"
             f" {opt(r.get('contact_error_per_step'), '.2f')} |")
+
+
+def cost_cell(r, key):
+    """A row's step cost (`key`: the native or the WebAssembly column): CPU ms per physics step,
+    or wall ms marked "(wall)" for a run that did not measure CPU time (study/race_judged.py)."""
+    if r.get(key) is None:
+        return "-"
+    cell = opt(r[key], ".3f")
+    return cell if r.get("step_clock") == "cpu" else f"{cell} (wall)"
 
 
 def six_directions_cell(r):
@@ -312,7 +324,7 @@ def plot_scene(scene, color, marker, points, ax, axp):
 def finish_race_figure(fig, ax, axp, fig_dir):
     """The panels' scales, labels and legend; saves race_pareto.png."""
     ax.set_xscale("log")
-    ax.set_xlabel("step cost: wall ms per physics step (log)")
+    ax.set_xlabel("step cost: CPU ms per physics step (log)")
     ax.set_ylabel("contact error: phantom + missed per closing step")
     ax.set_title("Contact error (the judge)")
     if not axp.collections:
@@ -320,7 +332,7 @@ def finish_race_figure(fig, ax, axp, fig_dir):
                  va="center", transform=axp.transAxes, fontsize=8)
     axp.set_xscale("log")
     axp.set_yscale("log")
-    axp.set_xlabel("step cost: wall ms per physics step (log)")
+    axp.set_xlabel("step cost: CPU ms per physics step (log)")
     axp.set_ylabel("deepest true penetration into the hand (mm, log; at least 0.01)")
     axp.set_title("True-mesh penetration (the protocol's rows)")
     # The legend beside the axes, never over the points.

@@ -31,7 +31,7 @@ def race_findings(race):
             if "outcome" in best:
                 cost = (f"{best['ms_per_physics_step']:.3f} ms"
                         if best.get("ms_per_physics_step") is not None else
-                        f"{best['ms_per_physics_step_wasm']:.3f} ms in WebAssembly")
+                        f"{best['ms_per_physics_step_wasm']:.3f} ms of CPU in WebAssembly")
                 verdicts.append(f"- {where}: best {best['configuration']}"
                                 f" ({shown_outcome(best)},"
                                 f" {1000 * race_score.hand_penetration(best):.2f} mm into the"

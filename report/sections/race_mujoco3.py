@@ -36,9 +36,12 @@ def mujoco3_section(race):
       " `sdf_initpoints` 40, its default: \"3.14 sdf\"; 10: \"3.14 sdf10\") and a rigid flex of the"
       " mesh inflated by 0.5 mm (\"3.14 flex\"), each with the six-direction test after the hold,"
       " and writes a run record that `graspcd judge` judges on the true meshes, as every other"
-      " row of the race (docs/run-record.md). Its step cost is WebAssembly's, measured around"
-      " `mj_step` by the runner, in its own column: it says what a 3.14 user running this build"
-      " pays, not what native MuJoCo 3.14 costs, and is never set against a native step cost."
+      " row of the race (docs/run-record.md). Its step cost is WebAssembly's, the node"
+      " process's CPU time around `mj_step` as the runner measures it (its wall time grows with"
+      " whatever else the machine runs; a cost marked \"(wall)\" comes from a record made before"
+      " the runner measured CPU time), in its own column: it says what a 3.14 user running this"
+      " build pays, not what native MuJoCo 3.14 costs, and is never set against a native step"
+      " cost."
       " The scenes of the project's own hand run on graspcd's C++ controllers, which the node"
       " runner does not drive, and are not raced in 3.14; the scenes without 3.14's rows: "
       + not_raced(race) + ".")
@@ -57,7 +60,7 @@ def mujoco3_section(race):
     w("")
     w("| configuration | noslip | runs | kept | not kept | six directions held |"
       " true penetration into the hand, median / largest (mm) | phantom per step |"
-      " missed per step | step cost, native (ms) | step cost, WebAssembly (ms) |")
+      " missed per step | step cost, native (ms) | step cost, WebAssembly (CPU ms) |")
     w("|---|---|---|---|---|---|---|---|---|---|---|")
     for name in configuration_order(scenes):
         noslips = sorted({r.get("noslip") for e in scenes.values() for r in e["rows"]
@@ -107,7 +110,7 @@ def overview(scenes):
         wasm = [r["ms_per_physics_step_wasm"] for e in scenes.values() for r in e["rows"]
                 if r["configuration"] == name and r.get("ms_per_physics_step_wasm") is not None]
         if wasm:
-            costs.append(f"{name} {min(wasm):.2f}-{max(wasm):.2f} ms in WebAssembly")
+            costs.append(f"{name} {min(wasm):.2f}-{max(wasm):.2f} ms of CPU in WebAssembly")
     if ours and costs:
         parts.append(f"A physics step cost graspcd {min(ours):.3f}-{max(ours):.3f} ms (C++,"
                      " native) and " + ", ".join(costs) + "; the two are different builds"

@@ -89,6 +89,11 @@ TEST_P(OursLiftsAndHolds, FingersTouchThenTheObjectIsLiftedAndHeldAndDetectionTi
   EXPECT_LT(r.rest_max_penetration, 0.001);
   EXPECT_GT(r.rest_energy_early, 0.0);
 
+  // The step cost in wall and CPU time (the thread's: at most the wall time it took, up to the
+  // clocks' ticks).
+  EXPECT_GT(r.step_cpu_ms, 0.0);
+  EXPECT_LE(r.step_cpu_ms, r.step_wall_ms * 1.001 + 1e-6);
+
   // Detection time per grasp step.
   ASSERT_FALSE(r.steps.empty());
   int served_steps = 0;

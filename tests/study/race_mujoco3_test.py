@@ -6,7 +6,7 @@ with `graspcd judge`. 3.14's hull starts 15-32 mm inside the mug (docs/mujoco3.m
 say "cannot start" (the judge's start rule on 3.14's own contacts) or "ejected", never a grip, and
 the record must show why (its first closing contacts deeper than 0.5 mm, or the mug faster than
 2 m/s).
-The row carries a WebAssembly step cost and no native one, the race.json no path of this
+The row carries a WebAssembly step cost (the runner's CPU time per step) and no native one, the race.json no path of this
 machine, and the report's race section shows the row. A second race of the same scene judges
 the kept record again without running node (the record is not rewritten).
 
@@ -86,6 +86,10 @@ with tempfile.TemporaryDirectory() as tmp:
     header = lines[0]
     check(header.get("six_directions") is not None, "the record has the six directions")
     check(header.get("multiccd") is True, "3.14's default: multiccd on")
+    with open(record + ".summary.json", encoding="utf-8") as f:
+        summary = json.load(f)
+    check(summary.get("step_cpu_ms", 0) > 0, f"the runner's CPU ms per step: {summary}")
+    check(r.get("step_clock") == "cpu", f"the row's step cost is CPU time: {r}")
     # Why: 3.14's hull holds the pad inside the mug's wall from the first step, its first closing
     # contacts deeper than graspcd's start rule allows (0.5 mm), or it throws the mug out (faster
     # than 2 m/s); or the runner found that it cannot start.

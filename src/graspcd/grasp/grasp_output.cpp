@@ -119,6 +119,7 @@ json run_json(const GraspResult& r) {
           {"timestep", r.timestep},
           {"physics_steps_per_grasp_step", r.physics_steps_per_grasp_step},
           {"ms_per_physics_step", r.step_wall_ms},
+          {"cpu_ms_per_physics_step", r.step_cpu_ms},
           {"max_contacts", r.max_contacts},
           {"mean_contacts", r.mean_contacts},
           {"max_pair_contacts", r.max_pair_contacts},

@@ -264,6 +264,7 @@ struct GraspResult {
   int physics_steps_per_grasp_step = 0;
   long physics_steps = 0;
   double step_wall_ms = 0;  // mean wall time per physics step (mj_step1 + control + mj_step2)
+  double step_cpu_ms = 0;   // the same steps' mean CPU time (the running thread's)
   std::uint64_t detection_ns_close = 0;  // summed over the closing grasp steps
   std::uint64_t detection_ns_total = 0;  // all phases
   int max_contacts = 0;                  // most finger-object contacts in one physics step

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "graspcd/core/clock.h"
+#include "graspcd/grasp/grasp_cost.h"
 #include "graspcd/grasp/six_directions.h"
 #include "graspcd/grasp/verdicts.h"
 #include "graspcd/mujoco/mujoco_ptr.h"
@@ -144,9 +144,9 @@ long HandRun::phase_steps(double seconds) const {
 // segment-object contacts, then the state before the step (whose kinematics d_ holds after it,
 // motion_watch.h) to the watch, and the state after it to the run record.
 void HandRun::physics_step() {
-  const Clock::time_point start = Clock::now();
+  const CostInstant start = CostInstant::now();
   advance();
-  wall_ns_ += static_cast<std::int64_t>(elapsed_ns(start));
+  step_time_ += CostInstant::now().since(start);
   ++physics_steps_;
   throw_if_nonfinite(d_, scene_, phase_, physics_steps_);
   scan_contacts();
@@ -297,9 +297,9 @@ void HandRun::six_directions() {
 void HandRun::finish(GraspResult& result) const {
   result.physics_steps = physics_steps_;
   result.sim_time = d_->time - start_time_;
-  result.step_wall_ms =
-      physics_steps_ > 0 ? static_cast<double>(wall_ns_) / 1e6 / static_cast<double>(physics_steps_)
-                         : 0.0;
+  const double steps = static_cast<double>(std::max(physics_steps_, 1L));
+  result.step_wall_ms = 1e3 * step_time_.wall_s / steps;
+  result.step_cpu_ms = 1e3 * step_time_.cpu_s / steps;
   result.detection_ns_total = totals_.detection_ns;
   result.contained_calls = totals_.contained;
   result.nonfinite_skips = totals_.nonfinite_skips;

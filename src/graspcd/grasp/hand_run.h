@@ -130,7 +130,7 @@ class HandRun {
   long contacts_sum_ = 0;
   PairRun pair_run_;
   long physics_steps_ = 0;
-  std::int64_t wall_ns_ = 0;
+  PartTime step_time_;     // of the physics steps: the thread's CPU time and the wall time
   double start_time_ = 0;  // MuJoCo's clock at the start: the first keyframe's time, else 0
   BridgeTotals totals_;
   const mjModel* truth_ = nullptr;

@@ -83,6 +83,7 @@ export class DrivenGrasp {
     this.firstContact = new Array(this.segments.length).fill(-1);
     this.physicsSteps = 0;
     this.stepNs = 0n;
+    this.stepCpuUs = 0;
     this.velocity = new mj.DoubleBuffer(6);
     this.badWarnings = [
       ["qpos", mj.mjtWarning.mjWARN_BADQPOS.value],
@@ -124,14 +125,17 @@ export class DrivenGrasp {
     return { body: this.names.body[this.m.geom_bodyid[geom]], geom: this.geomMap[geom] };
   }
 
-  // One physics step: mj_step (timed), MuJoCo's non-finite warnings (graspcd stops at the first,
+  // One physics step: mj_step (timed: wall and the process's CPU), MuJoCo's non-finite warnings (graspcd stops at the first,
   // as hand_run.cpp's throw_if_nonfinite), the segments touching the object, the object's motion,
   // the record's line.
   physicsStep(phase, graspStep) {
     const { mj, m, d } = this;
     const start = process.hrtime.bigint();
+    const cpu = process.cpuUsage();
     mj.mj_step(m, d);
+    const used = process.cpuUsage(cpu);
     this.stepNs += process.hrtime.bigint() - start;
+    this.stepCpuUs += used.user + used.system;
     this.physicsSteps++;
     // d.warning is a live view: it is never deleted (deleting it aborts the module); the
     // elements get() returns are, else each leaks.
@@ -314,6 +318,9 @@ export class DrivenGrasp {
       closing_steps: this.closingSteps,
       physics_steps: this.physicsSteps,
       step_ms: this.physicsSteps ? Number(this.stepNs) / 1e6 / this.physicsSteps : 0,
+      // The process's CPU time (user and system) over the same calls: what the steps cost,
+      // whatever else the machine runs (the wall time above grows with the machine's load).
+      step_cpu_ms: this.physicsSteps ? this.stepCpuUs / 1e3 / this.physicsSteps : 0,
       object_rise: this.heightFinal - this.heightGripped,
       object_z: {
         start: this.heightStart,
