@@ -78,8 +78,9 @@ contacts within 20 um). --configurations LIST (comma-separated names or
 fnmatch patterns, e.g. "native hull*,decomposed-*") races only the configurations it matches, and
 decomposes only for those: graspcd's rows can be raced apart from the baselines and the two files
 joined with --merge, which keeps, for a scene raced in both, the merged file's rows of the
-configurations and noslip values this run did not race (each with that file's provenance, in
-"merged_rows"). --engines hacd,vhacd decomposes with each engine `graspcd decompose
+configurations and noslip values this run did not race (each with the provenance of the race
+that ran it, in "merged_rows": a row the merged file had itself merged keeps the origin it had
+there). --engines hacd,vhacd decomposes with each engine `graspcd decompose
 --engine` offers (HACD always: configuration decomposed-N; V-HACD, when the executable has it:
 vhacd-N, with --vhacd-pieces' counts when given, else the scene's), cached apart in --work.
 """
@@ -377,8 +378,12 @@ def row_key(r):
 def merge_rows(entry, old_entry, old, file):
     """--merge for a scene raced now and in the merged file `old` (its entry `old_entry`): the
     old rows of configurations and noslip values not raced now are kept, after the new ones, and
-    "merged_rows" says where they came from (the file, its configurations and the old scene's
-    provenance); so are the old decompositions not made now."""
+    "merged_rows" says where they came from: for each origin, the file, its configurations, its
+    rows ([configuration, noslip]) and the provenance of the race that ran them. A row the merged
+    file had itself merged keeps the origin that file gave it (its "merged_rows" part: by the
+    part's rows, or by configuration for a part written before parts named their rows); the
+    others were raced by the merged file's scene (its provenance). So are the old
+    decompositions not made now."""
     raced = {row_key(r) for r in entry["rows"]}
     kept = [r for r in old_entry["rows"] if row_key(r) not in raced]
     if not kept:
@@ -389,10 +394,27 @@ def merge_rows(entry, old_entry, old, file):
         entry["mujoco3"] = old_entry.get("mujoco3")
     for key, d in old_entry.get("decompositions", {}).items():
         entry["decompositions"].setdefault(key, d)
-    entry.setdefault("merged_rows", []).append(
-        {"file": os.path.basename(file),
-         "configurations": sorted({r["configuration"] for r in kept}),
-         "provenance": old_entry.get("provenance", {"machine": old.get("machine")})})
+
+    def origin(r):
+        for part in old_entry.get("merged_rows", []):
+            if "rows" in part:
+                if [r["configuration"], r.get("noslip")] in part["rows"]:
+                    return part["file"], part["provenance"]
+            elif r["configuration"] in part["configurations"]:
+                return part["file"], part["provenance"]
+        return (os.path.basename(file),
+                old_entry.get("provenance", {"machine": old.get("machine")}))
+
+    parts = {}
+    for r in kept:
+        where, provenance = origin(r)
+        key = (where, json.dumps(provenance, sort_keys=True))
+        parts.setdefault(key, {"file": where, "configurations": [], "rows": [],
+                               "provenance": provenance})
+        parts[key]["rows"].append([r["configuration"], r.get("noslip")])
+    for part in parts.values():
+        part["configurations"] = sorted({c for c, _ in part["rows"]})
+        entry.setdefault("merged_rows", []).append(part)
 
 
 def engines_available(graspcd):

@@ -68,6 +68,27 @@ check(len(merged) == 1 and merged[0]["file"] == "baselines.json"
       and merged[0]["configurations"] == ["decomposed-16", "native hull",
                                           "native hull multiccd"]
       and merged[0]["provenance"]["date"] == "then", f"merged_rows {merged}")
+check(merged and merged[0].get("rows") == [["native hull", 0], ["native hull multiccd", 0],
+                                         ["decomposed-16", 0]], f"the part's rows {merged}")
+# That file merged again into a later race: a row it had merged keeps its origin (the race that
+# ran it, not the file's own scene), the others are the file's scene's.
+later = {"rows": [row("native hull", 0, "held")], "decompositions": {}}
+file_entry = dict(new, provenance={"graspcd": {"version": "0.5.0", "commit": "def"},
+                                   "date": "now"})
+run_race.merge_rows(later, file_entry, {"machine": {}}, "joined.json")
+origins = {(p["file"], p["provenance"]["date"]): p["rows"] for p in later.get("merged_rows", [])}
+check(origins == {("joined.json", "now"): [["graspcd", 0]],
+                  ("baselines.json", "then"): [["native hull multiccd", 0],
+                                                ["decomposed-16", 0]]},
+      f"origins kept through a second merge: {origins}")
+# A part written before parts named their rows is matched by configuration.
+legacy = dict(file_entry, merged_rows=[{"file": "old.json", "configurations": ["decomposed-16"],
+                                        "provenance": {"date": "long ago"}}])
+again_later = {"rows": [row("graspcd", 0, "held")], "decompositions": {}}
+run_race.merge_rows(again_later, legacy, {"machine": {}}, "joined.json")
+origins = {p["provenance"]["date"]: p["configurations"] for p in again_later["merged_rows"]}
+check(origins == {"long ago": ["decomposed-16"],
+                  "now": ["native hull", "native hull multiccd"]}, f"a legacy part: {origins}")
 # Nothing left to take: no note.
 again = {"rows": list(new["rows"]), "decompositions": {}}
 run_race.merge_rows(again, old_entry, old, "baselines.json")
