@@ -129,7 +129,8 @@ MotionWatch::MotionWatch(const mjModel* m, const mjModel* truth, int object, int
     others_reach_.push_back(reach);
   }
   const int support_root = support > 0 ? m->body_rootid[support] : -1;
-  touch_ = std::make_unique<TrueTouch>(truth, object, support_root, options.touch_tolerance);
+  touch_ = std::make_unique<TrueTouch>(truth, object, support_root, options.touch_tolerance,
+                                       options.surfaces);
   if (options.true_penetration) {
     penetration_ =
         std::make_unique<TruePenetrationWatch>(truth, object, support_root, options.surfaces);

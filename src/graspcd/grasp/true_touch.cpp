@@ -19,11 +19,6 @@ constexpr double kTouchDistanceCap = 5e-3;
 
 }  // namespace
 
-struct TrueTouch::Surface {
-  ObbTree tree;
-  double reach = 0;  // the farthest vertex from the geom's origin, m
-};
-
 struct TrueTouch::Pair {
   int object = -1, hand = -1;
   // The last query: the hand geom in the object geom's frame then, and the answer.
@@ -34,8 +29,13 @@ struct TrueTouch::Pair {
 
 TrueTouch::~TrueTouch() = default;
 
-TrueTouch::TrueTouch(const mjModel* truth, int object_body, int support_root, double tolerance)
-    : m_(truth), tolerance_(tolerance), surfaces_(static_cast<std::size_t>(truth->ngeom)) {
+TrueTouch::TrueTouch(const mjModel* truth, int object_body, int support_root, double tolerance,
+                     SurfaceCache* surfaces)
+    : m_(truth),
+      tolerance_(tolerance),
+      own_surfaces_(surfaces ? nullptr : std::make_unique<SurfaceCache>(truth)),
+      surfaces_(surfaces ? surfaces : own_surfaces_.get()),
+      reach_(static_cast<std::size_t>(truth->ngeom), -1.0) {
   const mjModel* m = truth;
   const int root = m->body_rootid[object_body];
   const auto in_object = [&](int g) { return m->body_rootid[m->geom_bodyid[g]] == root; };
@@ -59,17 +59,10 @@ TrueTouch::TrueTouch(const mjModel* truth, int object_body, int support_root, do
   }
 }
 
-const TrueTouch::Surface& TrueTouch::surface(int geom) {
-  std::unique_ptr<Surface>& s = surfaces_[static_cast<std::size_t>(geom)];
-  if (!s) {
-    s = std::make_unique<Surface>();
-    std::vector<Triangle> triangles = geom_triangles(m_, geom);
-    for (const Triangle& t : triangles) {
-      for (const Vec3& v : t.v) s->reach = std::max(s->reach, v.norm());
-    }
-    if (!triangles.empty()) s->tree = ObbTree::build(std::move(triangles));
-  }
-  return *s;
+const GeomSurface* TrueTouch::surface(int geom) {
+  const GeomSurface* s = surfaces_->surface(geom);
+  if (s != nullptr) reach_[static_cast<std::size_t>(geom)] = s->radius();
+  return s;
 }
 
 double TrueTouch::query(const mjData* d, const Pair& pair, const Pose& now) {
@@ -77,10 +70,10 @@ double TrueTouch::query(const mjData* d, const Pair& pair, const Pose& now) {
       (mujoco::geom_position(d, pair.object) - mujoco::geom_position(d, pair.hand)).norm() -
       m_->geom_rbound[pair.object] - m_->geom_rbound[pair.hand];
   if (gap > kTouchDistanceCap) return gap;
-  const Surface& object = surface(pair.object);
-  const Surface& hand = surface(pair.hand);
-  if (object.tree.nodes().empty() || hand.tree.nodes().empty()) return kTouchDistanceCap;
-  return tree_distance(object.tree, hand.tree, now, kTouchDistanceCap, tolerance_);
+  const GeomSurface* object = surface(pair.object);
+  const GeomSurface* hand = surface(pair.hand);
+  if (object == nullptr || hand == nullptr) return kTouchDistanceCap;
+  return tree_distance(object->tree(), hand->tree(), now, kTouchDistanceCap, tolerance_);
 }
 
 bool TrueTouch::touching(const mjData* d) {
@@ -88,9 +81,8 @@ bool TrueTouch::touching(const mjData* d) {
     const Pose now = mujoco::relative_pose(d, pair.object, pair.hand);
     if (pair.queried) {
       const double turn = (now.R - pair.last.R).norm();  // Frobenius: at least the spectral norm
-      const double reach = surfaces_[static_cast<std::size_t>(pair.hand)]
-                               ? surfaces_[static_cast<std::size_t>(pair.hand)]->reach
-                               : m_->geom_rbound[pair.hand];
+      const double known = reach_[static_cast<std::size_t>(pair.hand)];
+      const double reach = known >= 0 ? known : m_->geom_rbound[pair.hand];
       const double moved = turn * reach + (now.t - pair.last.t).norm();
       if (pair.value <= tolerance_ && pair.value + moved <= tolerance_) return true;
       if (pair.value > tolerance_ && pair.value - moved > tolerance_) continue;
@@ -123,19 +115,19 @@ GripTouch TrueTouch::grip(const mjData* d) {
         (mujoco::geom_position(d, pair.object) - mujoco::geom_position(d, pair.hand)).norm() -
         m_->geom_rbound[pair.object] - m_->geom_rbound[pair.hand];
     if (gap > tolerance_) continue;
-    const Surface& object = surface(pair.object);
-    const Surface& hand = surface(pair.hand);
-    if (object.tree.nodes().empty() || hand.tree.nodes().empty()) continue;
+    const GeomSurface* object = surface(pair.object);
+    const GeomSurface* hand = surface(pair.hand);
+    if (object == nullptr || hand == nullptr) continue;
     const Pose now = mujoco::relative_pose(d, pair.object, pair.hand);
     near.clear();
-    triangles_within(object.tree, hand.tree, now, tolerance_, near);
+    triangles_within(object->tree(), hand->tree(), now, tolerance_, near);
     if (near.empty()) continue;
     const Mat3 rotation = mujoco::from_row_major(d->geom_xmat + 9 * pair.object);
     const Vec3 origin = mujoco::geom_position(d, pair.object);
     Vec3 push = Vec3::Zero();
     for (const NearTriangles& n : near) {
-      const Triangle& t = object.tree.triangles()[static_cast<std::size_t>(n.a)];
-      const Triangle h = apply_pose(now, hand.tree.triangles()[static_cast<std::size_t>(n.b)]);
+      const Triangle& t = object->tree().triangles()[static_cast<std::size_t>(n.a)];
+      const Triangle h = apply_pose(now, hand->tree().triangles()[static_cast<std::size_t>(n.b)]);
       Vec3 normal = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
       const double length = normal.norm();
       if (length > 0) {

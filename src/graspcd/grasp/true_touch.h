@@ -8,7 +8,8 @@
 // body tree that the contype/conaffinity filter lets collide with an object geom and that has a
 // surface (a mesh or a primitive; planes and height fields have none here). Surfaces are the
 // geoms' triangles in their own frames (true_surfaces.h), each built into an OBB tree the first
-// time it is needed.
+// time it is needed, in a SurfaceCache (surface_cache.h) the caller may share with the start
+// check and the true penetration.
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "graspcd/core/geometry.h"
+#include "graspcd/grasp/surface_cache.h"
 
 namespace graspcd::grasp {
 
@@ -41,8 +43,10 @@ class TrueTouch {
  public:
   // `truth`: the model whose geoms are the true surfaces (the run's, or a decomposed scene's
   // true_object_model); `object_body` its object's body; `support_root` the root of the
-  // support's body tree (-1: none, the world only); `tolerance`, m.
-  TrueTouch(const mjModel* truth, int object_body, int support_root, double tolerance);
+  // support's body tree (-1: none, the world only); `tolerance`, m; `surfaces` the geoms'
+  // surfaces, kept by the caller (null: built here).
+  TrueTouch(const mjModel* truth, int object_body, int support_root, double tolerance,
+            SurfaceCache* surfaces = nullptr);
   ~TrueTouch();
   TrueTouch(const TrueTouch&) = delete;
   TrueTouch& operator=(const TrueTouch&) = delete;
@@ -62,17 +66,21 @@ class TrueTouch {
   GripTouch grip(const mjData* d);
 
  private:
-  struct Surface;
   struct Pair;
-  const Surface& surface(int geom);
+  // The geom's surface (null: none), its reach noted.
+  const GeomSurface* surface(int geom);
   // The pair's distance at `d` when at most the tolerance, else a lower bound of it (up to
   // kTouchDistanceCap; the gap of the geoms' bounding spheres beyond that).
   double query(const mjData* d, const Pair& pair, const Pose& now);
 
   const mjModel* m_;
   double tolerance_;
-  std::vector<std::unique_ptr<Surface>> surfaces_;  // by geom id, built on first use
-  std::vector<Pair> pairs_;                         // (object geom, hand geom), in id order
+  std::unique_ptr<SurfaceCache> own_surfaces_;
+  SurfaceCache* surfaces_;
+  // By geom id: the farthest vertex from the geom's origin once its surface was fetched, else
+  // -1 (MuJoCo's bounding radius, at least as far, stands in).
+  std::vector<double> reach_;
+  std::vector<Pair> pairs_;  // (object geom, hand geom), in id order
 };
 
 }  // namespace graspcd::grasp

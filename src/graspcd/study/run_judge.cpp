@@ -130,10 +130,13 @@ JudgedRun judge_run(const std::string& scene, const std::string& record) {
   for (const grasp::RecordState& s : ahead) {
     sample += s.phase == grasp::RunPhase::kClose && s.grasp_step == 1 ? 1 : 0;
   }
+  // The geoms' surfaces, built once for the start check and the true penetration.
+  grasp::SurfaceCache surfaces(m);
   grasp::WatchOptions options;
   options.touch_tolerance = grasp::kTouchDistance + header.inflation;
   options.true_penetration = true;
   options.sample = sample > 0 ? sample : 5;
+  options.surfaces = &surfaces;
   grasp::MotionWatch watch(m, m, object, hand, support, options);
   std::unique_ptr<ContactJudge> judge;
   if (header.contacts) {
@@ -154,7 +157,8 @@ JudgedRun judge_run(const std::string& scene, const std::string& record) {
     ++out.states;
     last_t = s.t;
     if (s.phase == grasp::RunPhase::kStart) {
-      const std::string problem = grasp::check_start_state(m, current.get(), object);
+      const std::string problem =
+          grasp::check_start_state(m, current.get(), object, {}, {}, &surfaces);
       if (!problem.empty()) refusal = "the start state is not valid: " + problem;
     } else if (out.states == 2 && header.contacts && refusal.empty()) {
       refusal = simulator_start(m, object, header, s.contacts);
