@@ -186,6 +186,18 @@ def provenance(g, started):
             "wall_seconds": round(time.time() - started, 1)}
 
 
+def executable_provenance(graspcd):
+    """graspcd's version and commit as `graspcd --version` prints them, in the grasp JSON's form
+    ({"graspcd": {"version", "commit", "dirty"}}): the provenance of a scene whose rows are all
+    MuJoCo 3.14's, which graspcd only judged."""
+    done = subprocess.run([graspcd, "--version"], capture_output=True, text=True)
+    lines = done.stdout.splitlines()
+    version = lines[0].split()[-1] if lines else "?"
+    commit = next((x.split(":", 1)[1].strip() for x in lines if x.startswith("commit:")), "?")
+    return {"graspcd": {"version": version, "commit": commit.removesuffix("-dirty"),
+                        "dirty": commit.endswith("-dirty")}}
+
+
 def object_scene(graspcd, spec, work):
     """--object "NAME=FILE [options]": the scene `graspcd grasp --object` writes, kept in
     WORK/scenes/NAME (its .pairs.json beside it)."""
@@ -636,7 +648,7 @@ def main():
                     "graspcd": d.get("graspcd", {}).get("commit")}
                 race(name, base + ["--decomposed", out])
         if first is None:
-            first = {}
+            first = executable_provenance(args.graspcd)
         entry["provenance"] = provenance(first, started)
         result["scenes"][scene_name] = entry
     # --merge, first file first: a scene raced now, or in an earlier file, is kept from there.

@@ -104,6 +104,9 @@ with tempfile.TemporaryDirectory() as tmp:
     check(tmp not in text and str(ROOT) not in text,
           "race.json carries no path of this machine")
     check(data["scenes"][SCENE]["mujoco3"] is None, "the scene was raced in 3.14")
+    judged_by = data["scenes"][SCENE]["provenance"].get("graspcd", {})
+    check(judged_by.get("version") not in (None, "?") and judged_by.get("commit") not in (None, "?"),
+          f"the scene's provenance names the graspcd that judged it: {judged_by}")
 
     # The report's race section shows the row, its WebAssembly cost in its own column.
     from sections.race import race_section  # noqa: E402  (report/sections)
