@@ -125,9 +125,9 @@ export class DrivenGrasp {
     return { body: this.names.body[this.m.geom_bodyid[geom]], geom: this.geomMap[geom] };
   }
 
-  // One physics step: mj_step (timed: wall and the process's CPU), MuJoCo's non-finite warnings (graspcd stops at the first,
-  // as hand_run.cpp's throw_if_nonfinite), the segments touching the object, the object's motion,
-  // the record's line.
+  // One physics step: mj_step (timed: wall and the process's CPU), MuJoCo's non-finite warnings
+  // (graspcd stops at the first, as hand_run.cpp's throw_if_nonfinite), the segments touching the
+  // object, the object's motion, the record's line.
   physicsStep(phase, graspStep) {
     const { mj, m, d } = this;
     const start = process.hrtime.bigint();
