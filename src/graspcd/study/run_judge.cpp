@@ -130,7 +130,7 @@ JudgedRun judge_run(const std::string& scene, const std::string& record) {
   for (const grasp::RecordState& s : ahead) {
     sample += s.phase == grasp::RunPhase::kClose && s.grasp_step == 1 ? 1 : 0;
   }
-  // The geoms' surfaces, built once for the start check and the true penetration.
+  // The geoms' surfaces, built once for the start check, the true penetration and the touch.
   grasp::SurfaceCache surfaces(m);
   grasp::WatchOptions options;
   options.touch_tolerance = grasp::kTouchDistance + header.inflation;
