@@ -239,13 +239,14 @@ def contacts_per_step(record):
 
 def mujoco3_row(graspcd, name, scene, record, noslip, node="node"):
     """MuJoCo 3.14's row of one (scene, configuration `name`, noslip): the record made (or
-    reused) and judged. (row, None), or (None, message) where no record could be judged."""
+    reused) and judged. (row, None, the judge's graspcd provenance: version and commit), or
+    (None, message, None) where no record could be judged."""
     summary, message = mujoco3_record(scene, MUJOCO3[name], noslip, record, node)
     if message is not None:
-        return None, message
+        return None, message, None
     j, message = judge(graspcd, scene, record)
     if j is None:
-        return None, message
+        return None, message, None
     r = judged_row(name, j, noslip, j.get("multiccd"), summary=summary)
     r["record"] = os.path.basename(record)
-    return r, None
+    return r, None, {"graspcd": j.get("graspcd", {})}

@@ -186,18 +186,6 @@ def provenance(g, started):
             "wall_seconds": round(time.time() - started, 1)}
 
 
-def executable_provenance(graspcd):
-    """graspcd's version and commit as `graspcd --version` prints them, in the grasp JSON's form
-    ({"graspcd": {"version", "commit", "dirty"}}): the provenance of a scene whose rows are all
-    MuJoCo 3.14's, which graspcd only judged."""
-    done = subprocess.run([graspcd, "--version"], capture_output=True, text=True)
-    lines = done.stdout.splitlines()
-    version = lines[0].split()[-1] if lines else "?"
-    commit = next((x.split(":", 1)[1].strip() for x in lines if x.startswith("commit:")), "?")
-    return {"graspcd": {"version": version, "commit": commit.removesuffix("-dirty"),
-                        "dirty": commit.endswith("-dirty")}}
-
-
 def object_scene(graspcd, spec, work):
     """--object "NAME=FILE [options]": the scene `graspcd grasp --object` writes, kept in
     WORK/scenes/NAME (its .pairs.json beside it)."""
@@ -364,8 +352,9 @@ def log_row(r):
 def mujoco3_rows(graspcd, name, scene, records, noslips, node, kept_only=False, not_run=None):
     """The rows of one of MuJoCo 3.14's configurations, one per noslip value: the node runner's
     record (made unless it exists in `records`) judged by graspcd judge. With `kept_only`, a
-    record not made yet is not made: its configuration and noslip value go to `not_run`."""
-    rows = []
+    record not made yet is not made: its configuration and noslip value go to `not_run`. Returns
+    the rows and the first judged record's provenance (the judge's graspcd) or None."""
+    rows, first = [], None
     for n in noslips:
         record = os.path.join(records, record_name(name, n))
         if kept_only and not (os.path.exists(record)
@@ -373,13 +362,14 @@ def mujoco3_rows(graspcd, name, scene, records, noslips, node, kept_only=False, 
             print(f"[race]   {name} noslip {n}: no kept record, not run", file=sys.stderr)
             not_run.append({"configuration": name, "noslip": n})
             continue
-        r, message = race_judged.mujoco3_row(graspcd, name, scene, record, n, node)
+        r, message, version = race_judged.mujoco3_row(graspcd, name, scene, record, n, node)
         if r is None:
             r = refused_row(name, n, message, True)
             r["simulator"] = race_judged.SIMULATOR
+        first = first or version
         log_row(r)
         rows.append(r)
-    return rows
+    return rows, first
 
 
 def row_key(r):
@@ -438,26 +428,29 @@ def engines_available(graspcd):
 
 def race_mujoco3(args, scene_name, scene, records, noslips, patterns, rows):
     """MuJoCo 3.14's configurations of one scene (those --configurations selects), their rows
-    added to `rows`; returns why the scene has none (None when raced)."""
+    added to `rows`; returns why the scene has none (None when raced) and the first judged
+    record's provenance (None without one)."""
     names = [n for n in race_judged.MUJOCO3 if selected(n, patterns)]
     if not names:
-        return "not selected (--configurations)"
+        return "not selected (--configurations)", None
     if not race_judged.driven(scene):
         return ("not raced: the scene's hand runs on graspcd's C++ controllers (its pair config"
-                " has no \"grasp\" section for the node runner to drive)")
+                " has no \"grasp\" section for the node runner to drive)"), None
     missing = race_judged.mujoco3_missing(args.node)
     if missing:
         print(f"[race] {scene_name}: MuJoCo 3.14 not raced: {missing}", file=sys.stderr)
-        return f"not raced: {missing}"
-    not_run = []
+        return f"not raced: {missing}", None
+    not_run, first = [], None
     for name in names:
         print(f"[race] {scene_name}: {name} ({race_judged.SIMULATOR})", file=sys.stderr)
-        rows.extend(mujoco3_rows(args.graspcd, name, scene, records, noslips, args.node,
-                                 args.mujoco3_kept_only, not_run))
+        judged, version = mujoco3_rows(args.graspcd, name, scene, records, noslips, args.node,
+                                       args.mujoco3_kept_only, not_run)
+        rows.extend(judged)
+        first = first or version
     if not_run:
         return {"not_run": not_run,
-                "why": "--mujoco3-kept-only: no record of these was kept in --work"}
-    return None
+                "why": "--mujoco3-kept-only: no record of these was kept in --work"}, first
+    return None, first
 
 
 # An absolute path in a command or message: "/" then a name, then at least one more "/NAME",
@@ -599,8 +592,10 @@ def main():
         race("graspcd", base)
         race("graspcd exact", base + ["--exact"])
         race("native hull", base + ["--native"])
-        entry["mujoco3"] = race_mujoco3(args, scene_name, scene, records, noslips, patterns,
-                                        entry["rows"])
+        entry["mujoco3"], judged = race_mujoco3(args, scene_name, scene, records, noslips,
+                                                patterns, entry["rows"])
+        # A scene raced only in MuJoCo 3.14: the provenance of the graspcd that judged it.
+        first = first or judged
         vhacd_counts = counts if args.vhacd_pieces is None else \
             [int(p) for p in args.vhacd_pieces.split(",") if p]
         if "vhacd" in engines:
@@ -648,7 +643,7 @@ def main():
                     "graspcd": d.get("graspcd", {}).get("commit")}
                 race(name, base + ["--decomposed", out])
         if first is None:
-            first = executable_provenance(args.graspcd)
+            first = {}
         entry["provenance"] = provenance(first, started)
         result["scenes"][scene_name] = entry
     # --merge, first file first: a scene raced now, or in an earlier file, is kept from there.
