@@ -175,6 +175,30 @@ std::vector<ObjVertexLine> read_obj_vertex_lines(const std::string& path,
       faces.push_back(face);
       continue;
     }
+    // A normal or a texture coordinate: numbers that MuJoCo 2.2's reader copies as it counts
+    // them, reading past its buffer on a line of other words (found by fuzz_scene_mjcf).
+    if (pos + 2 < line.size() && line[pos] == 'v' &&
+        (line[pos + 1] == 'n' || line[pos + 1] == 't') &&
+        (line[pos + 2] == ' ' || line[pos + 2] == '\t')) {
+      const bool normal = line[pos + 1] == 'n';
+      const std::string which = normal ? "normal" : "texture coordinate";
+      split_words(pos + 2);
+      if (normal ? tokens.size() != 3 : tokens.size() < 2 || tokens.size() > 3) {
+        fail(path,
+             which + ": expected " + (normal ? "3" : "2 or 3") + " numbers, got " +
+                 std::to_string(tokens.size()),
+             line_number);
+      }
+      // Words, not numbers, are refused; a non-finite normal is not a vertex and stays allowed.
+      for (const std::string& token : tokens) {
+        char* end = nullptr;
+        std::strtod(token.c_str(), &end);
+        if (end == token.c_str() || *end != '\0') {
+          fail(path, which + ": malformed number \"" + token + "\"", line_number);
+        }
+      }
+      continue;
+    }
     if (pos + 1 >= line.size() || line[pos] != 'v' ||
         (line[pos + 1] != ' ' && line[pos + 1] != '\t')) {
       continue;
