@@ -16,7 +16,9 @@ Per configuration, over the set and per object (rates(), below):
   placements   the placements it was given (those the reference started);
   starts       the share of them it started;
   held         the share of its started runs held after the lift;
-  six          held in six directions: None until the grasp has the test;
+  six          the share of its started runs held after the lift and then in all six directions
+               of the six-direction test (a run's "six_directions": how many of the six it held
+               in); None when its runs had no test (a run made before the study ran it);
   disagree     the share of its started runs whose held verdict differs from the reference's,
                split into held where the reference drops (held_ref_drops) and dropped where the
                reference holds (dropped_ref_holds);
@@ -29,7 +31,8 @@ Per configuration, over the set and per object (rates(), below):
   phantom, missed  the judge's phantom and missed contacts per closing grasp step (CGAL on the
                true meshes, `grasp --judge`), summed over the runs, divided by their steps;
   cost         the CPU seconds of a grasp (the `graspcd` process's user + system time), median and
-               mean, its wall seconds, and the wall ms per physics step (median).
+               mean, its wall seconds, and the wall and CPU ms per physics step (median; the CPU
+               cost is the grasp thread's over the same steps).
 """
 
 import math
@@ -100,13 +103,18 @@ def configuration_rates(placements, name):
     wall = [r["wall_s"] for _, r in begun if r.get("wall_s") is not None]
     step_ms = [r["ms_per_physics_step"] for _, r in begun
                if r.get("ms_per_physics_step") is not None]
-    six = [r["six_directions"] for _, r in begun if r.get("six_directions") is not None]
+    step_cpu_ms = [r["cpu_ms_per_physics_step"] for _, r in begun
+                   if r.get("cpu_ms_per_physics_step") is not None]
+    # Runs with the test: held in all six, after being held at the lift. A count from an older
+    # run's whole document (a dict) is not a count: such runs have no rate.
+    six = [held(r) and r["six_directions"] == 6 for _, r in begun
+           if isinstance(r.get("six_directions"), int)]
     return {
         "placements": len(runs),
         "starts": share(len(begun), len(runs)),
         "cannot_start": len(runs) - len(begun),
         "held": share(sum(held(r) for _, r in begun), len(begun)),
-        "six": share(sum(bool(x) for x in six), len(six)) if six else None,
+        "six": share(sum(six), len(six)) if six else None,
         "compared": len(compared),
         "disagree": share(sum(v != "" for v in compared), len(compared)),
         "held_ref_drops": share(compared.count("held_ref_drops"), len(compared)),
@@ -122,6 +130,7 @@ def configuration_rates(placements, name):
         "cpu_s_mean": statistics.mean(cpu) if cpu else None,
         "wall_s_median": statistics.median(wall) if wall else None,
         "ms_per_physics_step": statistics.median(step_ms) if step_ms else None,
+        "cpu_ms_per_physics_step": statistics.median(step_cpu_ms) if step_cpu_ms else None,
     }
 
 

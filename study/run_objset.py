@@ -29,7 +29,8 @@ place that runs one):
                   (study/objset_rates.py: the reference rule); a start it refuses is a skipped
                   placement, counted, and nothing else runs on it; a reference that fails
                   otherwise is recorded with its message, and nothing else runs on it either;
-  reference half  the written scene, `--exact --timestep-divisor 2`: the reference's convergence;
+  reference half  the written scene, `--exact --timestep-divisor 2`: the reference's convergence
+                  (its held verdict only: the one run without the six-direction test);
   then, with --judge (CGAL's phantom and missed contacts at every closing step; --no-judge
   leaves it out, and the counts with it), each configuration --configurations selects (comma-separated names or fnmatch patterns; default all):
   graspcd         graspcd's contacts as the pair config says (reusing a pair's within 20 um);
@@ -41,8 +42,11 @@ place that runs one):
                   --decomposed with a manifest the study writes under WORK/pieces/);
   vhacd-16        MuJoCo 2.2 on V-HACD's decomposition into at most 16 pieces (`graspcd decompose
                   --engine vhacd --pieces 16`, cached under WORK/decompositions/).
-A run records its verdict, the true meshes' penetration into the hand, the judge's counts, the
-physics steps and its cost: the process's CPU seconds (user + system) and wall seconds.
+Every other run ends with the six-direction test (`grasp --six-directions`: from the held state,
+the support gone, the object pulled by its weight along each axis of the hand for 1 s). A run
+records its verdict, the directions of the six it held in, the true meshes' penetration into the
+hand, the judge's counts, the physics steps, their CPU cost per step, and its cost: the process's
+CPU seconds (user + system) and wall seconds.
 
 Scaling out. --shard I/N runs the placements whose index in the plan is I modulo N and writes
 them with the plan; --merge joins the N shard files of one plan into one document and refuses,
@@ -83,6 +87,8 @@ CONFIGURATIONS = ("graspcd", "graspcd exact", "native hull", "native hull multic
                   "published pieces", "vhacd-16")
 OFFSET_M = 0.005
 VHACD_PIECES = 16
+# Every run but the reference's convergence check ends with the six-direction test.
+SIX = ["--six-directions"]
 
 
 class Refusal(Exception):
@@ -261,7 +267,10 @@ def run_record(g, cost):
             "closing_steps": judge.get("steps"),
             "physics_steps": g.get("physics_steps"), "timestep": g.get("timestep"),
             "ms_per_physics_step": g.get("ms_per_physics_step"),
-            "six_directions": g.get("six_directions"), **cost}
+            "cpu_ms_per_physics_step": g.get("cpu_ms_per_physics_step"),
+            # The directions of the six-direction test the object held in (of 6; None when the
+            # run had no test).
+            "six_directions": (g.get("six_directions") or {}).get("held"), **cost}
 
 
 def refused_record(message, cost):
@@ -339,7 +348,7 @@ def run_placement(graspcd, plan, p, work, patterns, judge=True):
         object_args += ["--scale", repr(obj["scale"])]
     record = dict(p, runs={})
     g, message, cost = grasp(graspcd, object_args + ["--write-scene", scene_dir, "--force",
-                                                     *objset_rates.reference_options()])
+                                                     *objset_rates.reference_options(), *SIX])
     if g is None:
         if is_start_refusal(message):
             record.update(skipped=True, message=message)
@@ -353,7 +362,7 @@ def run_placement(graspcd, plan, p, work, patterns, judge=True):
     scene = os.path.join(scene_dir, stem + ".xml")
     routes = [(objset_rates.REFERENCE_HALF,
                objset_rates.reference_options(objset_rates.REFERENCE_HALF_DIVISOR))]
-    judged = ["--judge"] if judge else []
+    judged = SIX + (["--judge"] if judge else [])
     routes += [("graspcd", judged), ("graspcd exact", judged + ["--exact"]),
                ("native hull", judged + ["--native"]),
                ("native hull multiccd", judged + ["--native", "--multiccd"])]
