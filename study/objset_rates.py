@@ -32,7 +32,9 @@ Per configuration, over the set and per object (rates(), below):
                true meshes, `grasp --judge`), summed over the runs, divided by their steps;
   cost         the CPU seconds of a grasp (the `graspcd` process's user + system time), median and
                mean, its wall seconds, and the wall and CPU ms per physics step (median; the CPU
-               cost is the grasp thread's over the same steps).
+               cost is the grasp thread's over the same steps); MuJoCo 3.14's runs: the node
+               process's CPU seconds, and WebAssembly's CPU ms per mj_step in its own field
+               (wasm_cpu_ms_per_physics_step), never beside a native one.
 """
 
 import math
@@ -105,6 +107,8 @@ def configuration_rates(placements, name):
                if r.get("ms_per_physics_step") is not None]
     step_cpu_ms = [r["cpu_ms_per_physics_step"] for _, r in begun
                    if r.get("cpu_ms_per_physics_step") is not None]
+    step_wasm_ms = [r["wasm_cpu_ms_per_physics_step"] for _, r in begun
+                    if r.get("wasm_cpu_ms_per_physics_step") is not None]
     # Runs with the test: held in all six, after being held at the lift. A count from an older
     # run's whole document (a dict) is not a count: such runs have no rate.
     six = [held(r) and r["six_directions"] == 6 for _, r in begun
@@ -131,6 +135,8 @@ def configuration_rates(placements, name):
         "wall_s_median": statistics.median(wall) if wall else None,
         "ms_per_physics_step": statistics.median(step_ms) if step_ms else None,
         "cpu_ms_per_physics_step": statistics.median(step_cpu_ms) if step_cpu_ms else None,
+        "wasm_cpu_ms_per_physics_step": (statistics.median(step_wasm_ms) if step_wasm_ms
+                                         else None),
     }
 
 

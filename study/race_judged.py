@@ -25,6 +25,8 @@ import json
 import os
 import shutil
 import subprocess
+import tempfile
+import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RUNNER = os.path.join(ROOT, "tools", "mujoco3", "grasp3.mjs")
@@ -55,6 +57,21 @@ def mujoco3_missing(node="node"):
     if not os.path.isdir(PACKAGE):
         return "tools/mujoco3's npm packages are not installed (cd tools/mujoco3 && npm ci)"
     return None
+
+
+def run_measured(command):
+    """Runs `command`: (exit code, stdout, stderr, cost), cost the process's {cpu_s: user +
+    system seconds, wall_s} (os.wait4: its own, whatever else the machine runs)."""
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+        start = time.monotonic()
+        p = subprocess.Popen(command, stdout=out, stderr=err)
+        _, status, usage = os.wait4(p.pid, 0)
+        cost = {"cpu_s": round(usage.ru_utime + usage.ru_stime, 3),
+                "wall_s": round(time.monotonic() - start, 3)}
+        out.seek(0)
+        err.seek(0)
+        return (os.waitstatus_to_exitcode(status), out.read().decode(errors="replace"),
+                err.read().decode(errors="replace"), cost)
 
 
 def judge(graspcd, scene, record):
@@ -166,24 +183,26 @@ def grasp_row(graspcd, name, command, scene, record, noslip, multiccd):
 def mujoco3_record(scene, configuration, noslip, record, node="node"):
     """The node runner's record of (scene, configuration, noslip), made unless it exists, with
     the six directions; its summary (RECORD.summary.json: the runner's --summary, with the
-    contacts per step added) or None where 3.14 could not start; and a message where the runner
-    failed without a record (bad input, a defect: exit 1 or 2)."""
+    contacts per step and the node process's cost, {cpu_s, wall_s}, added) or None where 3.14
+    could not start; and a message where the runner failed without a record (bad input, a
+    defect: exit 1 or 2)."""
     summary_file = record + ".summary.json"
     if os.path.exists(failed_file(record)) and not os.path.exists(record):
         with open(failed_file(record), encoding="utf-8") as f:
             return None, f.read().strip()
     if not os.path.exists(record):
         os.makedirs(os.path.dirname(record) or ".", exist_ok=True)
-        done = subprocess.run([node, RUNNER, scene, "--configuration", configuration,
-                               "--noslip", str(noslip), "--six-directions", "--summary",
-                               "--out", record], capture_output=True, text=True)
-        if done.returncode not in (0, 3):
-            message = failure_message(done.returncode, done.stderr)
+        code, stdout, stderr, cost = run_measured(
+            [node, RUNNER, scene, "--configuration", configuration, "--noslip", str(noslip),
+             "--six-directions", "--summary", "--out", record])
+        if code not in (0, 3):
+            message = failure_message(code, stderr)
             with open(failed_file(record), "w", encoding="utf-8") as f:
                 f.write(message + "\n")
             return None, message
+        text = stdout.strip()
         with open(summary_file, "w", encoding="utf-8") as f:
-            f.write(done.stdout)
+            f.write(json.dumps(dict(json.loads(text), process=cost)) + "\n" if text else "")
     summary = None
     if os.path.exists(summary_file):
         with open(summary_file, encoding="utf-8") as f:

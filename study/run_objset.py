@@ -32,7 +32,8 @@ place that runs one):
   reference half  the written scene, `--exact --timestep-divisor 2`: the reference's convergence
                   (its held verdict only: the one run without the six-direction test);
   then, with --judge (CGAL's phantom and missed contacts at every closing step; --no-judge
-  leaves it out, and the counts with it), each configuration --configurations selects (comma-separated names or fnmatch patterns; default all):
+  leaves it out, and the counts with it), each configuration --configurations selects
+  (comma-separated names or fnmatch patterns; default every one but MuJoCo 3.14's):
   graspcd         graspcd's contacts as the pair config says (reusing a pair's within 20 um);
   graspcd exact   graspcd's exact contacts every step (--exact);
   native hull, native hull multiccd
@@ -41,7 +42,13 @@ place that runs one):
   published pieces  MuJoCo 2.2 on the object's published decomposition (its pieces/ folder,
                   --decomposed with a manifest the study writes under WORK/pieces/);
   vhacd-16        MuJoCo 2.2 on V-HACD's decomposition into at most 16 pieces (`graspcd decompose
-                  --engine vhacd --pieces 16`, cached under WORK/decompositions/).
+                  --engine vhacd --pieces 16`, cached under WORK/decompositions/);
+  3.14 hull, 3.14 sdf, 3.14 flex
+                  MuJoCo 3.14 in WebAssembly (node, tools/mujoco3) on the written scene: its hull
+                  (multiccd on), its mesh SDF and its rigid flex, as the race runs them
+                  (study/race_judged.py); the record kept under WORK/mujoco3/ and judged by
+                  `graspcd judge` on the true meshes. Only when --configurations names them (5-40 s
+                  of CPU a grasp); a runner that stops with an error counts as cannot start.
 Every other run ends with the six-direction test (`grasp --six-directions`: from the held state,
 the support gone, the object pulled by its weight along each axis of the hand for 1 s). A run
 records its verdict, the directions of the six it held in, the true meshes' penetration into the
@@ -73,18 +80,21 @@ import shlex
 import shutil
 import subprocess
 import sys
-import tempfile
 import threading
 import time
 
 import objset_rates  # study/objset_rates.py, beside this script
+import race_judged  # study/race_judged.py
 import race_score  # study/race_score.py
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 HANDS = ("robotiq", "shadow", "project")
 AXES = ("x", "y", "z", "-x", "-y", "-z")
-CONFIGURATIONS = ("graspcd", "graspcd exact", "native hull", "native hull multiccd",
-                  "published pieces", "vhacd-16")
+# MuJoCo 3.14's configurations (study/race_judged.py): run only when --configurations names them.
+MUJOCO3 = ("3.14 hull", "3.14 sdf", "3.14 flex")
+DEFAULT_CONFIGURATIONS = ("graspcd", "graspcd exact", "native hull", "native hull multiccd",
+                          "published pieces", "vhacd-16")
+CONFIGURATIONS = DEFAULT_CONFIGURATIONS + MUJOCO3
 OFFSET_M = 0.005
 VHACD_PIECES = 16
 # Every run but the reference's convergence check ends with the six-direction test.
@@ -239,20 +249,11 @@ def shard_of(placements, shard):
 def grasp(graspcd, args):
     """One `graspcd grasp` process (the one place the study runs a grasp): (its JSON, None, cost)
     or (None, the refusal's line, cost); cost is {cpu_s, wall_s} of the process."""
-    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
-        start = time.monotonic()
-        p = subprocess.Popen([graspcd, "grasp", *args, "--json"], stdout=out, stderr=err)
-        _, status, usage = os.wait4(p.pid, 0)
-        p.returncode = os.waitstatus_to_exitcode(status)
-        cost = {"cpu_s": round(usage.ru_utime + usage.ru_stime, 3),
-                "wall_s": round(time.monotonic() - start, 3)}
-        out.seek(0)
-        err.seek(0)
-        if p.returncode != 0:
-            lines = [x for x in err.read().decode(errors="replace").strip().splitlines()
-                     if not x.startswith("warning:")]
-            return None, (lines[-1] if lines else f"exit {p.returncode}"), cost
-        return json.loads(out.read()), None, cost
+    code, stdout, stderr, cost = race_judged.run_measured([graspcd, "grasp", *args, "--json"])
+    if code != 0:
+        lines = [x for x in stderr.strip().splitlines() if not x.startswith("warning:")]
+        return None, (lines[-1] if lines else f"exit {code}"), cost
+    return json.loads(stdout), None, cost
 
 
 def run_record(g, cost):
@@ -271,6 +272,37 @@ def run_record(g, cost):
             # The directions of the six-direction test the object held in (of 6; None when the
             # run had no test).
             "six_directions": (g.get("six_directions") or {}).get("held"), **cost}
+
+
+def mujoco3_run(graspcd, name, scene, record):
+    """MuJoCo 3.14's run of a placement's written scene in configuration `name`: the node runner's
+    record (kept at `record`, and judged again, not run again, when it exists), judged by `graspcd
+    judge` on the true meshes (study/race_judged.py, as the race's rows). Its cost is the node
+    process's (the judge's is the measure's, not the simulator's); its step cost WebAssembly's
+    CPU ms per mj_step, in its own field. A runner that stops without a record (an error MuJoCo
+    3.14 raises, as "collision function returned 11 contacts") counts as cannot start, its
+    message kept."""
+    row, message, _ = race_judged.mujoco3_row(graspcd, name, scene, record, 0)
+    summary = {}
+    if os.path.exists(record + ".summary.json"):
+        with open(record + ".summary.json", encoding="utf-8") as f:
+            summary = json.loads(f.read().strip() or "{}")
+    cost = summary.get("process") or {"cpu_s": None, "wall_s": None}
+    if row is None:
+        return refused_record(message, cost)
+    if row["outcome"] == "cannot start":
+        return refused_record(row.get("message") or "MuJoCo 3.14 cannot start", cost)
+    tp = row.get("true_penetration") or {}
+    return {"outcome": row["outcome"], "held": row["held"], "gripped": row["gripped"],
+            "reason": row.get("reason"), "tilt_final_deg": row.get("tilt_final_deg"),
+            "hand_penetration": tp.get("hand_max"), "penetration": tp.get("max"),
+            "partial": any("(the object)" in x for x in tp.get("partial") or []),
+            "phantom": row.get("phantom"), "missed": row.get("missed"),
+            "closing_steps": row.get("closing_steps"),
+            "physics_steps": summary.get("physics_steps"), "timestep": None,
+            "ms_per_physics_step": None, "cpu_ms_per_physics_step": None,
+            "wasm_cpu_ms_per_physics_step": row.get("ms_per_physics_step_wasm"),
+            "six_directions": (row.get("six_directions") or {}).get("held"), **cost}
 
 
 def refused_record(message, cost):
@@ -339,7 +371,7 @@ def selected(name, patterns):
     return patterns is None or any(fnmatch.fnmatchcase(name, p) for p in patterns)
 
 
-def run_placement(graspcd, plan, p, work, patterns, judge=True):
+def run_placement(graspcd, plan, p, work, judge=True):
     obj = next(o for o in plan["objects"] if o["name"] == p["object"])
     scene_dir = os.path.join(work, "scenes", f"{p['object']}-{p['hand']}-{p['k']}")
     object_args = ["--object", obj["file"], "--hand", p["hand"], "--up", p["up"], "--yaw",
@@ -366,18 +398,25 @@ def run_placement(graspcd, plan, p, work, patterns, judge=True):
     routes += [("graspcd", judged), ("graspcd exact", judged + ["--exact"]),
                ("native hull", judged + ["--native"]),
                ("native hull multiccd", judged + ["--native", "--multiccd"])]
+    chosen = plan["configurations"]
     for name, extra in routes:
-        if name == objset_rates.REFERENCE_HALF or selected(name, patterns):
+        if name == objset_rates.REFERENCE_HALF or name in chosen:
             record["runs"][name] = one_run(graspcd, [scene, *extra])
-    if selected("published pieces", patterns) and obj["pieces"]:
+    if "published pieces" in chosen and obj["pieces"]:
         folder = published_pieces(obj, work)
         record["runs"]["published pieces"] = one_run(
             graspcd, [scene, *judged, "--decomposed", folder])
-    if selected(f"vhacd-{VHACD_PIECES}", patterns):
+    if f"vhacd-{VHACD_PIECES}" in chosen:
         folder, message = vhacd(graspcd, obj, work)
         record["runs"][f"vhacd-{VHACD_PIECES}"] = (
             refused_record(message, {"cpu_s": None, "wall_s": None}) if folder is None else
             one_run(graspcd, [scene, *judged, "--decomposed", folder]))
+    for name in MUJOCO3:
+        if name in chosen:
+            record["runs"][name] = mujoco3_run(
+                graspcd, name, scene,
+                os.path.join(work, "mujoco3", f"{p['object']}-{p['hand']}-{p['k']}-"
+                             f"{race_judged.MUJOCO3[name]}.jsonl"))
     return record
 
 
@@ -446,8 +485,9 @@ def main():
     parser.add_argument("--grasps", type=int, default=20, help="placements per object and hand")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--hands", default=",".join(HANDS))
-    parser.add_argument("--configurations", help="names or fnmatch patterns (default: all of "
-                        + ", ".join(CONFIGURATIONS) + ")")
+    parser.add_argument("--configurations", help="names or fnmatch patterns of "
+                        + ", ".join(CONFIGURATIONS) + " (default: all but MuJoCo 3.14's, which"
+                        " node runs at 5-40 s of CPU a grasp; '*' adds them)")
     parser.add_argument("--no-judge", action="store_true",
                         help="the configurations without --judge: no phantom and missed contacts"
                         " (on meshes of 16k faces the judge is most of a grasp's CPU)")
@@ -477,10 +517,16 @@ def main():
             raise Refusal("--grasps and --workers take a positive number")
         patterns = (None if args.configurations is None else
                     [p.strip() for p in args.configurations.split(",") if p.strip()])
-        configurations = [c for c in CONFIGURATIONS if selected(c, patterns)]
+        configurations = ([c for c in CONFIGURATIONS if selected(c, patterns)] if patterns
+                          is not None else list(DEFAULT_CONFIGURATIONS))
         if not configurations:
             raise Refusal(f"--configurations {args.configurations!r}: selects none of "
                           + ", ".join(CONFIGURATIONS))
+        if any(c in MUJOCO3 for c in configurations):
+            why = race_judged.mujoco3_missing()
+            if why is not None:
+                raise Refusal(f"--configurations {args.configurations!r}: MuJoCo 3.14's runs"
+                              f" cannot run here: {why}")
         shard = parse_shard(args.shard) if args.shard else (0, 1)
         objects = objects_of_folder(args.objects) if args.objects else objects_of_list(args.list)
         if args.only:
@@ -507,7 +553,7 @@ def main():
         doc["complete"] = False
         doc["planned"] = len(mine)
         with concurrent.futures.ThreadPoolExecutor(args.workers) as pool:
-            futures = [pool.submit(run_placement, args.graspcd, plan, p, work, patterns,
+            futures = [pool.submit(run_placement, args.graspcd, plan, p, work,
                                    not args.no_judge) for p in mine]
             for n, future in enumerate(concurrent.futures.as_completed(futures), 1):
                 try:

@@ -24,9 +24,10 @@ def mm(x):
     return opt(None if x is None else 1000 * x, ".2f")
 
 
-def objset_section(doc, fig_dir, fig_rel, judged=None):
-    """The section from the run `doc`; `judged`, a second run with the judge when `doc` ran
-    without it (run_objset.py --no-judge), adds its own table."""
+def objset_section(doc, fig_dir, fig_rel, subset=None):
+    """The section from the run `doc`; `subset`, a second run on a subset of its objects and
+    placements (MuJoCo 3.14's configurations with the others, `objset-subset.json`), adds its own
+    table and its configurations that `doc` has not to the figure."""
     r = objset_rates.rates(doc)
     lines = []
     w = lines.append
@@ -88,21 +89,31 @@ def objset_section(doc, fig_dir, fig_rel, judged=None):
       + (", ".join(partial) if partial else "none of them") + ".")
     w("")
     lines.extend(rates_table(r))
-    if judged is not None:
-        jr = objset_rates.rates(judged)
-        jp = judged["plan"]
-        w(f"With the judge (`objset-judged.json`: `{' '.join(judged.get('command', []))}`;"
-          f" {len(judged['placements'])} of its {len(jp['placements'])} placements"
-          + ("" if judged.get("complete", True) else ", taken before the run's end")
-          + f", {jr['skipped']} skipped at the start): objects"
-          f" {', '.join(o['name'] for o in jp['objects'])}, hands {', '.join(jp['hands'])}.")
+    jr = None
+    if subset is not None:
+        jr = objset_rates.rates(subset)
+        jp = subset["plan"]
+        sm = subset.get("machine", {})
+        w(f"On a subset, with MuJoCo 3.14 (`objset-subset.json`:"
+          f" `{' '.join(subset.get('command', []))}`; the same seed, so its placements are the"
+          f" first {jp['grasps']} of each object and hand above; the reference and every"
+          f" configuration run again beside 3.14's): objects"
+          f" {', '.join(o['name'] for o in jp['objects'])}, hands {', '.join(jp['hands'])};"
+          f" {len(subset['placements'])} of its {len(jp['placements'])} placements"
+          + ("" if subset.get("complete", True) else ", taken before the run's end")
+          + f", {jr['skipped']} skipped at the start. It took"
+          f" {opt(subset.get('wall_s'), '.0f')} s of wall time and"
+          f" {opt(subset.get('cpu_s'), '.0f')} s of CPU with {subset.get('workers')} workers on"
+          f" {sm.get('cores')} cores. MuJoCo 3.14's runs are the race's (node runs the official"
+          " WebAssembly build on the written scene, `graspcd judge` judges its record on the true"
+          " meshes); their cost is the node process's CPU, their step cost WebAssembly's.")
         w("")
         lines.extend(rates_table(jr))
     w("Held in six directions: " + ("; ".join(
         f"{n} {pct(c['six'])}" for n, c in r["configurations"].items() if c["six"] is not None)
         or "not measured in this run (the grasp had no six-direction test when it ran).") + "")
     w("")
-    draw_figure(r, fig_dir)
+    draw_figure(r, fig_dir, jr)
     w(f"![verdict disagreement against CPU per grasp]({fig_rel}/objset_disagreement.png)")
     w("")
     w("Per object (each configuration: held / disagrees with the reference, shares of the"
@@ -126,9 +137,9 @@ def rates_table(r):
     w = lines.append
     w("| configuration | placements | starts | held | disagrees | held, ref. drops |"
       " dropped, ref. holds | hand pen. median / p99 / max (mm) | closed only max (mm) |"
-      " partial | phantom / step | missed / step | CPU s per grasp (median) |"
-      " ms per physics step | grasps per CPU minute |")
-    w("|" + "---|" * 15)
+      " partial | held in six directions | phantom / step | missed / step |"
+      " CPU s per grasp (median) | CPU ms per physics step | grasps per CPU minute |")
+    w("|" + "---|" * 16)
     for name, c in r["configurations"].items():
         p = c["penetration"]
         per_min = None if not c["cpu_s_median"] else 60 / c["cpu_s_median"]
@@ -136,25 +147,42 @@ def rates_table(r):
           f" {pct(c['disagree'])} | {pct(c['held_ref_drops'])} |"
           f" {pct(c['dropped_ref_holds'])} | {mm(p['median'])} / {mm(p['p99'])} /"
           f" {mm(p['max'])} | {mm(c['penetration_closed']['max'])} | {c['partial_runs']} |"
+          f" {pct(c.get('six'))} |"
           f" {opt(c['phantom_per_step'], '.2f')} | {opt(c['missed_per_step'], '.2f')} |"
-          f" {opt(c['cpu_s_median'], '.1f')} | {opt(c['ms_per_physics_step'], '.3f')} |"
-          f" {opt(per_min, '.1f')} |")
+          f" {opt(c['cpu_s_median'], '.1f')} | {step_cost(c)} | {opt(per_min, '.1f')} |")
     w("")
     return lines
 
 
-def draw_figure(r, fig_dir):
+def step_cost(c):
+    """A configuration's CPU ms per physics step: native, or WebAssembly's (MuJoCo 3.14, said so),
+    or a run's wall ms where it measured no CPU time (said so)."""
+    if c.get("cpu_ms_per_physics_step") is not None:
+        return f"{c['cpu_ms_per_physics_step']:.3f}"
+    if c.get("wasm_cpu_ms_per_physics_step") is not None:
+        return f"{c['wasm_cpu_ms_per_physics_step']:.3f} (WebAssembly)"
+    if c.get("ms_per_physics_step") is not None:
+        return f"{c['ms_per_physics_step']:.3f} (wall)"
+    return "-"
+
+
+def draw_figure(r, fig_dir, subset=None):
     """One point per configuration: disagreement with the reference against median CPU seconds
-    per grasp."""
+    per grasp; a subset's configurations that the whole run has not (MuJoCo 3.14's) beside,
+    named as the subset's."""
     fig, ax = plt.subplots(figsize=(8, 4.5))
-    markers = "osD^vP*X"
+    markers = "osD^vP*Xh"
     top = 10.0
     shown = [(n, c) for n, c in r["configurations"].items()
              if not n.startswith(objset_rates.REFERENCE) and c["cpu_s_median"] is not None
              and c["disagree"] is not None]
+    if subset is not None:
+        shown += [(f"{n} (subset)", c) for n, c in subset["configurations"].items()
+                  if n not in r["configurations"] and c["cpu_s_median"] is not None
+                  and c["disagree"] is not None]
     for i, (name, c) in enumerate(shown):
         top = max(top, 100 * c["disagree"] + 5)
-        ax.scatter([c["cpu_s_median"]], [100 * c["disagree"]], s=50, marker=markers[i % 8],
+        ax.scatter([c["cpu_s_median"]], [100 * c["disagree"]], s=50, marker=markers[i % len(markers)],
                    alpha=0.8, label=f"{name} ({c['compared']} grasps)")
     ax.set_ylim(-2, top)
     ref = r["configurations"].get(objset_rates.REFERENCE)

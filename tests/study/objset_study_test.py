@@ -2,9 +2,11 @@
 """The object-set study run for real (study/run_objset.py driving graspcd): two objects, two
 seeded placements each, in two configurations (graspcd and MuJoCo's hull) with the Robotiq, as
 two shards run with two workers and merged; then one placement run again as a shard of another
-split: the same placement, the same verdicts (reproduced from the seed). Also the reference's rule as it ran: a quarter of the
-scene's time step and four times the physics steps (half of each for its convergence run), and
-the placement's offset written into the scene.
+split: the same placement, the same verdicts (reproduced from the seed). Also the reference's
+rule as it ran: a quarter of the scene's time step and four times the physics steps (half of each
+for its convergence run); the six-direction test after every run but the convergence run's; the
+placement's offset written into the scene; and one placement in MuJoCo 3.14's hull (node, judged
+by graspcd judge), skipped with a message without node or tools/mujoco3's packages.
 
 Usage: objset_study_test.py GRASPCD MODELS_DIR WORK_DIR
 Skipped with a message when MODELS_DIR has no Robotiq or objects.
@@ -77,6 +79,11 @@ class ObjsetStudy(unittest.TestCase):
                     continue
                 self.assertGreater(run["physics_steps"], 0, name)
                 self.assertGreater(run["cpu_s"], 0, name)
+                self.assertGreater(run["cpu_ms_per_physics_step"], 0, name)
+                if name == "reference half":
+                    self.assertIsNone(run["six_directions"], "no six directions: held only")
+                else:
+                    self.assertIn(run["six_directions"], range(7), name)
                 self.assertIsNotNone(run["hand_penetration"], name)
                 if not name.startswith("reference"):
                     self.assertGreater(run["closing_steps"], 0, f"{name}: judged")
@@ -119,6 +126,41 @@ class ObjsetStudy(unittest.TestCase):
         self.assertEqual(doc["plan"]["id"], self.doc["plan"]["id"])
         mine = [p for p in self.doc["placements"] if p["index"] == 3]
         self.assertEqual(verdicts(doc), verdicts({"placements": mine}))
+
+    def test_mujoco3s_hull_runs_on_the_written_scene_and_is_judged(self):
+        sys.path.insert(0, STUDY)
+        import race_judged  # noqa: E402
+        why = race_judged.mujoco3_missing()
+        if why is not None:
+            self.skipTest(f"MuJoCo 3.14's runner cannot run here: {why}")
+        out = os.path.join(WORK, "mujoco3", "objset.json")
+        r = runner(GRASPCD, "--list", self.list, "--only", "cup", "--hands", "robotiq",
+                   "--grasps", "1", "--seed", "3", "--configurations", "3.14 hull",
+                   "--workers", "1", "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            doc = json.load(f)
+        self.assertEqual(doc["configurations"], ["reference", "reference half", "3.14 hull"])
+        p = doc["placements"][0]
+        # The same placement as the first run's: the plan's placements come from the seed.
+        first = next(x for x in self.doc["placements"] if x["object"] == "cup" and x["k"] == 0)
+        self.assertEqual((p["up"], p["yaw"], p["offset"]), (first["up"], first["yaw"],
+                                                            first["offset"]))
+        if p.get("skipped"):
+            self.skipTest("the cup's first placement did not start")
+        run = p["runs"]["3.14 hull"]
+        self.assertIn(run["outcome"], ("held", "held tilted", "dropped", "ejected",
+                                       "cannot start"), run)
+        self.assertGreater(run["cpu_s"], 0, "the node process's CPU")
+        if run["outcome"] != "cannot start":
+            self.assertGreater(run["closing_steps"], 0, "judged by graspcd judge")
+            self.assertIsNotNone(run["hand_penetration"])
+            self.assertGreater(run["wasm_cpu_ms_per_physics_step"], 0)
+            self.assertIsNone(run["cpu_ms_per_physics_step"], "never beside a native cost")
+            self.assertIn(run["six_directions"], range(7))
+        c = objset_rates.rates(doc)["configurations"]["3.14 hull"]
+        self.assertEqual(c["placements"], 1)
+        self.assertIsNone(c["cpu_ms_per_physics_step"])
 
 
 if __name__ == "__main__":
