@@ -15,6 +15,8 @@ configuration's "cannot start": it counts in its starts, not in its verdicts.
 Per configuration, over the set and per object (rates(), below):
   placements   the placements it was given (those the reference started);
   starts       the share of them it started;
+  non_finite   its started runs that went non-finite (MuJoCo found a bad number in the state and
+               the grasp stopped): not held, no penetration measured;
   held         the share of its started runs held after the lift;
   six          the share of its started runs held after the lift and then in all six directions
                of the six-direction test (a run's "six_directions": how many of the six it held
@@ -51,8 +53,20 @@ def reference_options(divisor=REFERENCE_DIVISOR):
     return ["--exact", "--timestep-divisor", str(divisor)]
 
 
+NON_FINITE = "non-finite"
+
+
+def outcome_of(run):
+    """A run's outcome. A run that started and then went non-finite (MuJoCo found a bad number and
+    reset the state; graspcd stops the grasp with an error) is "non-finite": started, not held.
+    Runs recorded before the study named it have "cannot start" and that error as message."""
+    if run.get("outcome") == "cannot start" and "went non-finite" in (run.get("message") or ""):
+        return NON_FINITE
+    return run.get("outcome")
+
+
 def started(run):
-    return run is not None and run.get("outcome") != "cannot start"
+    return run is not None and outcome_of(run) != "cannot start"
 
 
 def held(run):
@@ -117,6 +131,7 @@ def configuration_rates(placements, name):
         "placements": len(runs),
         "starts": share(len(begun), len(runs)),
         "cannot_start": len(runs) - len(begun),
+        "non_finite": sum(outcome_of(r) == NON_FINITE for _, r in begun),
         "held": share(sum(held(r) for _, r in begun), len(begun)),
         "six": share(sum(six), len(six)) if six else None,
         "compared": len(compared),

@@ -306,7 +306,10 @@ def mujoco3_run(graspcd, name, scene, record):
 
 
 def refused_record(message, cost):
-    return {"outcome": "cannot start", "message": message, "held": False, **cost}
+    """A run that did not end: it could not start, or it went non-finite after the start (an
+    error that stops the grasp: objset_rates.NON_FINITE, started and not held)."""
+    return {"outcome": (objset_rates.NON_FINITE if "went non-finite" in message else
+                        "cannot start"), "message": message, "held": False, **cost}
 
 
 def is_start_refusal(message):

@@ -135,15 +135,17 @@ def rates_table(r):
     """One row per configuration: its rates over the set."""
     lines = []
     w = lines.append
-    w("| configuration | placements | starts | held | disagrees | held, ref. drops |"
+    w("| configuration | placements | starts | went non-finite | held | disagrees |"
+      " held, ref. drops |"
       " dropped, ref. holds | hand pen. median / p99 / max (mm) | closed only max (mm) |"
       " partial | held in six directions | phantom / step | missed / step |"
       " CPU s per grasp (median) | CPU ms per physics step | grasps per CPU minute |")
-    w("|" + "---|" * 16)
+    w("|" + "---|" * 17)
     for name, c in r["configurations"].items():
         p = c["penetration"]
         per_min = None if not c["cpu_s_median"] else 60 / c["cpu_s_median"]
-        w(f"| {name} | {c['placements']} | {pct(c['starts'])} | {pct(c['held'])} |"
+        w(f"| {name} | {c['placements']} | {pct(c['starts'])} | {c['non_finite']} |"
+          f" {pct(c['held'])} |"
           f" {pct(c['disagree'])} | {pct(c['held_ref_drops'])} |"
           f" {pct(c['dropped_ref_holds'])} | {mm(p['median'])} / {mm(p['p99'])} /"
           f" {mm(p['max'])} | {mm(c['penetration_closed']['max'])} | {c['partial_runs']} |"

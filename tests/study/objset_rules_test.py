@@ -212,6 +212,36 @@ class ReferenceRule(unittest.TestCase):
         self.assertEqual(r["objects"]["a"]["configurations"]["graspcd"]["disagree"], 0.5)
         self.assertEqual(r["configurations"][R]["disagree"], 0.0, "the reference agrees")
 
+    def test_a_run_gone_non_finite_started_and_was_not_held(self):
+        R = objset_rates.REFERENCE
+        message = ("graspcd: error: s.xml: the simulation went non-finite in the lift (physics"
+                   " step 899): MuJoCo found a bad number (NaN or beyond 1e10) in qacc")
+        doc = {"configurations": [R, "graspcd"], "placements": [
+            placement("a", {R: run(True), "graspcd": {"outcome": "non-finite", "held": False,
+                                                      "message": message, "cpu_s": 1.0}}),
+            # As a run recorded before the outcome had its name.
+            placement("a", {R: run(True), "graspcd": {"outcome": "cannot start", "held": False,
+                                                      "message": message, "cpu_s": 1.0}}),
+            placement("a", {R: run(True), "graspcd": {"outcome": "cannot start", "held": False,
+                                                      "message": "cannot start with --native"}}),
+            placement("a", {R: run(True), "graspcd": run(True)})]}
+        g = objset_rates.rates(doc)["configurations"]["graspcd"]
+        self.assertEqual((g["placements"], g["cannot_start"], g["non_finite"]), (4, 1, 2))
+        self.assertAlmostEqual(g["held"], 1 / 3)
+        self.assertAlmostEqual(g["dropped_ref_holds"], 2 / 3)
+        self.assertEqual(g["penetration"]["n"], 1, "no penetration of a run that stopped")
+
+    def test_held_in_six_directions_needs_the_lift_held_and_all_six(self):
+        R = objset_rates.REFERENCE
+        runs = [dict(run(True), six_directions=6), dict(run(True), six_directions=5),
+                dict(run(False), six_directions=6), run(True)]
+        doc = {"configurations": [R, "graspcd"],
+               "placements": [placement("a", {R: run(True), "graspcd": x}) for x in runs]}
+        g = objset_rates.rates(doc)["configurations"]["graspcd"]
+        self.assertAlmostEqual(g["six"], 1 / 3, "of the 3 runs with the test, one held in six")
+        self.assertIsNone(objset_rates.rates(dict(doc, placements=doc["placements"][3:]))[
+            "configurations"]["graspcd"]["six"], "no run had the test")
+
     def test_percentile(self):
         self.assertEqual(objset_rates.percentile([1, 2, 3, 4, 5], 50), 3)
         self.assertAlmostEqual(objset_rates.percentile([0, 10], 99), 9.9)
