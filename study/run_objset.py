@@ -493,7 +493,7 @@ def main():
                         " node runs at 5-40 s of CPU a grasp; '*' adds them)")
     parser.add_argument("--no-judge", action="store_true",
                         help="the configurations without --judge: no phantom and missed contacts"
-                        " (on meshes of 16k faces the judge is most of a grasp's CPU)")
+                        " (the judge is about 0.3 s of CPU of a grasp of a 16k-face mesh)")
     parser.add_argument("--shard", help="I/N: the placements whose index is I modulo N")
     parser.add_argument("--workers", type=int, default=os.cpu_count())
     parser.add_argument("--merge", nargs="+", metavar="SHARD", help="join shard files")
