@@ -20,7 +20,8 @@ Per configuration, over the set and per object (rates(), below):
   held         the share of its started runs held after the lift;
   six          the share of its started runs held after the lift and then in all six directions
                of the six-direction test (a run's "six_directions": how many of the six it held
-               in); None when its runs had no test (a run made before the study ran it);
+               in; a run without it, as one that went non-finite, is not); None when none of its
+               runs had the test (runs made before the study ran it);
   disagree     the share of its started runs whose held verdict differs from the reference's,
                split into held where the reference drops (held_ref_drops) and dropped where the
                reference holds (dropped_ref_holds);
@@ -123,10 +124,11 @@ def configuration_rates(placements, name):
                    if r.get("cpu_ms_per_physics_step") is not None]
     step_wasm_ms = [r["wasm_cpu_ms_per_physics_step"] for _, r in begun
                     if r.get("wasm_cpu_ms_per_physics_step") is not None]
-    # Runs with the test: held in all six, after being held at the lift. A count from an older
-    # run's whole document (a dict) is not a count: such runs have no rate.
-    six = [held(r) and r["six_directions"] == 6 for _, r in begun
-           if isinstance(r.get("six_directions"), int)]
+    # Held at the lift and then in all six directions, over the started runs (one that went
+    # non-finite had no test: not held in six). Runs of a study made before the test (none has a
+    # count) have no rate.
+    tested = any(isinstance(r.get("six_directions"), int) for _, r in begun)
+    six = [held(r) and r.get("six_directions") == 6 for _, r in begun] if tested else []
     return {
         "placements": len(runs),
         "starts": share(len(begun), len(runs)),
