@@ -192,7 +192,8 @@ def draw_figure(r, fig_dir, subset=None):
                   and c["disagree"] is not None]
     for i, (name, c) in enumerate(shown):
         top = max(top, 100 * c["disagree"] + 5)
-        ax.scatter([c["cpu_s_median"]], [100 * c["disagree"]], s=50, marker=markers[i % len(markers)],
+        ax.scatter([c["cpu_s_median"]], [100 * c["disagree"]], s=50,
+                   marker=markers[i % len(markers)],
                    alpha=0.8, label=f"{name} ({c['compared']} grasps)")
     ax.set_ylim(-2, top)
     ref = r["configurations"].get(objset_rates.REFERENCE)
