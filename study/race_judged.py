@@ -186,7 +186,7 @@ def mujoco3_record(scene, configuration, noslip, record, node="node"):
     contacts per step and the node process's cost, {cpu_s, wall_s}, added) or None where 3.14
     could not start; and a message where the runner failed without a record (bad input, a
     defect: exit 1 or 2)."""
-    summary_file = record + ".summary.json"
+    summary_file = summary_file_of(record)
     if os.path.exists(failed_file(record)) and not os.path.exists(record):
         with open(failed_file(record), encoding="utf-8") as f:
             return None, f.read().strip()
@@ -203,16 +203,27 @@ def mujoco3_record(scene, configuration, noslip, record, node="node"):
         text = stdout.strip()
         with open(summary_file, "w", encoding="utf-8") as f:
             f.write(json.dumps(dict(json.loads(text), process=cost)) + "\n" if text else "")
-    summary = None
-    if os.path.exists(summary_file):
-        with open(summary_file, encoding="utf-8") as f:
-            text = f.read().strip()
-        summary = json.loads(text) if text else None
+    summary = summary_of(record)
     if summary is not None and "contacts_per_step" not in summary:
         summary["contacts_per_step"] = contacts_per_step(record)
         with open(summary_file, "w", encoding="utf-8") as f:
             f.write(json.dumps(summary) + "\n")
     return summary, None
+
+
+def summary_file_of(record):
+    """Where the runner's summary of a record is kept (RECORD.summary.json)."""
+    return record + ".summary.json"
+
+
+def summary_of(record):
+    """The kept summary of a record (mujoco3_record), or None: none kept, or 3.14 could not
+    start."""
+    if not os.path.exists(summary_file_of(record)):
+        return None
+    with open(summary_file_of(record), encoding="utf-8") as f:
+        text = f.read().strip()
+    return json.loads(text) if text else None
 
 
 def failed_file(record):

@@ -283,10 +283,7 @@ def mujoco3_run(graspcd, name, scene, record):
     3.14 raises, as "collision function returned 11 contacts") counts as cannot start, its
     message kept."""
     row, message, _ = race_judged.mujoco3_row(graspcd, name, scene, record, 0)
-    summary = {}
-    if os.path.exists(record + ".summary.json"):
-        with open(record + ".summary.json", encoding="utf-8") as f:
-            summary = json.loads(f.read().strip() or "{}")
+    summary = race_judged.summary_of(record) or {}
     cost = summary.get("process") or {"cpu_s": None, "wall_s": None}
     if row is None:
         return refused_record(message, cost)
