@@ -25,7 +25,7 @@
 #include "helpers/processes.h"
 #include "helpers/ring_mesh.h"
 
-namespace graspcd::testing {
+namespace graspcd::testing::decompose_vhacd_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -276,4 +276,4 @@ TEST_F(FakeVhacd, PiecesFarFromTheMeshAreWarnedAbout) {
 }
 
 }  // namespace
-}  // namespace graspcd::testing
+}  // namespace graspcd::testing::decompose_vhacd_test

@@ -27,7 +27,7 @@
 #include "graspcd/mujoco/model_loading.h"
 #include "helpers/command_test.h"
 
-namespace graspcd::testing {
+namespace graspcd::testing::mujoco3_runner_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -455,4 +455,4 @@ TEST_F(Mujoco3Runner, RefusalsAreOneLine) {
 }
 
 }  // namespace
-}  // namespace graspcd::testing
+}  // namespace graspcd::testing::mujoco3_runner_test

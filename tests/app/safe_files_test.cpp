@@ -24,6 +24,7 @@
 #include "helpers/processes.h"
 #include "helpers/test_scale.h"
 
+namespace safe_files_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -548,3 +549,4 @@ TEST_F(SafeFilesTest, TheOutputNamesNoTemporaryFile) {
 }
 
 }  // namespace
+}  // namespace safe_files_test

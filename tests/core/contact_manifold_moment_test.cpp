@@ -19,7 +19,7 @@
 #include "graspcd/core/triangle_contact.h"
 #include "helpers/manifold_patches.h"
 
-namespace graspcd {
+namespace graspcd::contact_manifold_moment_test {
 namespace {
 
 struct Patches : testing::PatchCandidates {
@@ -228,4 +228,4 @@ TEST(MomentReduction, TheDefaultIsTheSupportReductionUnchanged) {
 }
 
 }  // namespace
-}  // namespace graspcd
+}  // namespace graspcd::contact_manifold_moment_test

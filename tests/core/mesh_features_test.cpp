@@ -10,7 +10,7 @@
 
 #include "graspcd/support/meshes.h"
 
-namespace graspcd {
+namespace graspcd::mesh_features_test {
 namespace {
 
 Triangle tri(Vec3 a, Vec3 b, Vec3 c) { return Triangle{{a, b, c}}; }
@@ -64,4 +64,4 @@ TEST(WeldVertexIds, AreEqualExactlyForEqualCoordinates) {
 }
 
 }  // namespace
-}  // namespace graspcd
+}  // namespace graspcd::mesh_features_test

@@ -8,7 +8,7 @@
 
 #include "graspcd/core/tritri.h"
 
-namespace graspcd {
+namespace graspcd::triangle_contact_test {
 namespace {
 
 Triangle tri(Vec3 a, Vec3 b, Vec3 c) { return Triangle{{a, b, c}}; }
@@ -104,4 +104,4 @@ TEST(TrianglePairContact, CollinearSegmentsUseTheFallbackNormal) {
 }
 
 }  // namespace
-}  // namespace graspcd
+}  // namespace graspcd::triangle_contact_test

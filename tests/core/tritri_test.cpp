@@ -26,7 +26,7 @@
 #include "graspcd/support/random_geometry.h"
 #include "helpers/test_scale.h"
 
-namespace graspcd {
+namespace graspcd::tritri_test {
 namespace {
 
 std::int64_t scaled_count(int n) { return testing::scaled(n, 1000); }
@@ -279,7 +279,7 @@ TEST(TriTriReferenceVariants, PlainMollerMissesTouchingPairs) {
 }
 
 }  // namespace
-}  // namespace graspcd
+}  // namespace graspcd::tritri_test
 
 namespace graspcd {
 namespace {

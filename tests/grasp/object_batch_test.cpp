@@ -15,7 +15,7 @@
 #include "graspcd/grasp/object_run.h"
 #include "helpers/temp_dir.h"
 
-namespace graspcd::grasp {
+namespace graspcd::grasp::object_batch_test {
 namespace {
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
@@ -114,4 +114,4 @@ TEST(DrawPlacements, AreTheSeedsAloneAndAPlacementDependsOnItsIndexOnly) {
 }
 
 }  // namespace
-}  // namespace graspcd::grasp
+}  // namespace graspcd::grasp::object_batch_test

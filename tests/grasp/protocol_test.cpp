@@ -18,7 +18,7 @@
 #include "helpers/scene_text.h"
 #include "helpers/temp_dir.h"
 
-namespace graspcd::grasp {
+namespace graspcd::grasp::protocol_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -100,4 +100,4 @@ TEST_F(Protocol, ACanStandingOnTheFloorIsMeasuredAtRestWithoutNoslip) {
 }
 
 }  // namespace
-}  // namespace graspcd::grasp
+}  // namespace graspcd::grasp::protocol_test

@@ -17,7 +17,7 @@
 #include "helpers/ring_mesh.h"
 #include "helpers/temp_dir.h"
 
-namespace graspcd::grasp {
+namespace graspcd::grasp::start_rule_test {
 namespace {
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
@@ -106,4 +106,4 @@ TEST_F(StartRule, TheDecomposedRingIsRefusedByThePiecesHulls) {
 }
 
 }  // namespace
-}  // namespace graspcd::grasp
+}  // namespace graspcd::grasp::start_rule_test

@@ -22,7 +22,7 @@
 #include "helpers/temp_dir.h"
 #include "helpers/test_scale.h"
 
-namespace graspcd::grasp {
+namespace graspcd::grasp::verdicts_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -390,4 +390,4 @@ TEST(ManifoldChoice, ParsesAReductionAndAnOptionalBudget) {
 }
 
 }  // namespace
-}  // namespace graspcd::grasp
+}  // namespace graspcd::grasp::verdicts_test

@@ -21,7 +21,7 @@ constexpr const char* kTwoBoxes = R"(<mujoco>
   </worldbody>
 </mujoco>)";
 
-bool has_buffer_warning(const WarningSink& sink) {
+bool has_buffer_warning(const graspcd::WarningSink& sink) {
   for (const Warning& w : sink.list()) {
     if (w.code == "mujoco_warning" && w.message.find("contact buffer is full") != std::string::npos)
       return true;
@@ -42,7 +42,7 @@ TEST(MujocoMessages, WarningsReachTheSinkAndTheCapturingThreadOnly) {
   void (*const before)(const char*) = mju_user_warning;
   route_mujoco_warnings();
   warnings().clear();
-  WarningSink mine, other;
+  graspcd::WarningSink mine, other;
   {
     const ScopedMujocoWarnings capture(mine);
     step_until_full(m.get());

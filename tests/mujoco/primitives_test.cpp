@@ -27,7 +27,7 @@
 #include "graspcd/support/seeded.h"
 #include "helpers/scene_support.h"
 
-namespace graspcd::mujoco {
+namespace graspcd::mujoco::primitives_test {
 namespace {
 
 using testing::contacts_between;
@@ -655,4 +655,4 @@ TEST(BoxHand, GraspLiftsAndHoldsLikeTheNativeRun) {
 }
 
 }  // namespace
-}  // namespace graspcd::mujoco
+}  // namespace graspcd::mujoco::primitives_test

@@ -19,7 +19,7 @@
 #include "graspcd/study/contact_judge.h"
 #include "helpers/judged_grasp.h"
 
-namespace graspcd::grasp {
+namespace graspcd::grasp::default_contacts_test {
 namespace {
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
@@ -72,4 +72,4 @@ TEST(DefaultContacts, TheRobotiqGripperKeepsItsVerdictAndTheJudgeFindsNoError) {
 }
 
 }  // namespace
-}  // namespace graspcd::grasp
+}  // namespace graspcd::grasp::default_contacts_test

@@ -21,7 +21,7 @@
 #include "graspcd/study/contact_judge.h"
 #include "helpers/judged_grasp.h"
 
-namespace graspcd::grasp {
+namespace graspcd::grasp::force_reduction_test {
 namespace {
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
@@ -57,4 +57,4 @@ TEST(ForceReductionGrasps, FourPerPairHoldAsTheDefaultDoes) {
 }
 
 }  // namespace
-}  // namespace graspcd::grasp
+}  // namespace graspcd::grasp::force_reduction_test

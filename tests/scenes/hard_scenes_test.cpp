@@ -36,7 +36,7 @@
 #include "graspcd/mujoco/mujoco_messages.h"
 #include "graspcd/mujoco/nonconvex_contacts.h"
 
-namespace graspcd::grasp {
+namespace graspcd::grasp::hard_scenes_test {
 namespace {
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
@@ -243,4 +243,4 @@ TEST(HardScenes, ObjectRestsInTheClosedHandForFiveSeconds) {
 }
 
 }  // namespace
-}  // namespace graspcd::grasp
+}  // namespace graspcd::grasp::hard_scenes_test

@@ -23,7 +23,7 @@
 #include "graspcd/mujoco/mujoco_ptr.h"
 #include "graspcd/mujoco/registry.h"
 
-namespace graspcd::grasp {
+namespace graspcd::grasp::scenes_test {
 namespace {
 
 const std::string kMjcf = GRASPCD_MJCF_DIR;
@@ -465,4 +465,4 @@ TEST(SceneGrasp, InExample3TheBridgeLetsFinger2IntoTheSlotWhereTheHullIsSolid) {
 }
 
 }  // namespace
-}  // namespace graspcd::grasp
+}  // namespace graspcd::grasp::scenes_test

@@ -27,6 +27,7 @@
 #include "helpers/temp_dir.h"
 #include "helpers/test_scale.h"
 
+namespace validate_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -584,3 +585,4 @@ TEST_F(ValidateTest, BadInputIsOneLineAndExitCodeTwo) {
 }
 
 }  // namespace
+}  // namespace validate_test
