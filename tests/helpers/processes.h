@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <ios>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -23,7 +24,8 @@
 namespace graspcd::testing {
 
 // The state letter, parent id and command name of a process from /proc/PID/stat ('\0' when it
-// is gone).
+// is gone, also when it went between the file's opening and its reading: then the read fails with
+// ESRCH, which libstdc++'s file buffer throws as an exception).
 struct ProcessStat {
   char state = '\0';
   pid_t parent = 0;
@@ -31,8 +33,13 @@ struct ProcessStat {
 };
 
 inline ProcessStat process_stat(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string text;
+  try {
+    std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const std::ios_base::failure&) {
+    return {};
+  }
   ProcessStat s;
   const std::size_t open = text.find('(');
   const std::size_t close = text.rfind(')');
