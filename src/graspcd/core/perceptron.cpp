@@ -8,7 +8,7 @@ namespace graspcd {
 
 PerceptronResult perceptron_separate(const Obb& a, const Obb& b, const PerceptronOptions& options,
                                      const SeparatingPlane* start) {
-  constexpr double kU = tol::kUnitRoundoff;
+  constexpr double kRoundoff = tol::kUnitRoundoff;
   // The learning frame: x_local = (x - origin) / scale.
   Vec3 origin = Vec3::Zero();
   if (options.frame != PerceptronFrame::kOriginal) origin = 0.5 * (a.center + b.center);
@@ -67,7 +67,7 @@ PerceptronResult perceptron_separate(const Obb& a, const Obb& b, const Perceptro
   for (int i = 0; i < 16; ++i) {
     const double f = w.dot(x[i]) + d;
     const double margin =
-        w1 * position_error + 8 * kU * (w1 * x[i].cwiseAbs().maxCoeff() + std::fabs(d));
+        w1 * position_error + 8 * kRoundoff * (w1 * x[i].cwiseAbs().maxCoeff() + std::fabs(d));
     if (i < 8 ? !(f > margin) : !(f < -margin)) return result;
   }
   result.disjoint = true;

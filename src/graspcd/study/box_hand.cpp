@@ -58,7 +58,7 @@ BoxHandSteps box_hand_steps(const BoxScene& scene, const Recording& rec) {
   return d;
 }
 
-struct BoxMethod {
+struct BoxHandMethod {
   std::string name;
   Method method;
   DetectorOptions options;
@@ -74,7 +74,7 @@ struct BoxReplay {
   std::uint64_t unproven = 0;         // "may overlap" for boxes CGAL says disjoint: costs only
 };
 
-BoxReplay replay_box_method(const BoxMethod& bm, const std::vector<BoxPair>& pairs,
+BoxReplay replay_box_method(const BoxHandMethod& bm, const std::vector<BoxPair>& pairs,
                             const BoxHandSteps& d, int steps, int repeats) {
   BoxReplay out;
   std::vector<std::uint8_t> disjoint(pairs.size(), 0);
@@ -171,12 +171,12 @@ json run_box_hand(const StudyOptions& o, const Recording& rec, const Log& log) {
   const BoxHandSteps d = box_hand_steps(scene, rec);
   DetectorOptions perceptron;
   perceptron.cap = kBoxHandCap;
-  const std::vector<BoxMethod> methods = {{"sat", Method::kSat, {}},
-                                          {"perceptron", Method::kPerceptron, perceptron},
-                                          {"neurosat", Method::kNeuroSat, {}}};
+  const std::vector<BoxHandMethod> methods = {{"sat", Method::kSat, {}},
+                                              {"perceptron", Method::kPerceptron, perceptron},
+                                              {"neurosat", Method::kNeuroSat, {}}};
   json out_methods = json::array();
   bool any_false_separated = false;
-  for (const BoxMethod& bm : methods) {
+  for (const BoxHandMethod& bm : methods) {
     const BoxReplay r = replay_box_method(bm, pairs, d, steps, o.repeats);
     any_false_separated = any_false_separated || r.false_separated > 0;
     out_methods.push_back({{"name", bm.name},
